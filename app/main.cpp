@@ -1,0 +1,157 @@
+// floornav: the command line. Subcommands: run, batch, demo, presets.
+// Exit status: 0 when the simulation(s) ran, 2 for bad input, 1 for an internal error.
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "demo_scenario.hpp"
+#include "floornav/io/batch.hpp"
+#include "floornav/io/input_error.hpp"
+#include "floornav/io/run_outputs.hpp"
+#include "floornav/io/scenario_file.hpp"
+#include "floornav/sim/robot_spec.hpp"
+#include "scen_cases.hpp"
+
+namespace fs = std::filesystem;
+using namespace floornav;
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int) { g_stop.store(true); }
+
+std::string default_out_dir(const std::string& name) { return (fs::path("out") / name).string(); }
+
+int run_one(const Scenario& scenario, const std::string& out, bool quiet) {
+  const RunResult r = run_timed(scenario);
+  const fs::path dir = out.empty() ? fs::path(default_out_dir(scenario.name)) : fs::path(out);
+  write_run_outputs(dir, scenario, r);
+  if (!quiet) fmt::print("{} -> {}\n", describe_run(r), dir.string());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"floornav: reactive navigation of wheeled mobile robots on factory floors"};
+  app.set_version_flag("--version", std::string("floornav ") + FLOORNAV_VERSION);
+  app.require_subcommand(1);
+
+  // run
+  std::string run_file, run_out;
+  std::vector<std::string> run_sets;
+  bool run_quiet = false;
+  auto* run = app.add_subcommand("run", "Simulate one scenario; writes summary.json, "
+                                        "trajectory.csv and trajectory.svg");
+  run->add_option("scenario", run_file, "scenario YAML file")->required();
+  run->add_option("--out", run_out, "output folder (default: out/<scenario name>)");
+  run->add_option("--set", run_sets, "override a scenario key: --set controller.kind=blended")
+      ->take_all();
+  run->add_flag("-q,--quiet", run_quiet, "print nothing on success");
+
+  // batch
+  std::vector<std::string> batch_files, batch_sets;
+  std::string batch_out = "out/batch", batch_scen;
+  int batch_jobs = 0;
+  double batch_cell = 0.0;
+  long batch_limit = -1;
+  bool batch_no_timing = false, batch_resume = false;
+  auto* batch = app.add_subcommand("batch", "Run many scenarios in parallel; writes "
+                                            "results.jsonl and aggregate.json");
+  batch->add_option("scenarios", batch_files, "scenario YAML files (or one template with --scen)")
+      ->required();
+  batch->add_option("--jobs,-j", batch_jobs, "worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  batch->add_option("--out", batch_out, "output folder (default: out/batch)");
+  batch->add_option("--set", batch_sets, "override a key in every scenario")->take_all();
+  batch->add_option("--scen", batch_scen, "MovingAI .scen file: one case per row, on its map");
+  batch->add_option("--cell-size", batch_cell, "metres per grid cell for --scen (default 1)")
+      ->check(CLI::PositiveNumber);
+  batch->add_option("--limit", batch_limit, "run only the first N cases")->check(CLI::NonNegativeNumber);
+  batch->add_flag("--no-timing", batch_no_timing,
+                  "write wall_time as 0 so that repeated runs give identical files");
+  batch->add_flag("--resume", batch_resume, "keep the cases already in results.jsonl");
+
+  // demo
+  std::string demo_out;
+  auto* demo = app.add_subcommand("demo", "Run the built-in factory floor demo (no files needed)");
+  demo->add_option("--out", demo_out, "output folder (default: out/factory-delivery)");
+
+  // presets
+  auto* presets = app.add_subcommand("presets", "List the robot presets");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+
+  try {
+    if (*run) {
+      const Scenario s = load_scenario_file(run_file, run_sets);
+      return run_one(s, run_out, run_quiet);
+    }
+    if (*demo) {
+      const Scenario s = load_scenario_text(app::kDemoScenarioYaml, "factory-delivery.yaml");
+      return run_one(s, demo_out, false);
+    }
+    if (*presets) {
+      for (auto name : robot_preset_names()) {
+        const RobotPreset p = *find_robot_preset(name);
+        fmt::print("{:<18} R {:.4f} m, L {:.4f} m, body radius {:.3f} m, max {:.2f} m/s, {} "
+                   "range sensors {:.2f}-{:.2f} m\n",
+                   name, p.robot.drive.wheel_radius, p.robot.drive.track_width,
+                   p.robot.body_radius, max_forward_speed(p.robot.drive), p.robot.sensors.size(),
+                   p.robot.sensors.front().min_range, p.robot.sensors.front().max_range);
+      }
+      return 0;
+    }
+    if (*batch) {
+      std::vector<BatchCase> cases;
+      if (!batch_scen.empty()) {
+        if (batch_files.size() != 1)
+          throw InputError("", "--scen", "give exactly one template scenario with --scen");
+        cases = make_scen_cases(batch_files[0], batch_scen, batch_cell > 0 ? batch_cell : 1.0,
+                                batch_sets);
+      } else {
+        for (const auto& f : batch_files) cases.push_back({load_scenario_file(f, batch_sets), f});
+      }
+      if (batch_limit >= 0 && static_cast<std::size_t>(batch_limit) < cases.size())
+        cases.resize(static_cast<std::size_t>(batch_limit));
+      std::signal(SIGINT, on_signal);
+      std::signal(SIGTERM, on_signal);
+      BatchOptions opt;
+      opt.jobs = batch_jobs;
+      opt.out_dir = batch_out;
+      opt.progress = isatty(STDERR_FILENO) != 0;
+      opt.timing = !batch_no_timing;
+      opt.resume = batch_resume;
+      opt.stop = &g_stop;
+      const BatchOutcome o = run_batch(cases, opt);
+      const auto& a = o.aggregate;
+      fmt::print("{} of {} cases{}: success {:.1f}%, collision {:.1f}%, timeout {:.1f}%, stuck "
+                 "{:.1f}% -> {}\n",
+                 o.completed, o.total, o.interrupted ? " (interrupted; --resume completes it)" : "",
+                 100.0 * a["success_rate"].get<double>(), 100.0 * a["collision_rate"].get<double>(),
+                 100.0 * a["timeout_rate"].get<double>(), 100.0 * a["stuck_rate"].get<double>(),
+                 batch_out);
+      return o.interrupted ? 130 : 0;
+    }
+  } catch (const InputError& e) {
+    fmt::print(stderr, "floornav: error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "floornav: internal error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,64 @@
+#pragma once
+/// @file
+/// The supervisor's parameters: speeds, the switching distances of Fig 5.11, the goal radius.
+/// All distances are clearances measured from the robot body's surface, so one set of defaults
+/// fits robots of different sizes up to their sensor range.
+
+#include <optional>
+#include <string_view>
+
+#include "floornav/control/pid.hpp"
+
+namespace floornav {
+
+/// The four controller kinds of the command-line contract.
+enum class ControllerKind {
+  GoToGoal,    ///< GTG only (eqs. 5.16-5.19): hits whatever is in the way
+  HardSwitch,  ///< GTG <-> AO on |x - x_o| vs d_o (Fig 5.7): can chatter (Fig 5.9)
+  Blended,     ///< sigma_1 u_GTG + sigma_2 u_AO (eq. 5.21)
+  Hybrid,      ///< the complete automaton of Fig 5.11: GTG, FB-cw, FB-ccw, AO, STOP
+};
+
+std::optional<ControllerKind> parse_controller_kind(std::string_view name);
+std::string_view to_string(ControllerKind kind);
+
+struct NavigationParams {
+  double v0{0.15};           ///< m/s cruise speed, the cap on |u|
+  double gtg_a{40.0};        ///< 1/m^2 shape of the capped GTG gain (eq. 5.19 note)
+  double d_o{0.12};          ///< m: an obstacle this close is "met" (GTG -> FB, Fig 5.11)
+  double d_fb{0.08};         ///< m: clearance that follow-boundary holds
+  double k_fb{10.0};         ///< 1/m: distance-keeping gain of follow-boundary
+  double d_unsafe{0.03};     ///< m: closer than this, AO takes over (FB -> AO)
+  double hysteresis{0.02};   ///< m: AO is left only at d_unsafe + hysteresis (fat guard)
+  double progress_margin{0.02};  ///< m: delta in |x - x_g| < d_tau - delta (eq. 5.26)
+  double epsilon{0.05};      ///< m: goal radius, any -> STOP
+  double blend_near{0.03};   ///< m: blended, sigma_2 = 1 at this clearance
+  double blend_far{0.15};    ///< m: blended, sigma_2 = 0 beyond this clearance
+  double obstacle_memory{1.0};   ///< s: sensed points are remembered this long (sparse IR rings)
+  bool slow_when_turning{true};  ///< V *= max(0, cos e): turn before driving (an extension)
+  int chatter_switches{8};   ///< this many switches ...
+  double chatter_window{2.0};  ///< ... within this many seconds is a chatter (Zeno) episode
+  PidGains heading_pid{};    ///< eqs. 5.12-5.15
+
+  template <class Archive>
+  void serialize(Archive& a) {
+    a("v0", v0, "cruise speed, m/s (cap on |u|)");
+    a("gtg_a", gtg_a, "shape of the capped go-to-goal gain K = v0(1-exp(-a|e|^2))/|e|, 1/m^2");
+    a("d_o", d_o, "clearance at which an obstacle is met (GTG -> FB; hard_switch GTG <-> AO), m");
+    a("d_fb", d_fb, "clearance that follow-boundary keeps, m");
+    a("k_fb", k_fb, "follow-boundary distance-keeping gain, 1/m");
+    a("d_unsafe", d_unsafe, "clearance below which avoid-obstacle takes over, m");
+    a("hysteresis", hysteresis, "AO is left at d_unsafe + hysteresis, m");
+    a("progress_margin", progress_margin, "delta of the progress guard |x-x_g| < d_tau - delta, m");
+    a("epsilon", epsilon, "goal radius: any mode -> STOP, m");
+    a("blend_near", blend_near, "blended: sigma_2 = 1 at this clearance, m");
+    a("blend_far", blend_far, "blended: sigma_2 = 0 beyond this clearance, m");
+    a("obstacle_memory", obstacle_memory, "seconds a sensed obstacle point is remembered");
+    a("slow_when_turning", slow_when_turning, "scale V by max(0, cos(heading error))");
+    a("chatter_switches", chatter_switches, "switches within chatter_window that count as chatter");
+    a("chatter_window", chatter_window, "window of the chatter (Zeno) detector, s");
+    a.section("pid", heading_pid);
+  }
+};
+
+}  // namespace floornav

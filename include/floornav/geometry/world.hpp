@@ -1,0 +1,101 @@
+#pragma once
+/// @file
+/// The static obstacle world: walls, circles and polygons, behind a uniform-grid spatial index so
+/// that ray casts and clearance queries cost about the same for 10 edges or 10,000.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "floornav/geometry/circle.hpp"
+#include "floornav/geometry/segment.hpp"
+#include "floornav/geometry/vec2.hpp"
+
+namespace floornav {
+
+class OccupancyGrid;
+
+/// Axis-aligned box `[min, max]` (metres).
+struct Box2 {
+  Vec2 min{Vec2::Zero()};
+  Vec2 max{Vec2::Zero()};
+
+  bool contains(const Vec2& p) const {
+    return p.x() >= min.x() && p.x() <= max.x() && p.y() >= min.y() && p.y() <= max.y();
+  }
+  Vec2 size() const { return max - min; }
+};
+
+/// What a world is made of, as a user describes it. Polygons may wind either way.
+struct WorldDesc {
+  std::optional<Box2> bounds;                 ///< walls on all four sides; outside is solid
+  std::vector<Circle> circles;                ///< solid discs (radius 0: a point obstacle)
+  std::vector<std::vector<Vec2>> polygons;    ///< solid simple polygons, convex or concave
+  const OccupancyGrid* grid{nullptr};         ///< optional occupancy map; must outlive the World
+};
+
+/// Immutable obstacle world. Queries are `const` and thread-safe.
+class World {
+ public:
+  explicit World(WorldDesc desc);
+
+  /// Distance from `origin` along unit `dir` to the first obstacle surface, or `max_range` when
+  /// nothing is hit closer. 0 when `origin` is inside an obstacle.
+  double cast_ray(const Vec2& origin, const Vec2& dir, double max_range) const;
+
+  /// Signed distance from `p` to the nearest obstacle surface: negative inside an obstacle or
+  /// outside the bounds. +infinity in an empty, unbounded world.
+  double clearance(const Vec2& p) const;
+
+  /// The obstacle surface point nearest to `p`, if there is any obstacle.
+  std::optional<Vec2> nearest_obstacle_point(const Vec2& p) const;
+
+  /// True when `p` is inside an obstacle (or outside the bounds).
+  bool is_inside_obstacle(const Vec2& p) const;
+
+  /// Brute-force versions of the queries above, the oracle for tests.
+  double cast_ray_brute_force(const Vec2& origin, const Vec2& dir, double max_range) const;
+  double clearance_brute_force(const Vec2& p) const;
+
+  const std::optional<Box2>& bounds() const { return bounds_; }
+  std::span<const Circle> circles() const { return circles_; }
+  std::span<const Segment> segments() const { return segments_; }  ///< walls + polygon edges
+  const std::vector<std::vector<Vec2>>& polygons() const { return polygons_; }
+  const OccupancyGrid* grid() const { return grid_; }
+  /// The box that holds every obstacle and the bounds (empty box for an empty world).
+  const Box2& extent() const { return extent_; }
+  std::size_t edge_count() const { return segments_.size(); }
+
+ private:
+  struct Index {
+    Vec2 origin{Vec2::Zero()};
+    double cell{1.0};
+    double inv_cell{1.0};
+    int nx{0};
+    int ny{0};
+    // Compressed rows: items of cell c are [offsets[c], offsets[c+1]) in each list.
+    std::vector<std::uint32_t> segment_offsets, segment_items;
+    std::vector<std::uint32_t> circle_offsets, circle_items;
+    std::vector<std::uint32_t> polygon_offsets, polygon_items;
+  };
+
+  void build_index();
+  bool inside_solid_shape(const Vec2& p) const;
+  int cell_x(double x) const;
+  int cell_y(double y) const;
+  /// Smallest hit distance among the items of one cell, below `best`.
+  double ray_in_cell(int cell, const Vec2& origin, const Vec2& dir, double best) const;
+
+  std::optional<Box2> bounds_;
+  std::vector<Circle> circles_;
+  std::vector<Segment> segments_;
+  std::vector<std::vector<Vec2>> polygons_;
+  std::vector<Box2> polygon_boxes_;
+  const OccupancyGrid* grid_{nullptr};
+  Box2 extent_;
+  Index index_;
+};
+
+}  // namespace floornav

@@ -1,0 +1,78 @@
+#pragma once
+/// @file
+/// An occupancy map (ROS map_server, MovingAI, a rasterised floor plan) with fast ray casting
+/// (DDA ray marching) and clearance (a Euclidean distance transform computed once).
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "floornav/geometry/pose2.hpp"
+#include "floornav/geometry/vec2.hpp"
+
+namespace floornav {
+
+/// A grid of square cells, each free or occupied. Cell (ix, iy) covers
+/// `[ix, ix+1) x [iy, iy+1)` times `resolution` in the grid frame, whose pose in the world is
+/// `origin` (the lower-left corner of cell (0, 0), with yaw, as in a ROS map yaml).
+/// Row iy = 0 is the bottom row (a ROS image's last line). Immutable after construction.
+class OccupancyGrid {
+ public:
+  /// `occupied` holds width * height bytes, row-major from the bottom row; nonzero = occupied.
+  /// Throws std::invalid_argument for sizes that do not match or are not positive.
+  OccupancyGrid(int width, int height, double resolution, Pose2 origin,
+                std::vector<std::uint8_t> occupied);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  double resolution() const { return resolution_; }
+  const Pose2& origin() const { return origin_; }
+  bool occupied(int ix, int iy) const;  ///< cells outside the grid count as free
+  std::size_t occupied_count() const;
+
+  /// Distance along unit `dir` (world frame) from `origin_world` to the first occupied cell, or
+  /// `max_range` (>= 0). 0 when starting in an occupied cell. Exact (cell edges, not samples):
+  /// a DDA walk over the cells, clipped to the grid first when starting outside. A ray through a
+  /// cell corner also hits the two cells that share it. Non-finite input gives `max_range`.
+  double cast_ray(const Vec2& origin_world, const Vec2& dir, double max_range) const;
+
+  /// Signed distance (m) from `p` (world) to the nearest occupied cell's square, exact also for
+  /// points outside the grid. Inside an occupied cell it is minus the distance to that cell's own
+  /// border (so only a lower bound on the depth inside a thick wall). +infinity when no cell is
+  /// occupied; NaN for a non-finite `p`. Cost O(clearance / resolution).
+  double clearance(const Vec2& p) const;
+
+  /// The world-frame point of the nearest occupied square (the point `clearance` measures to).
+  bool nearest_occupied_point(const Vec2& p, Vec2* out) const;
+
+  /// World-frame axis-aligned box holding the whole grid.
+  void world_extent(Vec2* min, Vec2* max) const;
+
+  /// Row-major index (iy * width + ix) of the occupied cell whose centre is nearest to the centre
+  /// of cell (ix, iy) (exact Euclidean feature transform; ties broken arbitrarily), or -1 when no
+  /// cell is occupied or (ix, iy) is outside the grid.
+  std::int32_t nearest_occupied_index(int ix, int iy) const;
+
+ private:
+  Vec2 to_grid(const Vec2& world) const;  // metres, grid frame
+  Vec2 to_world(const Vec2& grid) const;  // inverse of to_grid
+  /// Exact nearest occupied square to grid-frame point (px, py) in cell units: returns the squared
+  /// distance in cells^2 (+inf if none) and the cell index in `*cell`.
+  double nearest_square(double px, double py, std::int32_t* cell) const;
+  int width_;
+  int height_;
+  double resolution_;
+  Pose2 origin_;
+  std::vector<std::uint8_t> occupied_;
+  /// For each cell, the index of the nearest occupied cell (by centre distance), -1 if none.
+  std::vector<std::int32_t> nearest_;
+  /// For each cell (ix, iy): 2 * r + tie, where r is the nearest occupied row in column ix
+  /// (the lower one on a tie) and tie = 1 when row 2 * iy - r is occupied too; -1 if the column
+  /// is empty. Pass 1 of the transform, kept for exact point queries (clearance).
+  std::vector<std::int32_t> column_nearest_;
+  std::size_t occupied_count_{0};
+  double cos_yaw_{1.0};
+  double sin_yaw_{0.0};
+};
+
+}  // namespace floornav

@@ -1,0 +1,30 @@
+#pragma once
+/// @file
+/// Writing a run's files (summary.json, trajectory.csv, trajectory.svg) and its one-line report.
+
+#include <filesystem>
+#include <string>
+
+#include "floornav/sim/run_result.hpp"
+#include "floornav/sim/scenario.hpp"
+
+namespace floornav {
+
+/// Which files `write_run_outputs` writes.
+struct OutputSelection {
+  bool summary{true};
+  bool csv{true};
+  bool svg{true};
+};
+
+/// Writes the selected files into `dir` (created if needed), each atomically.
+void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,
+                       const RunResult& result, const OutputSelection& which = {});
+
+/// "factory-delivery: reached in 41.3 s, path 7.92 m, min clearance 0.061 m, 6 switches".
+std::string describe_run(const RunResult& result);
+
+/// Times `simulate` and fills in the result's wall_time.
+RunResult run_timed(const Scenario& scenario);
+
+}  // namespace floornav

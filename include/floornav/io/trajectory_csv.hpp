@@ -1,0 +1,16 @@
+#pragma once
+/// @file
+/// trajectory.csv (CONTRACT.md): one row per recorded step.
+
+#include <string>
+
+#include "floornav/sim/run_result.hpp"
+
+namespace floornav {
+
+/// The header `t,x,y,theta,v,omega,w_left,w_right,mode`, then one row per TrajectorySample
+/// (s, m, m, rad, m/s, rad/s, rad/s, rad/s, mode name). Numbers are the shortest text that reads
+/// back to the same double, so the file is exact and the same on every machine.
+std::string trajectory_to_csv(const RunResult& result);
+
+}  // namespace floornav

@@ -1,0 +1,40 @@
+#pragma once
+/// @file
+/// A robot: its differential-drive base, its body, its range sensors; and the published presets.
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "floornav/control/navigation_params.hpp"
+#include "floornav/kinematics/differential_drive.hpp"
+#include "floornav/sensing/range_sensor.hpp"
+
+namespace floornav {
+
+struct RobotSpec {
+  std::string preset;                    ///< the preset it started from ("" for none)
+  DiffDriveParams drive{};               ///< R, L, wheel limits (eqs. 5.5-5.11)
+  double body_radius{0.075};             ///< m: the body is a disc for collision and clearance
+  std::vector<RangeSensorSpec> sensors;  ///< in the robot frame
+  double sensor_noise{0.0};              ///< m: std. dev. of Gaussian range noise
+};
+
+/// A preset: the robot and the supervisor defaults that suit its speed and sensor range.
+struct RobotPreset {
+  RobotSpec robot;
+  NavigationParams navigation;
+};
+
+/// The preset called `name` (quickbot, khepera3, pioneer_p3dx, turtlebot3_burger, jackal).
+std::optional<RobotPreset> find_robot_preset(std::string_view name);
+std::span<const std::string_view> robot_preset_names();
+
+/// `beams` single-beam sensors spread evenly over `fov` radians centred on the mount's heading
+/// (a planar lidar); both ends included when fov < 2 pi, evenly round the circle otherwise.
+std::vector<RangeSensorSpec> make_lidar(int beams, double fov, double min_range, double max_range,
+                                        const Pose2& mount);
+
+}  // namespace floornav

@@ -1,0 +1,58 @@
+#pragma once
+/// @file
+/// What a run produced: the outcome (a value, never an exception), the metrics of the summary,
+/// the transition log, and the trajectory when it was recorded.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "floornav/automaton/hybrid_automaton.hpp"
+
+namespace floornav {
+
+enum class RunStatus { Reached, Collision, Timeout, Stuck };
+
+inline std::string_view to_string(RunStatus s) {
+  switch (s) {
+    case RunStatus::Reached: return "reached";
+    case RunStatus::Collision: return "collision";
+    case RunStatus::Timeout: return "timeout";
+    case RunStatus::Stuck: return "stuck";
+  }
+  return "unknown";
+}
+
+/// One row of trajectory.csv: the state after a step and the commands that drove it.
+struct TrajectorySample {
+  double t, x, y, theta;  ///< s, m, m, rad
+  double v, omega;        ///< m/s, rad/s actually driven (after saturation)
+  double w_left, w_right; ///< rad/s
+  int mode;               ///< index into RunResult::mode_names
+};
+
+struct RunResult {
+  std::string scenario;
+  RunStatus status{RunStatus::Timeout};
+  bool reached_goal{false};  ///< every goal was reached
+  bool collided{false};
+  int goals_reached{0};
+  int goal_count{0};
+  double sim_time{0.0};
+  double path_length{0.0};
+  double min_clearance{0.0};  ///< m between body and obstacles, over the run (<= 0 on collision)
+  int mode_switches{0};
+  int steps{0};
+  double wall_time{0.0};  ///< s, set by the caller that timed the run
+  int chatter_episodes{0};
+  double first_chatter_time{-1.0};
+  std::vector<std::string> mode_names;  ///< indexable by mode
+  std::vector<std::string> guard_names; ///< indexable by Transition::edge
+  std::vector<double> mode_time;        ///< s per mode
+  std::vector<Transition> transitions;
+  std::vector<double> transition_x, transition_y;  ///< where each transition happened
+  std::vector<TrajectorySample> trajectory;
+  double final_x{0.0}, final_y{0.0}, final_theta{0.0};
+};
+
+}  // namespace floornav

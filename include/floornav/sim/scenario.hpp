@@ -1,0 +1,51 @@
+#pragma once
+/// @file
+/// A scenario: the world, the robot, where it starts, where it must go, how it decides, and how
+/// the simulation runs. Built by the io layer from a YAML file, or directly in code.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "floornav/control/navigation_params.hpp"
+#include "floornav/geometry/pose2.hpp"
+#include "floornav/geometry/world.hpp"
+#include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/sim/robot_spec.hpp"
+
+namespace floornav {
+
+/// How a run is simulated.
+struct SimConfig {
+  double dt{0.01};            ///< s, fixed control and integration step
+  double t_max{120.0};        ///< s, then the run ends as `timeout`
+  std::uint64_t seed{1};      ///< the run's random seed (sensor noise)
+  double stuck_window{10.0};  ///< s: a robot that stays within stuck_radius this long is `stuck`
+  double stuck_radius{0.0};   ///< m; 0 means the robot's body radius
+  bool record_trajectory{true};  ///< keep every step (for CSV and SVG); off in big batches
+
+  template <class Archive>
+  void serialize(Archive& a) {
+    a("dt", dt, "fixed time step, s");
+    a("t_max", t_max, "simulated time limit, s");
+    a("seed", seed, "random seed (sensor noise)");
+    a("stuck_window", stuck_window, "a robot that stays within stuck_radius this long is stuck, s");
+    a("stuck_radius", stuck_radius, "m; 0 means the body radius");
+    a("record_trajectory", record_trajectory, "keep every step for the CSV and SVG outputs");
+  }
+};
+
+struct Scenario {
+  std::string name{"scenario"};
+  std::shared_ptr<const OccupancyGrid> grid;  ///< keeps the world's map alive, if it has one
+  std::shared_ptr<const World> world;
+  RobotSpec robot{};
+  Pose2 start{};
+  std::vector<Vec2> goals;  ///< visited in order
+  ControllerKind controller{ControllerKind::Hybrid};
+  NavigationParams navigation{};
+  SimConfig sim{};
+};
+
+}  // namespace floornav

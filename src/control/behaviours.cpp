@@ -1,0 +1,56 @@
+#include "floornav/control/behaviours.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace floornav {
+
+Vec2 go_to_goal_velocity(const Vec2& x, const Vec2& goal, double v0, double a) {
+  const Vec2 e = goal - x;  // eq. 5.17
+  const double n = e.norm();
+  if (n <= 1e-12) return Vec2::Zero();
+  const double k = v0 * (1.0 - std::exp(-a * n * n)) / n;  // capped gain, eq. 5.19
+  return k * e;                                            // eq. 5.18
+}
+
+Vec2 avoid_obstacle_velocity(const Vec2& x, std::span<const Vec2> points, double v0) {
+  constexpr double kEps = 1e-3;  // m^2: keeps the weight finite on contact
+  Vec2 sum = Vec2::Zero();
+  for (const Vec2& p : points) {
+    const Vec2 away = x - p;  // -e, eq. 5.20
+    const double d2 = away.squaredNorm();
+    if (d2 <= 1e-24) continue;
+    sum += away / (std::sqrt(d2) * (d2 + kEps));
+  }
+  return v0 * normalized_or_zero(sum);
+}
+
+double blend_weight(double clearance, double d_near, double d_far) {
+  if (d_far <= d_near) return clearance <= d_near ? 1.0 : 0.0;
+  const double s = std::clamp((d_far - clearance) / (d_far - d_near), 0.0, 1.0);
+  return s * s * (3.0 - 2.0 * s);
+}
+
+Vec2 blend_velocities(const Vec2& u_gtg, const Vec2& u_ao, double sigma) {
+  return (1.0 - sigma) * u_gtg + sigma * u_ao;  // eq. 5.21, sigma_1 + sigma_2 = 1
+}
+
+Vec2 follow_boundary_tangent(const Vec2& u_ao, Turn turn) {
+  // R(-pi/2) for clockwise (eq. 5.22), R(+pi/2) for counter-clockwise.
+  return turn == Turn::Clockwise ? rotate_cw90(u_ao) : rotate_ccw90(u_ao);
+}
+
+Turn choose_turn(const Vec2& u_gtg, const Vec2& u_ao) {
+  return u_gtg.dot(follow_boundary_tangent(u_ao, Turn::Clockwise)) > 0.0 ? Turn::Clockwise
+                                                                         : Turn::CounterClockwise;
+}
+
+Vec2 follow_boundary_velocity(const Vec2& away, double clearance, Turn turn, double d_fb,
+                              double k_distance, double v0) {
+  const Vec2 tangent = follow_boundary_tangent(away, turn);
+  // Positive error: too close, move out along `away`; negative: drifting off, move in.
+  const double correction = std::clamp(k_distance * (d_fb - clearance), -1.5, 1.5);
+  return v0 * normalized_or_zero(tangent + correction * away);
+}
+
+}  // namespace floornav

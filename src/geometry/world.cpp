@@ -1,0 +1,294 @@
+#include "floornav/geometry/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "floornav/geometry/polygon.hpp"
+#include "floornav/grid/occupancy_grid.hpp"
+
+namespace floornav {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Box2 box_of(std::span<const Vec2> pts) {
+  Box2 b{pts[0], pts[0]};
+  for (const Vec2& p : pts) {
+    b.min = b.min.cwiseMin(p);
+    b.max = b.max.cwiseMax(p);
+  }
+  return b;
+}
+
+void grow(Box2& b, bool& empty, const Vec2& lo, const Vec2& hi) {
+  if (empty) {
+    b = {lo, hi};
+    empty = false;
+  } else {
+    b.min = b.min.cwiseMin(lo);
+    b.max = b.max.cwiseMax(hi);
+  }
+}
+}  // namespace
+
+World::World(WorldDesc desc)
+    : bounds_(desc.bounds),
+      circles_(std::move(desc.circles)),
+      polygons_(std::move(desc.polygons)),
+      grid_(desc.grid) {
+  if (bounds_) {
+    const Vec2 a = bounds_->min, c = bounds_->max;
+    const Vec2 b(c.x(), a.y()), d(a.x(), c.y());
+    segments_.insert(segments_.end(), {Segment{a, b}, Segment{b, c}, Segment{c, d}, Segment{d, a}});
+  }
+  for (const auto& poly : polygons_) {
+    for (std::size_t i = 0; i < poly.size(); ++i) segments_.push_back(edge(poly, i));
+    polygon_boxes_.push_back(box_of(poly));
+  }
+  bool empty = true;
+  if (bounds_) grow(extent_, empty, bounds_->min, bounds_->max);
+  for (const Circle& c : circles_) {
+    const Vec2 r(c.radius, c.radius);
+    grow(extent_, empty, c.center - r, c.center + r);
+  }
+  for (const Box2& b : polygon_boxes_) grow(extent_, empty, b.min, b.max);
+  if (grid_) {
+    Vec2 lo, hi;
+    grid_->world_extent(&lo, &hi);
+    grow(extent_, empty, lo, hi);
+  }
+  build_index();
+}
+
+void World::build_index() {
+  Index& ix = index_;
+  const std::size_t items = segments_.size() + circles_.size();
+  const Vec2 size = extent_.size();
+  const double area = std::max(size.x(), 1e-3) * std::max(size.y(), 1e-3);
+  // About two items per cell on average, but never more than ~1M cells nor cells under 5 cm.
+  double cell = std::sqrt(area / std::max<double>(1.0, 0.5 * static_cast<double>(items)));
+  cell = std::max(cell, std::sqrt(area / 1.0e6));
+  cell = std::max(cell, 0.05);
+  ix.cell = cell;
+  ix.inv_cell = 1.0 / cell;
+  ix.origin = extent_.min - Vec2(1e-9, 1e-9);
+  ix.nx = std::max(1, static_cast<int>(std::ceil((size.x() + 2e-9) / cell)));
+  ix.ny = std::max(1, static_cast<int>(std::ceil((size.y() + 2e-9) / cell)));
+  const std::size_t ncell = static_cast<std::size_t>(ix.nx) * static_cast<std::size_t>(ix.ny);
+
+  // Two passes per list (count, then fill) keep the storage compressed and contiguous.
+  auto fill = [&](std::size_t count, auto&& cells_of, std::vector<std::uint32_t>& offsets,
+                  std::vector<std::uint32_t>& out) {
+    std::vector<std::uint32_t> counts(ncell + 1, 0);
+    for (std::size_t i = 0; i < count; ++i) cells_of(i, [&](std::size_t c) { ++counts[c + 1]; });
+    for (std::size_t c = 0; c < ncell; ++c) counts[c + 1] += counts[c];
+    offsets = counts;
+    out.assign(counts[ncell], 0);
+    for (std::size_t i = 0; i < count; ++i)
+      cells_of(i, [&](std::size_t c) { out[counts[c]++] = static_cast<std::uint32_t>(i); });
+  };
+  auto box_cells = [&](const Vec2& lo, const Vec2& hi, auto&& keep, auto&& emit) {
+    const int x0 = cell_x(lo.x()), x1 = cell_x(hi.x());
+    const int y0 = cell_y(lo.y()), y1 = cell_y(hi.y());
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x)
+        if (keep(x, y)) emit(static_cast<std::size_t>(y) * ix.nx + x);
+  };
+  const double half_diag = 0.5 * std::sqrt(2.0) * cell;
+  fill(
+      segments_.size(),
+      [&](std::size_t i, auto&& emit) {
+        const Segment& s = segments_[i];
+        box_cells(
+            s.a.cwiseMin(s.b), s.a.cwiseMax(s.b),
+            [&](int x, int y) {
+              const Vec2 centre = ix.origin + Vec2((x + 0.5) * cell, (y + 0.5) * cell);
+              return distance(s, centre) <= half_diag + 1e-9;
+            },
+            emit);
+      },
+      ix.segment_offsets, ix.segment_items);
+  fill(
+      circles_.size(),
+      [&](std::size_t i, auto&& emit) {
+        const Circle& c = circles_[i];
+        const Vec2 r(c.radius, c.radius);
+        box_cells(c.center - r, c.center + r, [](int, int) { return true; }, emit);
+      },
+      ix.circle_offsets, ix.circle_items);
+  fill(
+      polygons_.size(),
+      [&](std::size_t i, auto&& emit) {
+        box_cells(polygon_boxes_[i].min, polygon_boxes_[i].max, [](int, int) { return true; },
+                  emit);
+      },
+      ix.polygon_offsets, ix.polygon_items);
+}
+
+int World::cell_x(double x) const {
+  return std::clamp(static_cast<int>(std::floor((x - index_.origin.x()) * index_.inv_cell)), 0,
+                    index_.nx - 1);
+}
+int World::cell_y(double y) const {
+  return std::clamp(static_cast<int>(std::floor((y - index_.origin.y()) * index_.inv_cell)), 0,
+                    index_.ny - 1);
+}
+
+bool World::inside_solid_shape(const Vec2& p) const {
+  if (bounds_ && !bounds_->contains(p)) return true;
+  if (!extent_.contains(p)) return false;
+  const std::size_t c = static_cast<std::size_t>(cell_y(p.y())) * index_.nx + cell_x(p.x());
+  for (std::uint32_t k = index_.circle_offsets[c]; k < index_.circle_offsets[c + 1]; ++k) {
+    if (signed_distance(circles_[index_.circle_items[k]], p) <= 0.0) return true;
+  }
+  for (std::uint32_t k = index_.polygon_offsets[c]; k < index_.polygon_offsets[c + 1]; ++k) {
+    const std::uint32_t i = index_.polygon_items[k];
+    if (polygon_boxes_[i].contains(p) && contains(polygons_[i], p)) return true;
+  }
+  return false;
+}
+
+bool World::is_inside_obstacle(const Vec2& p) const {
+  if (inside_solid_shape(p)) return true;
+  return grid_ != nullptr && grid_->clearance(p) <= 0.0;
+}
+
+double World::ray_in_cell(int cell, const Vec2& origin, const Vec2& dir, double best) const {
+  const auto c = static_cast<std::size_t>(cell);
+  for (std::uint32_t k = index_.segment_offsets[c]; k < index_.segment_offsets[c + 1]; ++k) {
+    if (auto t = intersect_ray(segments_[index_.segment_items[k]], origin, dir); t && *t < best)
+      best = *t;
+  }
+  for (std::uint32_t k = index_.circle_offsets[c]; k < index_.circle_offsets[c + 1]; ++k) {
+    if (auto t = intersect_ray(circles_[index_.circle_items[k]], origin, dir); t && *t < best)
+      best = *t;
+  }
+  return best;
+}
+
+double World::cast_ray(const Vec2& origin, const Vec2& dir, double max_range) const {
+  double best = max_range;
+  if (grid_) best = std::min(best, grid_->cast_ray(origin, dir, max_range));
+  if (inside_solid_shape(origin)) return 0.0;
+  if (segments_.empty() && circles_.empty()) return best;
+
+  // Clip the ray to the index box, then walk its cells in order (Amanatides & Woo). A hit found
+  // in a cell is final once it lies before the cell's exit.
+  const Index& ix = index_;
+  const Vec2 lo = ix.origin;
+  const Vec2 hi = ix.origin + Vec2(ix.nx * ix.cell, ix.ny * ix.cell);
+  double t_enter = 0.0, t_exit = best;
+  for (int a = 0; a < 2; ++a) {
+    if (std::abs(dir[a]) < 1e-300) {
+      if (origin[a] < lo[a] || origin[a] > hi[a]) return best;
+      continue;
+    }
+    double t0 = (lo[a] - origin[a]) / dir[a];
+    double t1 = (hi[a] - origin[a]) / dir[a];
+    if (t0 > t1) std::swap(t0, t1);
+    t_enter = std::max(t_enter, t0);
+    t_exit = std::min(t_exit, t1);
+  }
+  if (t_enter > t_exit) return best;
+  const Vec2 start = origin + t_enter * dir;
+  int x = cell_x(start.x()), y = cell_y(start.y());
+  const int step_x = dir.x() > 0 ? 1 : -1;
+  const int step_y = dir.y() > 0 ? 1 : -1;
+  const double dtx = std::abs(dir.x()) > 1e-300 ? ix.cell / std::abs(dir.x()) : kInf;
+  const double dty = std::abs(dir.y()) > 1e-300 ? ix.cell / std::abs(dir.y()) : kInf;
+  const double next_x_edge = lo.x() + (x + (step_x > 0 ? 1 : 0)) * ix.cell;
+  const double next_y_edge = lo.y() + (y + (step_y > 0 ? 1 : 0)) * ix.cell;
+  double tx = dtx < kInf ? (next_x_edge - origin.x()) / dir.x() : kInf;
+  double ty = dty < kInf ? (next_y_edge - origin.y()) / dir.y() : kInf;
+  while (true) {
+    best = ray_in_cell(y * ix.nx + x, origin, dir, best);
+    const double t_cell_exit = std::min(tx, ty);
+    if (best <= t_cell_exit || t_cell_exit >= t_exit) break;
+    if (tx < ty) {
+      x += step_x;
+      tx += dtx;
+      if (x < 0 || x >= ix.nx) break;
+    } else {
+      y += step_y;
+      ty += dty;
+      if (y < 0 || y >= ix.ny) break;
+    }
+  }
+  return best;
+}
+
+double World::clearance(const Vec2& p) const {
+  double best = grid_ ? grid_->clearance(p) : kInf;
+  if (!segments_.empty() || !circles_.empty()) {
+    const Index& ix = index_;
+    // Search rings of cells around p's cell; items in ring k are at least (k - 1) cells away
+    // from p, so stop once that bound exceeds the best distance found.
+    const int cx = cell_x(p.x()), cy = cell_y(p.y());
+    // Distance from p to the index box (p may lie outside it).
+    const Vec2 lo = ix.origin, hi = ix.origin + Vec2(ix.nx * ix.cell, ix.ny * ix.cell);
+    const double outside = (p.cwiseMax(lo).cwiseMin(hi) - p).norm();
+    double unsigned_best = kInf;
+    const int max_ring = std::max(ix.nx, ix.ny);
+    for (int k = 0; k <= max_ring; ++k) {
+      const double ring_lower_bound = outside + (k - 1) * ix.cell;
+      if (ring_lower_bound > unsigned_best) break;
+      for (int y = cy - k; y <= cy + k; ++y) {
+        if (y < 0 || y >= ix.ny) continue;
+        const bool edge_row = (y == cy - k || y == cy + k);
+        for (int x = cx - k; x <= cx + k; x += (edge_row ? 1 : 2 * k)) {
+          if (x >= 0 && x < ix.nx) {
+            const auto c = static_cast<std::size_t>(y) * ix.nx + x;
+            for (auto j = ix.segment_offsets[c]; j < ix.segment_offsets[c + 1]; ++j)
+              unsigned_best = std::min(unsigned_best, distance(segments_[ix.segment_items[j]], p));
+            for (auto j = ix.circle_offsets[c]; j < ix.circle_offsets[c + 1]; ++j)
+              unsigned_best = std::min(
+                  unsigned_best, std::abs(signed_distance(circles_[ix.circle_items[j]], p)));
+          }
+          if (k == 0) break;
+        }
+      }
+    }
+    const double signed_best = inside_solid_shape(p) ? -unsigned_best : unsigned_best;
+    best = std::min(best, signed_best);
+  }
+  return best;
+}
+
+std::optional<Vec2> World::nearest_obstacle_point(const Vec2& p) const {
+  std::optional<Vec2> out;
+  double best = kInf;
+  for (const Segment& s : segments_) {
+    const Vec2 q = nearest_point(s, p);
+    if (const double d = (q - p).norm(); d < best) best = d, out = q;
+  }
+  for (const Circle& c : circles_) {
+    const Vec2 q = nearest_point(c, p);
+    if (const double d = (q - p).norm(); d < best) best = d, out = q;
+  }
+  Vec2 q;
+  if (grid_ && grid_->nearest_occupied_point(p, &q) && (q - p).norm() < best) out = q;
+  return out;
+}
+
+double World::cast_ray_brute_force(const Vec2& origin, const Vec2& dir, double max_range) const {
+  double best = max_range;
+  if (grid_) best = std::min(best, grid_->cast_ray(origin, dir, max_range));
+  if (inside_solid_shape(origin)) return 0.0;
+  for (const Segment& s : segments_)
+    if (auto t = intersect_ray(s, origin, dir); t && *t < best) best = *t;
+  for (const Circle& c : circles_)
+    if (auto t = intersect_ray(c, origin, dir); t && *t < best) best = *t;
+  return best;
+}
+
+double World::clearance_brute_force(const Vec2& p) const {
+  double d = kInf;
+  for (const Segment& s : segments_) d = std::min(d, distance(s, p));
+  for (const Circle& c : circles_) d = std::min(d, std::abs(signed_distance(c, p)));
+  if (d < kInf && inside_solid_shape(p)) d = -d;
+  if (grid_) d = std::min(d, grid_->clearance(p));
+  return d;
+}
+
+}  // namespace floornav

@@ -1,0 +1,375 @@
+#include "floornav/grid/occupancy_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace floornav {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Largest grid the int32 cell indices (and the 2 * row + 1 column code) can address.
+constexpr std::size_t kMaxCells = std::size_t{1} << 30;
+
+/// Distance along one axis from coordinate `p` (cell units) to the slab [i, i + 1].
+inline double axis_gap(double p, int i) {
+  const double d = std::abs(i + 0.5 - p) - 0.5;
+  return d > 0.0 ? d : 0.0;
+}
+
+/// `floor(v)` clamped to [0, n - 1], safe for any finite `v`.
+inline int clamp_cell(double v, int n) {
+  const double f = std::floor(v);
+  if (!(f > 0.0)) return 0;
+  if (f >= n - 1) return n - 1;
+  return static_cast<int>(f);
+}
+
+/// Pass 1 of the feature transform, along columns but sweeping rows so that memory is read in
+/// order: for each cell, the nearest occupied row in its column, coded as 2 * r + tie (see
+/// `column_nearest_`).
+void compute_column_nearest(int width, int height, const std::vector<std::uint8_t>& occupied,
+                            std::vector<std::int32_t>& column) {
+  const std::size_t w = static_cast<std::size_t>(width);
+  column.assign(w * static_cast<std::size_t>(height), -1);
+  std::vector<std::int32_t> last(w, -1);  // nearest occupied row <= y, per column
+  for (int y = 0; y < height; ++y) {
+    const std::size_t row = static_cast<std::size_t>(y) * w;
+    for (std::size_t x = 0; x < w; ++x) {
+      if (occupied[row + x] != 0) last[x] = y;
+      column[row + x] = last[x];
+    }
+  }
+  std::vector<std::int32_t> next(w, -1);  // nearest occupied row >= y, per column
+  for (int y = height - 1; y >= 0; --y) {
+    const std::size_t row = static_cast<std::size_t>(y) * w;
+    for (std::size_t x = 0; x < w; ++x) {
+      if (occupied[row + x] != 0) next[x] = y;
+      const std::int32_t below = column[row + x];
+      const std::int32_t above = next[x];
+      std::int32_t code = -1;
+      if (below < 0 && above >= 0) {
+        code = 2 * above;
+      } else if (above < 0 && below >= 0) {
+        code = 2 * below;
+      } else if (below >= 0) {
+        const std::int32_t db = y - below;
+        const std::int32_t da = above - y;
+        if (db < da) {
+          code = 2 * below;
+        } else if (da < db) {
+          code = 2 * above;
+        } else {
+          code = 2 * below + (da > 0 ? 1 : 0);
+        }
+      }
+      column[row + x] = code;
+    }
+  }
+}
+
+/// Pass 2 (Felzenszwalb & Huttenlocher, "Distance Transforms of Sampled Functions", 2012): along
+/// each row, the lower envelope of the parabolas (x - q)^2 + f(q), f(q) = squared distance from
+/// (q, y) to its column's nearest occupied cell, carrying the argmin. O(width) per row.
+void compute_nearest(int width, int height, const std::vector<std::int32_t>& column,
+                     std::vector<std::int32_t>& nearest) {
+  const std::size_t w = static_cast<std::size_t>(width);
+  nearest.assign(w * static_cast<std::size_t>(height), -1);
+  std::vector<std::int32_t> v(w);       // apexes of the envelope's parabolas
+  std::vector<double> z(w + 1);         // where parabola k starts to be the lowest
+  std::vector<std::int64_t> f(w);       // squared column distance per q
+  // 1 / (2 d) for d = q - r in [1, width): a multiplication instead of a division per step (the
+  // transform's hot spot). Distinct intersections of integer parabolas differ by at least
+  // 1 / (4 width^2), far above the rounding this adds for widths up to ~2^20, so the envelope is
+  // unchanged. (Beyond that a near-tie may pick a cell that is nearer by a rounding error only.)
+  std::vector<double> inv_twice(w);
+  for (std::size_t d = 1; d < w; ++d) inv_twice[d] = 1.0 / (2.0 * static_cast<double>(d));
+  for (int y = 0; y < height; ++y) {
+    const std::size_t row = static_cast<std::size_t>(y) * w;
+    int k = -1;
+    for (int q = 0; q < width; ++q) {
+      const std::int32_t code = column[row + q];
+      if (code < 0) continue;
+      const std::int64_t dy = y - (code >> 1);
+      f[q] = dy * dy;
+      if (k < 0) {
+        k = 0;
+        v[0] = q;
+        z[0] = -kInf;
+        z[1] = kInf;
+        continue;
+      }
+      double s = 0.0;
+      for (;;) {
+        const int r = v[k];
+        // Intersection of the parabolas at r and q, written so that no term exceeds 2^53.
+        s = static_cast<double>(f[q] - f[r]) * inv_twice[q - r] + 0.5 * (q + r);
+        if (s <= z[k]) {
+          --k;  // z[0] = -inf stops this at k = 0
+        } else {
+          break;
+        }
+      }
+      ++k;
+      v[k] = q;
+      z[k] = s;
+      z[k + 1] = kInf;
+    }
+    if (k < 0) continue;  // the whole grid is free
+    int j = 0;
+    for (int x = 0; x < width; ++x) {
+      while (z[j + 1] < x) ++j;
+      const int q = v[j];
+      nearest[row + x] = (column[row + q] >> 1) * width + q;
+    }
+  }
+}
+
+}  // namespace
+
+OccupancyGrid::OccupancyGrid(int width, int height, double resolution, Pose2 origin,
+                             std::vector<std::uint8_t> occupied)
+    : width_(width),
+      height_(height),
+      resolution_(resolution),
+      origin_(origin),
+      occupied_(std::move(occupied)) {
+  if (width <= 0 || height <= 0) {
+    throw std::invalid_argument("OccupancyGrid: width and height must be positive, got " +
+                                std::to_string(width) + " x " + std::to_string(height));
+  }
+  if (!(resolution > 0.0) || !std::isfinite(resolution)) {
+    throw std::invalid_argument("OccupancyGrid: resolution must be positive and finite, got " +
+                                std::to_string(resolution));
+  }
+  if (!origin.is_finite()) throw std::invalid_argument("OccupancyGrid: origin is not finite");
+  const std::size_t cells = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (cells > kMaxCells) {
+    throw std::invalid_argument("OccupancyGrid: " + std::to_string(cells) +
+                                " cells is more than the 2^30 supported");
+  }
+  if (occupied_.size() != cells) {
+    throw std::invalid_argument("OccupancyGrid: expected " + std::to_string(cells) +
+                                " cells (width * height), got " + std::to_string(occupied_.size()));
+  }
+  occupied_count_ = static_cast<std::size_t>(
+      std::count_if(occupied_.begin(), occupied_.end(), [](std::uint8_t c) { return c != 0; }));
+  cos_yaw_ = std::cos(origin_.theta);
+  sin_yaw_ = std::sin(origin_.theta);
+  compute_column_nearest(width_, height_, occupied_, column_nearest_);
+  compute_nearest(width_, height_, column_nearest_, nearest_);
+}
+
+bool OccupancyGrid::occupied(int ix, int iy) const {
+  if (ix < 0 || iy < 0 || ix >= width_ || iy >= height_) return false;
+  return occupied_[static_cast<std::size_t>(iy) * width_ + ix] != 0;
+}
+
+std::size_t OccupancyGrid::occupied_count() const { return occupied_count_; }
+
+std::int32_t OccupancyGrid::nearest_occupied_index(int ix, int iy) const {
+  if (ix < 0 || iy < 0 || ix >= width_ || iy >= height_) return -1;
+  return nearest_[static_cast<std::size_t>(iy) * width_ + ix];
+}
+
+Vec2 OccupancyGrid::to_grid(const Vec2& world) const {
+  const double dx = world.x() - origin_.position.x();
+  const double dy = world.y() - origin_.position.y();
+  return {cos_yaw_ * dx + sin_yaw_ * dy, -sin_yaw_ * dx + cos_yaw_ * dy};
+}
+
+Vec2 OccupancyGrid::to_world(const Vec2& grid) const {
+  return {origin_.position.x() + cos_yaw_ * grid.x() - sin_yaw_ * grid.y(),
+          origin_.position.y() + sin_yaw_ * grid.x() + cos_yaw_ * grid.y()};
+}
+
+double OccupancyGrid::cast_ray(const Vec2& origin_world, const Vec2& dir, double max_range) const {
+  // Everything below is in cell units of the grid frame: cell (ix, iy) is [ix, ix+1) x [iy, iy+1).
+  const Vec2 o = to_grid(origin_world) / resolution_;
+  const Vec2 d(cos_yaw_ * dir.x() + sin_yaw_ * dir.y(), -sin_yaw_ * dir.x() + cos_yaw_ * dir.y());
+  if (!is_finite(o) || !is_finite(d) || !(max_range >= 0.0)) return max_range;
+  const double t_max = max_range / resolution_;
+
+  // Clip the ray to the grid's box (slab method); a ray that starts inside keeps t0 = 0.
+  double t0 = 0.0;
+  double t1 = t_max;
+  const double hi[2] = {static_cast<double>(width_), static_cast<double>(height_)};
+  for (int a = 0; a < 2; ++a) {
+    if (d[a] == 0.0) {
+      if (!(o[a] >= 0.0 && o[a] < hi[a])) return max_range;
+      continue;
+    }
+    double ta = (0.0 - o[a]) / d[a];
+    double tb = (hi[a] - o[a]) / d[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  if (t0 > t1) return max_range;
+
+  int ix = clamp_cell(t0 > 0.0 ? o.x() + t0 * d.x() : o.x(), width_);
+  int iy = clamp_cell(t0 > 0.0 ? o.y() + t0 * d.y() : o.y(), height_);
+  const int sx = d.x() > 0.0 ? 1 : (d.x() < 0.0 ? -1 : 0);
+  const int sy = d.y() > 0.0 ? 1 : (d.y() < 0.0 ? -1 : 0);
+  // Amanatides & Woo, "A Fast Voxel Traversal Algorithm for Ray Tracing" (1987). Each boundary
+  // time is computed afresh from the integer boundary and the ray's origin, so no error
+  // accumulates along long rays.
+  double t = t0;
+  for (;;) {
+    if (occupied_[static_cast<std::size_t>(iy) * width_ + ix] != 0) {
+      return std::min(t * resolution_, max_range);
+    }
+    const double tx = sx > 0 ? (ix + 1 - o.x()) / d.x() : (sx < 0 ? (ix - o.x()) / d.x() : kInf);
+    const double ty = sy > 0 ? (iy + 1 - o.y()) / d.y() : (sy < 0 ? (iy - o.y()) / d.y() : kInf);
+    const double tn = std::max(t, std::min(tx, ty));
+    if (!(tn <= t_max) || tn == kInf) return max_range;
+    if (tx < ty) {
+      ix += sx;
+    } else if (ty < tx) {
+      iy += sy;
+    } else {
+      // Through a corner: the two cells that share it are touched too (closed squares).
+      if (occupied(ix + sx, iy) || occupied(ix, iy + sy)) {
+        return std::min(tn * resolution_, max_range);
+      }
+      ix += sx;
+      iy += sy;
+    }
+    t = tn;
+    if (ix < 0 || iy < 0 || ix >= width_ || iy >= height_) return max_range;
+  }
+}
+
+double OccupancyGrid::nearest_square(double px, double py, std::int32_t* cell) const {
+  *cell = -1;
+  if (occupied_count_ == 0) return kInf;
+  const int cx = clamp_cell(px, width_);
+  const int cy = clamp_cell(py, height_);
+  double best = kInf;
+  auto consider_cell = [&](std::int32_t index) {
+    if (index < 0) return;
+    const int ox = index % width_;
+    const int oy = index / width_;
+    const double gx = axis_gap(px, ox);
+    const double gy = axis_gap(py, oy);
+    const double d2 = gx * gx + gy * gy;
+    if (d2 < best) {
+      best = d2;
+      *cell = index;
+    }
+  };
+  // Seed: the nearest-centre cells of p's cell and its 8 neighbours. This is almost always the
+  // answer already, but not provably (ties in the transform, and the square metric differs from
+  // the centre metric), so it is only an upper bound for the exact scan below.
+  for (int ny = std::max(cy - 1, 0); ny <= std::min(cy + 1, height_ - 1); ++ny) {
+    for (int nx = std::max(cx - 1, 0); nx <= std::min(cx + 1, width_ - 1); ++nx) {
+      consider_cell(nearest_[static_cast<std::size_t>(ny) * width_ + nx]);
+    }
+  }
+  // Exact scan over columns, outwards from cx. In column x the nearest occupied square to p is
+  // the column's nearest occupied row to row cy (either one on a tie): the vertical gap to a
+  // row's slab is monotone in the row distance, and p lies in row cy (or beyond the grid's edge
+  // next to it). The horizontal gap grows with |x - cx|, so a side stops once it alone reaches
+  // the best distance. Cost: O(clearance / resolution) columns, read contiguously.
+  const std::int32_t* codes = column_nearest_.data() + static_cast<std::size_t>(cy) * width_;
+  auto scan_column = [&](int x) {
+    const double gx = axis_gap(px, x);
+    const double gx2 = gx * gx;
+    if (gx2 >= best) return false;
+    const std::int32_t code = codes[x];
+    if (code < 0) return true;
+    int r = code >> 1;
+    double gy = axis_gap(py, r);
+    if ((code & 1) != 0) {
+      const int other = 2 * cy - r;
+      const double g_other = axis_gap(py, other);
+      if (g_other < gy) {
+        gy = g_other;
+        r = other;
+      }
+    }
+    const double d2 = gx2 + gy * gy;
+    if (d2 < best) {
+      best = d2;
+      *cell = r * width_ + x;
+    }
+    return true;
+  };
+  for (int x = cx; x < width_ && scan_column(x); ++x) {
+  }
+  for (int x = cx - 1; x >= 0 && scan_column(x); --x) {
+  }
+  return best;
+}
+
+double OccupancyGrid::clearance(const Vec2& p) const {
+  if (occupied_count_ == 0) return kInf;
+  const Vec2 g = to_grid(p) / resolution_;
+  if (!is_finite(g)) return std::numeric_limits<double>::quiet_NaN();
+  const double px = g.x();
+  const double py = g.y();
+  if (px >= 0.0 && py >= 0.0 && px < width_ && py < height_) {
+    const int ix = static_cast<int>(px);
+    const int iy = static_cast<int>(py);
+    if (occupied_[static_cast<std::size_t>(iy) * width_ + ix] != 0) {
+      // Inside: minus the distance to the cell's own border (a lower bound on the depth when
+      // neighbouring cells are occupied too).
+      const double depth = std::min(std::min(px - ix, ix + 1 - px), std::min(py - iy, iy + 1 - py));
+      return -depth * resolution_;
+    }
+  }
+  std::int32_t cell = -1;
+  return std::sqrt(nearest_square(px, py, &cell)) * resolution_;
+}
+
+bool OccupancyGrid::nearest_occupied_point(const Vec2& p, Vec2* out) const {
+  if (occupied_count_ == 0) return false;
+  const Vec2 g = to_grid(p) / resolution_;
+  if (!is_finite(g)) return false;
+  const double px = g.x();
+  const double py = g.y();
+  if (px >= 0.0 && py >= 0.0 && px < width_ && py < height_) {
+    const int ix = static_cast<int>(px);
+    const int iy = static_cast<int>(py);
+    if (occupied_[static_cast<std::size_t>(iy) * width_ + ix] != 0) {
+      // The point of the cell's own border that `clearance` measures to.
+      const double gaps[4] = {px - ix, ix + 1 - px, py - iy, iy + 1 - py};
+      const int k = static_cast<int>(std::min_element(gaps, gaps + 4) - gaps);
+      Vec2 q(px, py);
+      if (k == 0) q.x() = ix;
+      if (k == 1) q.x() = ix + 1;
+      if (k == 2) q.y() = iy;
+      if (k == 3) q.y() = iy + 1;
+      *out = to_world(q * resolution_);
+      return true;
+    }
+  }
+  std::int32_t cell = -1;
+  nearest_square(px, py, &cell);
+  if (cell < 0) return false;
+  const int ox = cell % width_;
+  const int oy = cell / width_;
+  const Vec2 q(std::clamp(px, static_cast<double>(ox), ox + 1.0),
+               std::clamp(py, static_cast<double>(oy), oy + 1.0));
+  *out = to_world(q * resolution_);
+  return true;
+}
+
+void OccupancyGrid::world_extent(Vec2* min, Vec2* max) const {
+  const double w = width_ * resolution_;
+  const double h = height_ * resolution_;
+  const Vec2 corners[4] = {to_world({0.0, 0.0}), to_world({w, 0.0}), to_world({0.0, h}),
+                           to_world({w, h})};
+  *min = corners[0];
+  *max = corners[0];
+  for (const Vec2& c : corners) {
+    *min = min->cwiseMin(c);
+    *max = max->cwiseMax(c);
+  }
+}
+
+}  // namespace floornav

@@ -1,0 +1,79 @@
+#include "floornav/io/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <string>
+#include <system_error>
+
+#include "floornav/io/input_error.hpp"
+
+namespace floornav {
+
+namespace {
+
+std::atomic<unsigned long> g_temp_counter{0};
+
+[[noreturn]] void throw_cannot_write(const std::filesystem::path& path, int error) {
+  throw InputError(path.string(), "", std::string("cannot write: ") + std::strerror(error));
+}
+
+/// A unique name in the target's directory, so that the final rename stays on one filesystem.
+std::filesystem::path temp_path_for(const std::filesystem::path& path) {
+  std::string name = path.string();
+  name += ".tmp.";
+  name += std::to_string(static_cast<long>(::getpid()));
+  name += '.';
+  name += std::to_string(g_temp_counter.fetch_add(1, std::memory_order_relaxed));
+  return name;
+}
+
+/// Writes everything or returns the errno of the first failure (0 on success).
+int write_all(int fd, std::string_view content) {
+  const char* data = content.data();
+  std::size_t left = content.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, data, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    if (n == 0) return ENOSPC;  // a write that makes no progress: treat as a full disk
+    data += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+  const std::filesystem::path temp = temp_path_for(path);
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) throw_cannot_write(path, errno);
+
+  int error = write_all(fd, content);
+  if (::close(fd) != 0 && error == 0) error = errno;  // NFS and quotas report late, at close
+  if (error == 0) {
+    std::error_code ec;
+    std::filesystem::rename(temp, path, ec);
+    if (!ec) return;
+    error = ec.value();
+  }
+  std::error_code ignored;
+  std::filesystem::remove(temp, ignored);
+  throw_cannot_write(path, error);
+}
+
+void ensure_directory(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError(dir.string(), "", "cannot create directory: " + ec.message());
+  if (!std::filesystem::is_directory(dir, ec))
+    throw InputError(dir.string(), "", "cannot create directory: it exists and is not a directory");
+}
+
+}  // namespace floornav

@@ -1,0 +1,221 @@
+#include "floornav/io/batch.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "floornav/io/atomic_file.hpp"
+#include "floornav/io/input_error.hpp"
+#include "floornav/io/run_outputs.hpp"
+#include "floornav/io/summary_json.hpp"
+
+namespace floornav {
+
+namespace {
+
+nlohmann::ordered_json result_line(std::size_t index, const BatchCase& c, const RunResult& r,
+                                   bool timing) {
+  nlohmann::ordered_json line;
+  line["case"] = index;
+  line["source"] = c.source;
+  line["controller"] = std::string(to_string(c.scenario.controller));
+  line["robot"] = c.scenario.robot.preset;
+  const nlohmann::ordered_json summary = summary_to_json(r);
+  for (const auto& [k, v] : summary.items()) line[k] = v;
+  if (!timing) line["wall_time"] = 0.0;
+  line.erase("transitions");  // the per-case detail stays out of a batch's lines
+  line.erase("transitions_truncated");
+  return line;
+}
+
+// Reads a results.jsonl left by an earlier (interrupted) run: case index -> line.
+std::map<std::size_t, nlohmann::ordered_json> read_existing(const std::filesystem::path& path) {
+  std::map<std::size_t, nlohmann::ordered_json> out;
+  std::ifstream in(path);
+  std::string text;
+  for (std::size_t n = 1; std::getline(in, text); ++n) {
+    if (text.empty()) continue;
+    try {
+      auto j = nlohmann::ordered_json::parse(text);
+      out[j.at("case").get<std::size_t>()] = std::move(j);
+    } catch (const std::exception&) {
+      // A line cut short by the interruption: that case simply runs again.
+    }
+  }
+  return out;
+}
+
+void draw_progress(std::size_t done, std::size_t total, double elapsed) {
+  const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
+  const double eta = rate > 0 ? static_cast<double>(total - done) / rate : 0.0;
+  constexpr int kWidth = 30;
+  const int filled = total ? static_cast<int>(kWidth * done / total) : kWidth;
+  std::string bar(static_cast<std::size_t>(filled), '#');
+  bar.resize(kWidth, '.');
+  std::fprintf(stderr, "\r[%s] %zu/%zu  %.1f runs/s  ETA %.0f s ", bar.c_str(), done, total, rate,
+               eta);
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_json>& lines) {
+  struct Totals {
+    std::size_t n = 0, reached = 0, collision = 0, timeout = 0, stuck = 0;
+    double time_sum = 0, path_sum = 0, clearance_min = 1e300;
+  };
+  auto add = [](Totals& t, const nlohmann::ordered_json& l) {
+    ++t.n;
+    const std::string s = l.value("status", "");
+    if (s == "reached") {
+      ++t.reached;
+      t.time_sum += l.value("sim_time", 0.0);
+      t.path_sum += l.value("path_length", 0.0);
+    }
+    t.collision += s == "collision";
+    t.timeout += s == "timeout";
+    t.stuck += s == "stuck";
+    if (l.contains("min_clearance") && l["min_clearance"].is_number())
+      t.clearance_min = std::min(t.clearance_min, l["min_clearance"].get<double>());
+  };
+  auto render = [](const Totals& t) {
+    nlohmann::ordered_json j;
+    const double n = t.n ? static_cast<double>(t.n) : 1.0;
+    j["runs"] = t.n;
+    j["reached"] = t.reached;
+    j["success_rate"] = static_cast<double>(t.reached) / n;
+    j["collision_rate"] = static_cast<double>(t.collision) / n;
+    j["timeout_rate"] = static_cast<double>(t.timeout) / n;
+    j["stuck_rate"] = static_cast<double>(t.stuck) / n;
+    j["mean_time_reached"] =
+        t.reached ? nlohmann::ordered_json(t.time_sum / static_cast<double>(t.reached)) : nullptr;
+    j["mean_path_length_reached"] =
+        t.reached ? nlohmann::ordered_json(t.path_sum / static_cast<double>(t.reached)) : nullptr;
+    j["min_clearance"] = t.n ? nlohmann::ordered_json(t.clearance_min) : nullptr;
+    return j;
+  };
+  Totals all;
+  std::map<std::string, Totals> by_kind;
+  for (const auto& l : lines) {
+    add(all, l);
+    add(by_kind[l.value("controller", "unknown")], l);
+  }
+  nlohmann::ordered_json out = render(all);
+  nlohmann::ordered_json kinds = nlohmann::ordered_json::object();
+  for (const auto& [k, t] : by_kind) kinds[k] = render(t);
+  out["by_controller"] = kinds;
+  return out;
+}
+
+BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& options) {
+  ensure_directory(options.out_dir);
+  const auto results_path = options.out_dir / "results.jsonl";
+  const std::size_t n = cases.size();
+  std::vector<std::optional<nlohmann::ordered_json>> lines(n);
+  if (options.resume)
+    for (auto& [i, line] : read_existing(results_path))
+      if (i < n) lines[i] = std::move(line);
+
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!lines[i]) todo.push_back(i);
+
+  // Lines are appended in case order; a finished case waits until all before it are written.
+  // The file is rewritten (atomically) at the end, so resumed files end up identical too.
+  std::FILE* out = std::fopen(results_path.c_str(), options.resume ? "a" : "w");
+  if (!out) throw InputError(results_path.string(), "", "cannot open for writing");
+
+  std::mutex mutex;
+  std::condition_variable cv;
+  std::size_t next_job = 0, done = n - todo.size();
+  std::vector<bool> fresh(n, false);
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const int jobs = options.jobs > 0 ? options.jobs : static_cast<int>(hw);
+  auto stopped = [&] { return options.stop && options.stop->load(); };
+
+  auto worker = [&] {
+    while (true) {
+      std::size_t i;
+      {
+        std::lock_guard lock(mutex);
+        if (next_job >= todo.size() || stopped()) return;
+        i = todo[next_job++];
+      }
+      Scenario sc = cases[i].scenario;  // shares the world; copies only small data
+      sc.sim.record_trajectory = false;
+      RunResult r = run_timed(sc);
+      auto line = result_line(i, cases[i], r, options.timing);
+      {
+        std::lock_guard lock(mutex);
+        lines[i] = std::move(line);
+        fresh[i] = true;
+        ++done;
+      }
+      cv.notify_one();
+    }
+  };
+
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::thread> threads;
+  const int workers = std::max(1, std::min<int>(jobs, static_cast<int>(todo.size())));
+  for (int k = 0; k < workers && !todo.empty(); ++k) threads.emplace_back(worker);
+
+  // Writer loop: append finished lines in order while workers run.
+  std::size_t written_upto = 0;  // fresh lines [0, written_upto) are on disk
+  while (true) {
+    std::unique_lock lock(mutex);
+    cv.wait_for(lock, std::chrono::milliseconds(100));
+    while (written_upto < n && lines[written_upto]) {
+      if (fresh[written_upto]) {
+        const std::string text = lines[written_upto]->dump() + "\n";
+        if (std::fputs(text.c_str(), out) < 0) {
+          std::fclose(out);
+          throw InputError(results_path.string(), "", "write failed (disk full?)");
+        }
+      }
+      ++written_upto;
+    }
+    std::fflush(out);
+    const bool all_done = done == n;
+    const bool workers_idle = next_job >= todo.size() || stopped();
+    if (options.progress)
+      draw_progress(done, n,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    if (all_done || (workers_idle && stopped())) break;
+  }
+  for (auto& t : threads) t.join();
+  // Lines finished out of order before an interruption are kept too.
+  for (std::size_t i = written_upto; i < n; ++i)
+    if (lines[i] && fresh[i]) std::fputs((lines[i]->dump() + "\n").c_str(), out);
+  std::fclose(out);
+  if (options.progress) std::fprintf(stderr, "\n");
+
+  BatchOutcome outcome;
+  outcome.total = n;
+  std::vector<nlohmann::ordered_json> finished;
+  for (auto& l : lines)
+    if (l) finished.push_back(*l);
+  outcome.completed = finished.size();
+  outcome.interrupted = outcome.completed < n;
+  outcome.aggregate = aggregate_results(finished);
+  outcome.aggregate["complete"] = !outcome.interrupted;
+  if (!outcome.interrupted) {
+    // Canonical form: every line in case order, whatever order resumed runs appended them in.
+    std::string all;
+    for (auto& l : finished) all += l.dump() + "\n";
+    write_file_atomically(results_path, all);
+  }
+  write_file_atomically(options.out_dir / "aggregate.json", outcome.aggregate.dump(2) + "\n");
+  return outcome;
+}
+
+}  // namespace floornav

@@ -1,0 +1,82 @@
+#include "floornav/io/course_world.hpp"
+
+#include <tinyxml2.h>
+
+#include <string>
+
+#include "floornav/geometry/angle.hpp"
+#include "floornav/io/input_error.hpp"
+#include "io/maps/xml_input.hpp"
+
+namespace floornav {
+namespace {
+
+using tinyxml2::XMLElement;
+
+/// The `<pose x y theta>` child of `parent`, required.
+Pose2 read_pose(const XMLElement* parent, const std::string& file) {
+  const XMLElement* pose = parent->FirstChildElement("pose");
+  if (pose == nullptr) {
+    throw InputError(file, io_detail::where_of(parent),
+                     std::string("<") + parent->Name() + "> lacks a <pose x y theta>");
+  }
+  if (pose->NextSiblingElement("pose") != nullptr) {
+    throw InputError(file, io_detail::where_of(pose->NextSiblingElement("pose")),
+                     std::string("<") + parent->Name() + "> has more than one <pose>");
+  }
+  return Pose2{{io_detail::number_attribute(pose, "x", file),
+                io_detail::number_attribute(pose, "y", file)},
+               wrap_angle(io_detail::number_attribute(pose, "theta", file))};
+}
+
+}  // namespace
+
+CourseWorld load_course_world(const std::filesystem::path& xml) {
+  const std::string file = xml.string();
+  tinyxml2::XMLDocument doc;
+  io_detail::load_xml(xml, doc);
+  const XMLElement* sim = doc.RootElement();
+  if (sim == nullptr || std::string(sim->Name()) != "simulation") {
+    throw InputError(file, sim != nullptr ? io_detail::where_of(sim) : "",
+                     "expected a <simulation> root element");
+  }
+  CourseWorld world;
+  for (const XMLElement* e = sim->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
+    const std::string name = e->Name();
+    if (name == "robot") {
+      CourseRobot robot;
+      const char* type = e->Attribute("type");
+      if (type == nullptr || std::string(type).empty()) {
+        throw InputError(file, io_detail::where_of(e), "<robot> lacks the attribute 'type'");
+      }
+      robot.type = type;
+      robot.pose = read_pose(e, file);
+      if (const XMLElement* sup = e->FirstChildElement("supervisor")) {
+        if (const char* t = sup->Attribute("type")) robot.supervisor = t;
+      }
+      world.robots.push_back(std::move(robot));
+    } else if (name == "obstacle") {
+      const Pose2 pose = read_pose(e, file);
+      const XMLElement* geometry = e->FirstChildElement("geometry");
+      if (geometry == nullptr) {
+        throw InputError(file, io_detail::where_of(e), "<obstacle> lacks a <geometry>");
+      }
+      std::vector<Vec2> polygon;
+      for (const XMLElement* p = geometry->FirstChildElement("point"); p != nullptr;
+           p = p->NextSiblingElement("point")) {
+        polygon.push_back(pose.transform_point(
+            {io_detail::number_attribute(p, "x", file), io_detail::number_attribute(p, "y", file)}));
+      }
+      if (polygon.size() < 3) {
+        throw InputError(file, io_detail::where_of(e),
+                         "an obstacle needs at least 3 <point>s, got " +
+                             std::to_string(polygon.size()));
+      }
+      world.obstacles.push_back(std::move(polygon));
+    }
+    // Anything else (<marker>, comments, future elements) does not block a robot: ignored.
+  }
+  return world;
+}
+
+}  // namespace floornav

@@ -1,0 +1,167 @@
+#include "floornav/io/movingai_map.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "floornav/io/input_error.hpp"
+#include "io/maps/raster_image.hpp"
+#include "io/maps/text_parse.hpp"
+
+namespace floornav {
+namespace {
+
+/// Line-by-line reading that strips a trailing CR and counts lines from 1.
+class LineReader {
+ public:
+  LineReader(const std::filesystem::path& path, const char* what)
+      : in_(path, std::ios::binary), file_(path.string()) {
+    if (!in_) throw InputError(file_, "", std::string("cannot open the ") + what);
+  }
+
+  bool next(std::string& line) {
+    if (!std::getline(in_, line)) return false;
+    ++line_no_;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return true;
+  }
+
+  std::string where() const { return "line " + std::to_string(line_no_); }
+  const std::string& file() const { return file_; }
+  [[noreturn]] void fail(const std::string& what) const { throw InputError(file_, where(), what); }
+
+ private:
+  std::ifstream in_;
+  std::string file_;
+  int line_no_{0};
+};
+
+/// Splits "word value" into its two space-separated parts.
+bool split_pair(std::string_view line, std::string_view& word, std::string_view& value) {
+  line = io_detail::trim(line);
+  const auto space = line.find_first_of(" \t");
+  if (space == std::string_view::npos) return false;
+  word = line.substr(0, space);
+  value = io_detail::trim(line.substr(space));
+  return true;
+}
+
+bool is_free(char c) { return c == '.' || c == 'G' || c == 'S'; }
+
+}  // namespace
+
+OccupancyGrid load_movingai_map(const std::filesystem::path& map, double cell_size) {
+  if (!(cell_size > 0.0) || !std::isfinite(cell_size)) {
+    throw InputError(map.string(), "cell_size",
+                     "must be a positive finite number, got " + std::to_string(cell_size));
+  }
+  LineReader in(map, "MovingAI map");
+  std::string line;
+  if (!in.next(line)) in.fail("empty file: expected 'type octile'");
+  std::string_view word, value;
+  if (!split_pair(line, word, value) || word != "type") in.fail("expected 'type octile'");
+  if (value != "octile") in.fail("unsupported map type '" + std::string(value) + "' (expected octile)");
+
+  long long width = -1;
+  long long height = -1;
+  for (int k = 0; k < 2; ++k) {
+    if (!in.next(line)) in.fail("file ends in the header: expected 'height H' and 'width W'");
+    if (!split_pair(line, word, value) || (word != "height" && word != "width")) {
+      in.fail("expected 'height H' or 'width W', got '" + line + "'");
+    }
+    const auto n = io_detail::parse_int(value);
+    if (!n || *n <= 0) in.fail(std::string(word) + " must be a positive integer, got '" + std::string(value) + "'");
+    long long& slot = word == "height" ? height : width;
+    if (slot >= 0) in.fail("'" + std::string(word) + "' given twice");
+    slot = *n;
+  }
+  if (static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) >
+      io_detail::kMaxMapCells) {
+    in.fail("map of " + std::to_string(width) + " x " + std::to_string(height) +
+            " cells is too large (limit 2^28)");
+  }
+  if (!in.next(line) || io_detail::trim(line) != "map") in.fail("expected 'map'");
+
+  const int w = static_cast<int>(width);
+  const int h = static_cast<int>(height);
+  std::vector<std::uint8_t> occ(static_cast<std::size_t>(w) * h);
+  for (int y = 0; y < h; ++y) {
+    if (!in.next(line)) {
+      in.fail("file ends after " + std::to_string(y) + " of " + std::to_string(h) + " map rows");
+    }
+    if (line.size() != static_cast<std::size_t>(w)) {
+      in.fail("map row " + std::to_string(y) + " has " + std::to_string(line.size()) +
+              " characters, expected width " + std::to_string(w));
+    }
+    std::uint8_t* row = occ.data() + static_cast<std::size_t>(h - 1 - y) * w;
+    for (int x = 0; x < w; ++x) row[x] = is_free(line[x]) ? 0 : 1;
+  }
+  while (in.next(line)) {
+    if (!io_detail::trim(line).empty()) {
+      in.fail("more map rows than the height " + std::to_string(h));
+    }
+  }
+  return OccupancyGrid(w, h, cell_size, Pose2{}, std::move(occ));
+}
+
+std::vector<MovingAiCase> load_movingai_scen(const std::filesystem::path& scen) {
+  LineReader in(scen, "MovingAI scenario");
+  std::string line;
+  if (!in.next(line)) in.fail("empty file: expected 'version 1'");
+  {
+    std::string_view word, value;
+    if (!split_pair(line, word, value) || word != "version" ||
+        (value != "1" && value != "1.0")) {
+      in.fail("expected 'version 1' or 'version 1.0', got '" + line + "'");
+    }
+  }
+  static constexpr const char* kFields[9] = {"bucket",  "map",     "map width",
+                                             "map height", "start x", "start y",
+                                             "goal x",  "goal y",  "optimal length"};
+  std::vector<MovingAiCase> cases;
+  while (in.next(line)) {
+    if (io_detail::trim(line).empty()) continue;
+    std::vector<std::string_view> f;
+    std::string_view rest(line);
+    for (;;) {
+      const auto tab = rest.find('\t');
+      f.push_back(rest.substr(0, tab));
+      if (tab == std::string_view::npos) break;
+      rest.remove_prefix(tab + 1);
+    }
+    if (f.size() != 9) {
+      in.fail("expected 9 tab-separated fields, got " + std::to_string(f.size()));
+    }
+    auto integer = [&](int k, long long lo, long long hi) {
+      const auto v = io_detail::parse_int(f[k]);
+      if (!v || *v < lo || *v > hi) {
+        in.fail(std::string(kFields[k]) + " must be an integer in [" + std::to_string(lo) + ", " +
+                std::to_string(hi) + "], got '" + std::string(f[k]) + "'");
+      }
+      return static_cast<int>(*v);
+    };
+    MovingAiCase c;
+    c.bucket = integer(0, 0, 1 << 30);
+    c.map_file = std::string(io_detail::trim(f[1]));
+    if (c.map_file.empty()) in.fail("map file name is empty");
+    c.width = integer(2, 1, 1 << 30);
+    c.height = integer(3, 1, 1 << 30);
+    c.start_x = integer(4, 0, c.width - 1);
+    c.start_y = integer(5, 0, c.height - 1);
+    c.goal_x = integer(6, 0, c.width - 1);
+    c.goal_y = integer(7, 0, c.height - 1);
+    const auto length = io_detail::parse_double(f[8]);
+    if (!length || *length < 0.0) {
+      in.fail("optimal length must be a non-negative number, got '" + std::string(f[8]) + "'");
+    }
+    c.optimal_length = *length;
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+}  // namespace floornav

@@ -1,0 +1,205 @@
+#include "floornav/io/ros_map.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "floornav/geometry/angle.hpp"
+#include "floornav/io/input_error.hpp"
+#include "io/maps/raster_image.hpp"
+#include "io/maps/text_parse.hpp"
+
+namespace floornav {
+namespace {
+
+enum class MapMode { Trinary, Scale, Raw };
+
+/// What a map_server yaml says.
+struct RosMapMeta {
+  std::filesystem::path image;
+  double resolution{0.0};
+  Pose2 origin;
+  bool negate{false};
+  double occupied_thresh{0.65};
+  double free_thresh{0.196};
+  MapMode mode{MapMode::Trinary};
+};
+
+/// Typed access to the top-level keys of a yaml map, with errors naming the line (or the key
+/// when it is missing).
+class YamlKeys {
+ public:
+  YamlKeys(const YAML::Node& root, std::string file) : root_(root), file_(std::move(file)) {}
+
+  YAML::Node require(const std::string& key) const {
+    const YAML::Node n = root_[key];
+    if (!n || n.IsNull()) throw InputError(file_, key, "missing key '" + key + "'");
+    return n;
+  }
+
+  bool has(const std::string& key) const {
+    const YAML::Node n = root_[key];
+    return n && !n.IsNull();
+  }
+
+  std::string where(const YAML::Node& n, const std::string& key) const {
+    const YAML::Mark m = n.Mark();
+    return m.is_null() ? key : "line " + std::to_string(m.line + 1);
+  }
+
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& key,
+                         const std::string& what) const {
+    throw InputError(file_, where(n, key), key + ": " + what);
+  }
+
+  double number(const YAML::Node& n, const std::string& key) const {
+    if (!n.IsScalar()) fail(n, key, "expected a number, got a " + kind(n));
+    const auto v = io_detail::parse_double(n.Scalar());
+    if (!v) fail(n, key, "expected a finite number, got '" + n.Scalar() + "'");
+    return *v;
+  }
+
+  double number(const std::string& key) const { return number(require(key), key); }
+
+  std::string text(const std::string& key) const {
+    const YAML::Node n = require(key);
+    if (!n.IsScalar()) fail(n, key, "expected a string, got a " + kind(n));
+    return n.Scalar();
+  }
+
+ private:
+  static std::string kind(const YAML::Node& n) {
+    if (n.IsSequence()) return "list";
+    if (n.IsMap()) return "map";
+    return "null";
+  }
+
+  YAML::Node root_;
+  std::string file_;
+};
+
+RosMapMeta read_meta(const std::filesystem::path& yaml) {
+  const std::string file = yaml.string();
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::BadFile&) {
+    throw InputError(file, "", "cannot open the map yaml");
+  } catch (const YAML::Exception& e) {
+    throw InputError(file, e.mark.is_null() ? "" : "line " + std::to_string(e.mark.line + 1),
+                     "invalid YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw InputError(file, "", "expected a YAML map of map_server keys");
+  const YamlKeys keys(root, file);
+
+  RosMapMeta meta;
+  const std::string image = keys.text("image");
+  if (io_detail::trim(image).empty()) keys.fail(keys.require("image"), "image", "is empty");
+  meta.image = image;
+  if (meta.image.is_relative()) meta.image = yaml.parent_path() / meta.image;
+
+  const YAML::Node res = keys.require("resolution");
+  meta.resolution = keys.number(res, "resolution");
+  if (!(meta.resolution > 0.0)) keys.fail(res, "resolution", "must be positive, got " + res.Scalar());
+
+  const YAML::Node origin = keys.require("origin");
+  if (!origin.IsSequence() || origin.size() != 3) {
+    keys.fail(origin, "origin", "expected a list [x, y, yaw]");
+  }
+  meta.origin = Pose2{{keys.number(origin[0], "origin"), keys.number(origin[1], "origin")},
+                      wrap_angle(keys.number(origin[2], "origin"))};
+
+  const YAML::Node negate = keys.require("negate");
+  if (!negate.IsScalar()) keys.fail(negate, "negate", "expected 0, 1, true or false");
+  if (const auto i = io_detail::parse_int(negate.Scalar())) {
+    meta.negate = *i != 0;
+  } else {
+    bool b = false;
+    if (!YAML::convert<bool>::decode(negate, b)) {
+      keys.fail(negate, "negate", "expected 0, 1, true or false, got '" + negate.Scalar() + "'");
+    }
+    meta.negate = b;
+  }
+
+  for (const char* key : {"occupied_thresh", "free_thresh"}) {
+    const YAML::Node n = keys.require(key);
+    const double v = keys.number(n, key);
+    if (v < 0.0 || v > 1.0) keys.fail(n, key, "must be in [0, 1], got " + n.Scalar());
+    (std::string(key) == "free_thresh" ? meta.free_thresh : meta.occupied_thresh) = v;
+  }
+
+  if (keys.has("mode")) {
+    const std::string mode = keys.text("mode");
+    if (mode == "trinary") {
+      meta.mode = MapMode::Trinary;
+    } else if (mode == "scale") {
+      meta.mode = MapMode::Scale;
+    } else if (mode == "raw") {
+      meta.mode = MapMode::Raw;
+    } else {
+      keys.fail(keys.require("mode"), "mode",
+                "unknown mode '" + mode + "' (expected trinary, scale or raw)");
+    }
+  }
+
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(meta.image, ec)) {
+    keys.fail(keys.require("image"), "image",
+              "image file '" + meta.image.string() + "' does not exist");
+  }
+  return meta;
+}
+
+/// Classifies every pixel as map_server does and flips the rows (image row 0 is the top).
+OccupancyGrid to_grid(const io_detail::RasterImage& img, const RosMapMeta& m,
+                      const RosMapOptions& options) {
+  const std::uint8_t unknown = options.unknown == UnknownPolicy::Occupied ? 1 : 0;
+  std::vector<std::uint8_t> occ(static_cast<std::size_t>(img.width) * img.height);
+  for (int j = 0; j < img.height; ++j) {
+    std::uint8_t* row = occ.data() + static_cast<std::size_t>(img.height - 1 - j) * img.width;
+    for (int i = 0; i < img.width; ++i) {
+      double v = img.mean(i, j);
+      if (m.negate) v = 255.0 - v;
+      double p = 0.0;
+      if (m.mode == MapMode::Raw) {
+        // ROS 1 stores the (truncated) value itself: 0..100 is a percentage, the rest unknown.
+        const double value = std::floor(v);
+        if (value > 100.0) {
+          row[i] = unknown;
+          continue;
+        }
+        p = value / 100.0;
+      } else {
+        // Trinary and scale agree on a binary grid: scale's in-between values (1..99) are
+        // neither known free nor known occupied, so they follow the unknown policy too.
+        p = (255.0 - v) / 255.0;
+      }
+      row[i] = p > m.occupied_thresh ? 1 : (p < m.free_thresh ? 0 : unknown);
+    }
+  }
+  return OccupancyGrid(img.width, img.height, m.resolution, m.origin, std::move(occ));
+}
+
+}  // namespace
+
+OccupancyGrid load_ros_map(const std::filesystem::path& yaml, const RosMapOptions& options) {
+  const RosMapMeta meta = read_meta(yaml);
+  return to_grid(io_detail::read_raster_image(meta.image), meta, options);
+}
+
+OccupancyGrid load_ros_image_map(const std::filesystem::path& image, double resolution,
+                                 const RosMapOptions& options) {
+  if (!(resolution > 0.0) || !std::isfinite(resolution)) {
+    throw InputError(image.string(), "resolution",
+                     "must be a positive finite number, got " + std::to_string(resolution));
+  }
+  RosMapMeta meta;  // map_server's defaults
+  meta.image = image;
+  meta.resolution = resolution;
+  return to_grid(io_detail::read_raster_image(image), meta, options);
+}
+
+}  // namespace floornav

@@ -1,0 +1,43 @@
+#include "floornav/io/run_outputs.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+
+#include "floornav/io/atomic_file.hpp"
+#include "floornav/io/summary_json.hpp"
+#include "floornav/io/trajectory_csv.hpp"
+#include "floornav/io/trajectory_svg.hpp"
+#include "floornav/sim/simulation.hpp"
+
+namespace floornav {
+
+void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,
+                       const RunResult& result, const OutputSelection& which) {
+  ensure_directory(dir);
+  if (which.summary)
+    write_file_atomically(dir / "summary.json", summary_to_json(result).dump(2) + "\n");
+  if (which.csv) write_file_atomically(dir / "trajectory.csv", trajectory_to_csv(result));
+  if (which.svg)
+    write_file_atomically(dir / "trajectory.svg", render_trajectory_svg(scenario, result));
+}
+
+std::string describe_run(const RunResult& r) {
+  std::string out = fmt::format("{}: {} in {:.1f} s, path {:.2f} m, min clearance {:.3f} m, {} "
+                                "switch{}",
+                                r.scenario, to_string(r.status), r.sim_time, r.path_length,
+                                r.min_clearance, r.mode_switches, r.mode_switches == 1 ? "" : "es");
+  if (r.goal_count > 1) out += fmt::format(", {}/{} goals", r.goals_reached, r.goal_count);
+  if (r.chatter_episodes > 0)
+    out += fmt::format(", chatter (Zeno) from t = {:.2f} s", r.first_chatter_time);
+  return out;
+}
+
+RunResult run_timed(const Scenario& scenario) {
+  const auto t0 = std::chrono::steady_clock::now();
+  RunResult r = simulate(scenario);
+  r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace floornav

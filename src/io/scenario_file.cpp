@@ -1,0 +1,424 @@
+#include "floornav/io/scenario_file.hpp"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "floornav/automaton/hybrid_automaton.hpp"
+#include "floornav/geometry/angle.hpp"
+#include "floornav/geometry/polygon.hpp"
+#include "world_map.hpp"
+#include "yaml_reader.hpp"
+
+namespace floornav {
+
+using io_detail::fail;
+using io_detail::MapReader;
+using io_detail::read_double;
+using io_detail::read_point;
+using io_detail::read_points;
+
+namespace {
+
+constexpr std::size_t kMaxScenarioBytes = 16u << 20;  // a scenario is text, not data
+constexpr std::size_t kMaxObstacles = 1000000;
+constexpr double kPointPostRadius = 0.03;  // m, the radius given to `point:` obstacles
+
+// --- --set overrides ------------------------------------------------------------------------
+
+void apply_override(YAML::Node& root, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("", "--set " + assignment, "expected KEY=VALUE");
+  const std::string key = assignment.substr(0, eq);
+  const std::string text = assignment.substr(eq + 1);
+  YAML::Node value;
+  try {
+    value = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError("", "--set " + key, fmt::format("cannot read value '{}': {}", text, e.msg));
+  }
+  std::vector<std::string> parts;
+  std::stringstream ss(key);
+  for (std::string part; std::getline(ss, part, '.');) {
+    if (part.empty()) throw InputError("", "--set " + key, "empty part in the key path");
+    parts.push_back(part);
+  }
+  // Walk down with plain node copies (yaml-cpp nodes are handles), creating maps as needed.
+  std::vector<YAML::Node> chain{root};
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    YAML::Node parent = chain.back();
+    if (!parent.IsMap() && !parent.IsNull())
+      throw InputError("", "--set " + key,
+                       fmt::format("'{}' is not a mapping, cannot set a key inside it",
+                                   parts[i - (i > 0 ? 1 : 0)]));
+    YAML::Node child = parent[parts[i]];
+    if (!child.IsDefined() || child.IsNull()) {
+      parent[parts[i]] = YAML::Node(YAML::NodeType::Map);
+      child = parent[parts[i]];
+    }
+    chain.push_back(child);
+  }
+  YAML::Node parent = chain.back();
+  if (!parent.IsMap() && !parent.IsNull())
+    throw InputError("", "--set " + key, "the key's parent is not a mapping");
+  parent[parts.back()] = value;
+}
+
+// --- sections -------------------------------------------------------------------------------
+
+Pose2 read_pose(const std::string& file, const YAML::Node& n, const std::string& key) {
+  const auto v = io_detail::read_numbers(file, n, key, 3);
+  return {Vec2(v[0], v[1]), v[2]};
+}
+
+double read_positive(const std::string& file, const YAML::Node& n, const std::string& key) {
+  const double v = read_double(file, n, key);
+  if (v <= 0.0) fail(file, n, key, fmt::format("must be positive, got {}", v));
+  return v;
+}
+
+void read_obstacle(const std::string& file, const YAML::Node& item, const std::string& key,
+                   WorldDesc& desc) {
+  MapReader r(file, item, key);
+  int kinds = 0;
+  if (r.has("circle")) {
+    ++kinds;
+    MapReader c(file, r.get("circle"), r.path_of("circle"));
+    Circle circle;
+    circle.center = read_point(file, c.get("center"), c.path_of("center"));
+    circle.radius = read_positive(file, c.get("radius"), c.path_of("radius"));
+    c.finish();
+    desc.circles.push_back(circle);
+  }
+  if (r.has("point")) {
+    ++kinds;
+    // A point obstacle is a thin post: with radius 0 no range sensor could ever see it.
+    desc.circles.push_back({read_point(file, r.get("point"), r.path_of("point")), kPointPostRadius});
+  }
+  if (r.has("polygon")) {
+    ++kinds;
+    const YAML::Node n = r.get("polygon");
+    auto pts = read_points(file, n, r.path_of("polygon"));
+    if (pts.size() < 3)
+      fail(file, n, r.path_of("polygon"),
+           fmt::format("a polygon needs at least 3 points, got {}", pts.size()));
+    if (!is_simple(pts))
+      fail(file, n, r.path_of("polygon"),
+           "the polygon crosses itself or has repeated points (it must be simple)");
+    desc.polygons.push_back(std::move(pts));
+  }
+  if (r.has("rectangle")) {
+    ++kinds;
+    MapReader c(file, r.get("rectangle"), r.path_of("rectangle"));
+    const Vec2 center = read_point(file, c.get("center"), c.path_of("center"));
+    const Vec2 size = read_point(file, c.get("size"), c.path_of("size"));
+    if (size.x() <= 0.0 || size.y() <= 0.0)
+      fail(file, c.node()["size"], c.path_of("size"), "both sides must be positive");
+    double angle = 0.0;
+    if (c.has("angle")) angle = read_double(file, c.get("angle"), c.path_of("angle"));
+    c.finish();
+    desc.polygons.push_back(make_rectangle(center, size, angle));
+  }
+  if (kinds != 1)
+    fail(file, item, key,
+         "an obstacle is exactly one of: circle, point, polygon, rectangle");
+  r.finish();
+}
+
+void read_sensors(const std::string& file, MapReader& r, RobotSpec& robot) {
+  if (r.has("mounts") && r.has("lidar"))
+    fail(file, r.node(), r.path_of("mounts"), "give either mounts or lidar, not both");
+  if (r.has("lidar")) {
+    MapReader l(file, r.get("lidar"), r.path_of("lidar"));
+    const auto beams = io_detail::read_int(file, l.get("beams"), l.path_of("beams"));
+    if (beams < 1 || beams > 100000)
+      fail(file, l.node()["beams"], l.path_of("beams"), "must be between 1 and 100000");
+    const double fov = read_positive(file, l.get("fov"), l.path_of("fov"));
+    if (fov > 2.0 * kPi + 1e-9) fail(file, l.node()["fov"], l.path_of("fov"), "at most 2 pi");
+    const double lo = read_double(file, l.get("min_range"), l.path_of("min_range"));
+    const double hi = read_positive(file, l.get("max_range"), l.path_of("max_range"));
+    Pose2 mount;
+    if (l.has("mount")) mount = read_pose(file, l.get("mount"), l.path_of("mount"));
+    l.finish();
+    robot.sensors = make_lidar(static_cast<int>(beams), fov, lo, hi, mount);
+  }
+  if (r.has("mounts")) {
+    const YAML::Node n = r.get("mounts");
+    if (!n.IsSequence() || n.size() == 0)
+      fail(file, n, r.path_of("mounts"), "expected a list of [x, y, theta] sensor poses");
+    const RangeSensorSpec base = robot.sensors.empty() ? RangeSensorSpec{} : robot.sensors[0];
+    robot.sensors.clear();
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      RangeSensorSpec s = base;
+      s.mount = read_pose(file, n[i], fmt::format("{}[{}]", r.path_of("mounts"), i));
+      robot.sensors.push_back(s);
+    }
+  }
+  // Applies to every sensor, after any replacement above.
+  auto each = [&](const char* key, auto apply) {
+    if (!r.has(key)) return;
+    const YAML::Node n = r.get(key);
+    const double v = read_double(file, n, r.path_of(key));
+    if (v < 0.0) fail(file, n, r.path_of(key), "must not be negative");
+    for (RangeSensorSpec& s : robot.sensors) apply(s, v);
+  };
+  each("min_range", [](RangeSensorSpec& s, double v) { s.min_range = v; });
+  each("max_range", [](RangeSensorSpec& s, double v) { s.max_range = v; });
+  each("cone_angle", [](RangeSensorSpec& s, double v) { s.cone_angle = v; });
+  if (r.has("cone_rays")) {
+    const YAML::Node n = r.get("cone_rays");
+    const auto v = io_detail::read_int(file, n, r.path_of("cone_rays"));
+    if (v < 1 || v > 64) fail(file, n, r.path_of("cone_rays"), "must be between 1 and 64");
+    for (RangeSensorSpec& s : robot.sensors) s.cone_rays = static_cast<int>(v);
+  }
+  if (r.has("noise")) {
+    const YAML::Node n = r.get("noise");
+    robot.sensor_noise = read_double(file, n, r.path_of("noise"));
+    if (robot.sensor_noise < 0.0) fail(file, n, r.path_of("noise"), "must not be negative");
+  }
+  r.finish();
+}
+
+// The robot section: a preset, then overrides of any of its values.
+void read_robot(const std::string& file, MapReader& r, Scenario& s) {
+  std::string preset = "quickbot";
+  if (r.has("preset")) {
+    const YAML::Node n = r.get("preset");
+    preset = io_detail::read_string(file, n, r.path_of("preset"));
+    if (!find_robot_preset(preset)) {
+      std::string names;
+      for (auto name : robot_preset_names()) names += (names.empty() ? "" : ", ") + std::string(name);
+      fail(file, n, r.path_of("preset"),
+           fmt::format("unknown preset '{}' (expected one of: {})", preset, names));
+    }
+  }
+  const RobotPreset p = *find_robot_preset(preset);
+  s.robot = p.robot;
+  s.navigation = p.navigation;
+  if (!r.has("start")) fail(file, r.node(), r.path_of("start"), "missing (x, y, theta)");
+  s.start = read_pose(file, r.get("start"), r.path_of("start"));
+  s.start.theta = wrap_angle(s.start.theta);
+  auto positive = [&](const char* key, double& field) {
+    if (r.has(key)) field = read_positive(file, r.get(key), r.path_of(key));
+  };
+  positive("radius", s.robot.body_radius);
+  positive("wheel_radius", s.robot.drive.wheel_radius);
+  positive("track_width", s.robot.drive.track_width);
+  positive("max_wheel_speed", s.robot.drive.max_wheel_speed);
+  if (r.has("min_wheel_speed")) {
+    const YAML::Node n = r.get("min_wheel_speed");
+    s.robot.drive.min_wheel_speed = read_double(file, n, r.path_of("min_wheel_speed"));
+    if (s.robot.drive.min_wheel_speed < 0.0 ||
+        s.robot.drive.min_wheel_speed >= s.robot.drive.max_wheel_speed)
+      fail(file, n, r.path_of("min_wheel_speed"), "must be in [0, max_wheel_speed)");
+  }
+  if (r.has("sensors")) {
+    MapReader sr(file, r.get("sensors"), r.path_of("sensors"));
+    read_sensors(file, sr, s.robot);
+  }
+  r.finish();
+}
+
+void read_controller(const std::string& file, MapReader& r, Scenario& s) {
+  if (r.has("kind")) {
+    const YAML::Node n = r.get("kind");
+    const std::string kind = io_detail::read_string(file, n, r.path_of("kind"));
+    const auto k = parse_controller_kind(kind);
+    if (!k)
+      fail(file, n, r.path_of("kind"),
+           fmt::format("unknown controller '{}' (expected hybrid, hard_switch, blended or "
+                       "go_to_goal)",
+                       kind));
+    s.controller = *k;
+  }
+  s.navigation.serialize(r);
+  r.finish();
+}
+
+Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& origin) {
+  const std::string file = origin.string();
+  if (!root.IsDefined() || root.IsNull())
+    throw InputError(file, "", "the file is empty (a scenario needs world, robot and goal)");
+  MapReader top(file, root, "");
+  Scenario s;
+  s.name = origin.stem().string();
+  if (top.has("name")) s.name = io_detail::read_string(file, top.get("name"), "name");
+
+  // robot first: its preset supplies the controller defaults.
+  if (!top.has("robot")) fail(file, root, "robot", "missing section (robot: {start: [x, y, theta]})");
+  {
+    MapReader r(file, top.get("robot"), "robot");
+    read_robot(file, r, s);
+  }
+  if (top.has("controller")) {
+    MapReader r(file, top.get("controller"), "controller");
+    read_controller(file, r, s);
+  }
+  if (top.has("sim")) {
+    MapReader r(file, top.get("sim"), "sim");
+    s.sim.serialize(r);
+    r.finish();
+  }
+
+  const bool has_goal = top.has("goal"), has_goals = top.has("goals");
+  if (has_goal == has_goals)
+    fail(file, root, has_goal ? "goals" : "goal",
+         has_goal ? "give either goal or goals, not both" : "missing (goal: [x, y])");
+  if (has_goal) s.goals.push_back(read_point(file, top.get("goal"), "goal"));
+  else {
+    const YAML::Node n = top.get("goals");
+    s.goals = read_points(file, n, "goals");
+    if (s.goals.empty()) fail(file, n, "goals", "needs at least one goal");
+  }
+
+  WorldDesc desc;
+  if (!top.has("world")) fail(file, root, "world", "missing section (world: {bounds: [...]})");
+  {
+    MapReader w(file, top.get("world"), "world");
+    if (w.has("bounds")) {
+      const YAML::Node n = w.get("bounds");
+      const auto b = io_detail::read_numbers(file, n, "world.bounds", 4);
+      if (!(b[2] > b[0] && b[3] > b[1]))
+        fail(file, n, "world.bounds", "expected [xmin, ymin, xmax, ymax] with xmin < xmax, ymin < ymax");
+      desc.bounds = Box2{Vec2(b[0], b[1]), Vec2(b[2], b[3])};
+    }
+    if (w.has("obstacles")) {
+      const YAML::Node n = w.get("obstacles");
+      if (!n.IsSequence()) fail(file, n, "world.obstacles", "expected a list of obstacles");
+      if (n.size() > kMaxObstacles) fail(file, n, "world.obstacles", "too many obstacles");
+      for (std::size_t i = 0; i < n.size(); ++i)
+        read_obstacle(file, n[i], fmt::format("world.obstacles[{}]", i), desc);
+    }
+    io_detail::MapOptions options;
+    if (w.has("cell_size"))
+      options.cell_size = read_positive(file, w.get("cell_size"), "world.cell_size");
+    if (w.has("unknown")) {
+      const YAML::Node n = w.get("unknown");
+      const std::string v = io_detail::read_string(file, n, "world.unknown");
+      if (v != "occupied" && v != "free")
+        fail(file, n, "world.unknown", fmt::format("expected occupied or free, got '{}'", v));
+      options.unknown_is_occupied = v == "occupied";
+    }
+    if (w.has("map")) {
+      const YAML::Node n = w.get("map");
+      std::filesystem::path map = io_detail::read_string(file, n, "world.map");
+      if (map.is_relative()) map = origin.parent_path() / map;
+      s.grid = io_detail::load_world_map(map, options, desc, file, io_detail::where_of(n, "world.map"));
+    }
+    w.finish();
+  }
+  desc.grid = s.grid.get();
+  top.finish();
+  s.world = std::make_shared<const World>(std::move(desc));
+  validate_scenario(s, file);
+  return s;
+}
+
+}  // namespace
+
+void validate_scenario(const Scenario& s, const std::string& file) {
+  auto bad = [&](const std::string& key, const std::string& what) {
+    throw InputError(file, key, what);
+  };
+  const RobotSpec& r = s.robot;
+  const NavigationParams& n = s.navigation;
+  if (!(s.sim.dt > 0.0)) bad("sim.dt", fmt::format("must be positive, got {}", s.sim.dt));
+  const double v_max = max_forward_speed(r.drive);
+  // A step must not carry the robot through half its own body: collisions would be missed.
+  if (v_max * s.sim.dt > 0.5 * r.body_radius)
+    bad("sim.dt", fmt::format("{} s is too large: at {:.3g} m/s the robot moves {:.3g} m per step, "
+                              "more than half its radius {:.3g} m",
+                              s.sim.dt, v_max, v_max * s.sim.dt, r.body_radius));
+  if (!(s.sim.t_max > 0.0) || s.sim.t_max > 1e6)
+    bad("sim.t_max", fmt::format("must be in (0, 1e6] s, got {}", s.sim.t_max));
+  if (s.sim.t_max / s.sim.dt > 1e9) bad("sim.t_max", "more than 1e9 steps");
+  if (!(s.sim.stuck_window > 0.0)) bad("sim.stuck_window", "must be positive");
+  if (s.sim.stuck_radius < 0.0) bad("sim.stuck_radius", "must not be negative");
+  for (std::size_t i = 0; i < r.sensors.size(); ++i) {
+    const RangeSensorSpec& sp = r.sensors[i];
+    if (!(sp.min_range >= 0.0 && sp.max_range > sp.min_range))
+      bad("robot.sensors", fmt::format("sensor {}: need 0 <= min_range < max_range, got {} and {}",
+                                       i, sp.min_range, sp.max_range));
+  }
+  if (!(n.v0 > 0.0)) bad("controller.v0", "must be positive");
+  if (!(n.gtg_a > 0.0)) bad("controller.gtg_a", "must be positive");
+  if (!(n.epsilon > 0.0)) bad("controller.epsilon", "must be positive");
+  if (!(n.d_unsafe >= 0.0)) bad("controller.d_unsafe", "must not be negative");
+  if (!(n.d_fb > n.d_unsafe))
+    bad("controller.d_fb", fmt::format("must be larger than d_unsafe ({})", n.d_unsafe));
+  if (!(n.d_o > n.d_fb)) bad("controller.d_o", fmt::format("must be larger than d_fb ({})", n.d_fb));
+  if (!(n.hysteresis >= 0.0)) bad("controller.hysteresis", "must not be negative");
+  if (!(n.d_unsafe + n.hysteresis < n.d_o))
+    bad("controller.hysteresis", "d_unsafe + hysteresis must stay below d_o");
+  if (!(n.progress_margin >= 0.0)) bad("controller.progress_margin", "must not be negative");
+  if (!(n.k_fb >= 0.0)) bad("controller.k_fb", "must not be negative");
+  if (!(n.blend_far > n.blend_near && n.blend_near >= 0.0))
+    bad("controller.blend_far", "need 0 <= blend_near < blend_far");
+  if (!(n.obstacle_memory >= 0.0)) bad("controller.obstacle_memory", "must not be negative");
+  if (n.chatter_switches < 2 || n.chatter_switches > ChatterMonitor::kCapacity)
+    bad("controller.chatter_switches",
+        fmt::format("must be between 2 and {}", ChatterMonitor::kCapacity));
+  if (!(n.chatter_window > 0.0)) bad("controller.chatter_window", "must be positive");
+  if (n.heading_pid.integral_limit < 0.0) bad("controller.pid.integral_limit", "must not be negative");
+
+  const World& w = *s.world;
+  if (w.is_inside_obstacle(s.start.position) ||
+      w.clearance(s.start.position) < r.body_radius)
+    bad("robot.start",
+        fmt::format("the robot at ({}, {}) overlaps an obstacle or lies outside the world "
+                    "(clearance {:.3g} m, body radius {} m)",
+                    s.start.position.x(), s.start.position.y(), w.clearance(s.start.position),
+                    r.body_radius));
+  for (std::size_t i = 0; i < s.goals.size(); ++i) {
+    const Vec2 g = s.goals[i];
+    const std::string key = s.goals.size() == 1 ? "goal" : fmt::format("goals[{}]", i);
+    if (w.is_inside_obstacle(g) || w.clearance(g) <= 0.0)
+      bad(key, fmt::format("({}, {}) is inside an obstacle or outside the world", g.x(), g.y()));
+  }
+}
+
+Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& origin,
+                            std::span<const std::string> overrides) {
+  const std::string file = origin.string();
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(yaml));
+  } catch (const YAML::ParserException& e) {
+    throw InputError(file, fmt::format("line {}", e.mark.line + 1), "not valid YAML: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw InputError(file, "", std::string("not valid YAML: ") + e.what());
+  }
+  if (root.IsDefined() && !root.IsNull() && !root.IsMap())
+    throw InputError(file, "line 1", "a scenario is a mapping of sections (world, robot, goal)");
+  if (!root.IsDefined() || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  for (const std::string& o : overrides) apply_override(root, o);
+  try {
+    return read_scenario(root, origin);
+  } catch (const YAML::Exception& e) {
+    throw InputError(file, fmt::format("line {}", e.mark.line + 1), e.msg);
+  }
+}
+
+Scenario load_scenario_file(const std::filesystem::path& path,
+                            std::span<const std::string> overrides) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(path.string(), "", std::filesystem::exists(path, ec) ? "not a regular file"
+                                                                          : "no such file");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError(path.string(), "", "cannot read: " + ec.message());
+  if (size > kMaxScenarioBytes)
+    throw InputError(path.string(), "", fmt::format("{} bytes is too large for a scenario", size));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), "", "cannot open for reading");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (text.find('\0') != std::string::npos)
+    throw InputError(path.string(), "", "binary data, not a YAML scenario");
+  return load_scenario_text(text, path, overrides);
+}
+
+}  // namespace floornav

@@ -1,0 +1,185 @@
+#include "yaml_reader.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <limits>
+
+#include <fmt/format.h>
+
+namespace floornav::io_detail {
+
+namespace {
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string scalar_of(const std::string& file, const YAML::Node& node, const std::string& key,
+                      const char* expected) {
+  if (!node.IsDefined() || node.IsNull())
+    fail(file, node, key, fmt::format("expected {}, got nothing", expected));
+  if (!node.IsScalar()) fail(file, node, key, fmt::format("expected {}, got a {}", expected,
+                                                           node.IsMap() ? "mapping" : "list"));
+  return node.Scalar();
+}
+}  // namespace
+
+std::string where_of(const YAML::Node& node, const std::string& key) {
+  const auto mark = node.Mark();
+  if (mark.line < 0) return key.empty() ? std::string("--set") : key + " (from --set)";
+  const std::string line = fmt::format("line {}", mark.line + 1);
+  return key.empty() ? line : line + ": " + key;
+}
+
+void fail(const std::string& file, const YAML::Node& node, const std::string& key,
+          const std::string& what) {
+  throw InputError(file, where_of(node, key), what);
+}
+
+double read_double(const std::string& file, const YAML::Node& node, const std::string& key) {
+  const std::string s = scalar_of(file, node, key, "a number");
+  double v = 0.0;
+  const char* b = s.data();
+  const char* e = s.data() + s.size();
+  auto [ptr, ec] = std::from_chars(b, e, v);
+  if (ec == std::errc::result_out_of_range)
+    fail(file, node, key, fmt::format("'{}' is out of the range of a number", s));
+  if (ec != std::errc() || ptr != e) {
+    // YAML spellings of infinity and NaN are numbers, but never acceptable ones.
+    const std::string lower = [&] {
+      std::string t = s;
+      std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return std::tolower(c); });
+      return t;
+    }();
+    if (lower == ".nan" || lower == ".inf" || lower == "-.inf" || lower == "+.inf")
+      fail(file, node, key, fmt::format("'{}' is not a finite number", s));
+    fail(file, node, key, fmt::format("expected a number, got '{}'", s));
+  }
+  if (!std::isfinite(v)) fail(file, node, key, fmt::format("'{}' is not a finite number", s));
+  return v;
+}
+
+std::int64_t read_int(const std::string& file, const YAML::Node& node, const std::string& key) {
+  const std::string s = scalar_of(file, node, key, "a whole number");
+  std::int64_t v = 0;
+  auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || ptr != s.data() + s.size())
+    fail(file, node, key, fmt::format("expected a whole number, got '{}'", s));
+  return v;
+}
+
+bool read_bool(const std::string& file, const YAML::Node& node, const std::string& key) {
+  const std::string s = scalar_of(file, node, key, "true or false");
+  if (s == "true" || s == "True" || s == "yes" || s == "on") return true;
+  if (s == "false" || s == "False" || s == "no" || s == "off") return false;
+  fail(file, node, key, fmt::format("expected true or false, got '{}'", s));
+}
+
+std::string read_string(const std::string& file, const YAML::Node& node, const std::string& key) {
+  return scalar_of(file, node, key, "a string");
+}
+
+std::vector<double> read_numbers(const std::string& file, const YAML::Node& node,
+                                 const std::string& key, std::size_t n) {
+  if (!node.IsSequence())
+    fail(file, node, key,
+         n ? fmt::format("expected a list of {} numbers", n) : std::string("expected a list"));
+  if (n && node.size() != n)
+    fail(file, node, key, fmt::format("expected {} numbers, got {}", n, node.size()));
+  std::vector<double> out;
+  for (std::size_t i = 0; i < node.size(); ++i)
+    out.push_back(read_double(file, node[i], fmt::format("{}[{}]", key, i)));
+  return out;
+}
+
+Vec2 read_point(const std::string& file, const YAML::Node& node, const std::string& key) {
+  const auto v = read_numbers(file, node, key, 2);
+  return {v[0], v[1]};
+}
+
+std::vector<Vec2> read_points(const std::string& file, const YAML::Node& node,
+                              const std::string& key) {
+  if (!node.IsSequence()) fail(file, node, key, "expected a list of [x, y] points");
+  std::vector<Vec2> out;
+  for (std::size_t i = 0; i < node.size(); ++i)
+    out.push_back(read_point(file, node[i], fmt::format("{}[{}]", key, i)));
+  return out;
+}
+
+MapReader::MapReader(std::string file, YAML::Node node, std::string path)
+    : file_(std::move(file)), node_(std::move(node)), path_(std::move(path)) {
+  if (!node_.IsMap())
+    fail(file_, node_, path_.empty() ? "(top level)" : path_,
+         "expected a mapping of keys to values");
+}
+
+bool MapReader::has(const std::string& key) const {
+  const YAML::Node n = node_[key];
+  return n.IsDefined();
+}
+
+YAML::Node MapReader::get(const std::string& key) {
+  known_.insert(key);
+  return node_[key];
+}
+
+std::string MapReader::path_of(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+void MapReader::finish() const {
+  for (const auto& kv : node_) {
+    if (!kv.first.IsScalar()) fail(file_, kv.first, path_of("?"), "keys must be plain names");
+    const std::string key = kv.first.Scalar();
+    if (known_.count(key)) continue;
+    std::string hint;
+    std::size_t best = 3;
+    for (const std::string& k : known_) {
+      const std::size_t d = edit_distance(key, k);
+      if (d < best) best = d, hint = k;
+    }
+    fail(file_, kv.first, path_of(key),
+         hint.empty() ? std::string("unknown key")
+                      : fmt::format("unknown key (did you mean '{}'?)", path_of(hint)));
+  }
+}
+
+void MapReader::operator()(const char* key, double& field, const char*) {
+  if (has(key)) field = read_double(file_, get(key), path_of(key));
+  else known_.insert(key);
+}
+void MapReader::operator()(const char* key, int& field, const char*) {
+  if (!has(key)) {
+    known_.insert(key);
+    return;
+  }
+  const auto v = read_int(file_, get(key), path_of(key));
+  if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+    fail(file_, node_[key], path_of(key), "number too large");
+  field = static_cast<int>(v);
+}
+void MapReader::operator()(const char* key, bool& field, const char*) {
+  if (has(key)) field = read_bool(file_, get(key), path_of(key));
+  else known_.insert(key);
+}
+void MapReader::operator()(const char* key, std::uint64_t& field, const char*) {
+  if (!has(key)) {
+    known_.insert(key);
+    return;
+  }
+  const auto v = read_int(file_, get(key), path_of(key));
+  if (v < 0) fail(file_, node_[key], path_of(key), "must not be negative");
+  field = static_cast<std::uint64_t>(v);
+}
+
+}  // namespace floornav::io_detail

@@ -1,0 +1,211 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "floornav/geometry/angle.hpp"
+#include "floornav/geometry/circle.hpp"
+#include "floornav/geometry/polygon.hpp"
+#include "floornav/geometry/pose2.hpp"
+#include "floornav/geometry/segment.hpp"
+#include "floornav/geometry/world.hpp"
+
+using namespace floornav;
+
+TEST(WrapAngle, Eq5_14WrapsIntoHalfOpenInterval) {
+  // 3 pi/2 is the same direction as -pi/2.
+  EXPECT_NEAR(wrap_angle(1.5 * kPi), -0.5 * kPi, 1e-12);
+  EXPECT_NEAR(wrap_angle(-1.5 * kPi), 0.5 * kPi, 1e-12);
+  EXPECT_DOUBLE_EQ(wrap_angle(kPi), kPi);         // pi stays pi: (-pi, pi]
+  EXPECT_NEAR(wrap_angle(-kPi), kPi, 1e-12);       // -pi becomes pi
+  EXPECT_NEAR(wrap_angle(7.0), 7.0 - 2.0 * kPi, 1e-12);
+}
+
+TEST(WrapAngle, IsIdempotent) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> d(-50.0, 50.0);
+  for (int i = 0; i < 1000; ++i) {
+    const double a = wrap_angle(d(rng));
+    EXPECT_EQ(wrap_angle(a), a);
+    EXPECT_GT(a, -kPi);
+    EXPECT_LE(a, kPi);
+  }
+}
+
+TEST(Pose2, ComposeAndInverseRoundTrip) {
+  const Pose2 a{Vec2(1.0, 2.0), 0.5};
+  const Pose2 b{Vec2(-0.3, 0.7), -1.2};
+  const Pose2 ab = a.compose(b);
+  const Pose2 back = a.inverse().compose(ab);
+  EXPECT_NEAR(back.position.x(), b.position.x(), 1e-12);
+  EXPECT_NEAR(back.position.y(), b.position.y(), 1e-12);
+  EXPECT_NEAR(back.theta, b.theta, 1e-12);
+  // A sensor 1 m ahead of a robot facing +y sits at +1 in y.
+  const Pose2 robot{Vec2(0, 0), kPi / 2};
+  const Vec2 p = robot.transform_point(Vec2(1, 0));
+  EXPECT_NEAR(p.x(), 0.0, 1e-15);
+  EXPECT_NEAR(p.y(), 1.0, 1e-15);
+}
+
+TEST(Rotation, QuarterTurnsAreExact) {
+  // R(-pi/2) (0, 1) = (1, 0): the clockwise rotation of eq. 5.22.
+  EXPECT_EQ(rotate_cw90(Vec2(0, 1)), Vec2(1, 0));
+  EXPECT_EQ(rotate_ccw90(Vec2(1, 0)), Vec2(0, 1));
+  const Vec2 r = rotate(Vec2(1, 0), kPi / 2);
+  EXPECT_NEAR(r.x(), 0.0, 1e-15);
+  EXPECT_NEAR(r.y(), 1.0, 1e-15);
+}
+
+TEST(Segment, DistanceAndNearestPoint) {
+  const Segment s{Vec2(0, 0), Vec2(2, 0)};
+  EXPECT_DOUBLE_EQ(distance(s, Vec2(1, 1)), 1.0);
+  EXPECT_DOUBLE_EQ(distance(s, Vec2(3, 0)), 1.0);        // beyond the end: to the endpoint
+  EXPECT_DOUBLE_EQ(distance(s, Vec2(-3, 4)), 5.0);       // 3-4-5 to the start
+  EXPECT_EQ(nearest_point(s, Vec2(0.5, -2)), Vec2(0.5, 0));
+  const Segment degenerate{Vec2(1, 1), Vec2(1, 1)};
+  EXPECT_DOUBLE_EQ(distance(degenerate, Vec2(4, 5)), 5.0);
+}
+
+TEST(Segment, RayIntersection) {
+  const Segment wall{Vec2(2, -1), Vec2(2, 1)};
+  auto t = intersect_ray(wall, Vec2(0, 0), Vec2(1, 0));
+  ASSERT_TRUE(t);
+  EXPECT_DOUBLE_EQ(*t, 2.0);
+  // 45 degrees: hits at (2, 2)? No: the wall ends at y = 1, so it misses.
+  const double h = std::sqrt(0.5);
+  EXPECT_FALSE(intersect_ray(wall, Vec2(0, 0), Vec2(h, h)));
+  // From (0, 0.5) at 45 degrees: hits (2, 2.5)? misses; from (0,-1) it hits (2, 1) at 2 sqrt 2.
+  t = intersect_ray(wall, Vec2(0, -1), Vec2(h, h));
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(*t, 2.0 * std::sqrt(2.0), 1e-12);
+  EXPECT_FALSE(intersect_ray(wall, Vec2(0, 0), Vec2(-1, 0)));  // behind
+  // Collinear: the nearer end.
+  const Segment along{Vec2(3, 0), Vec2(5, 0)};
+  t = intersect_ray(along, Vec2(0, 0), Vec2(1, 0));
+  ASSERT_TRUE(t);
+  EXPECT_DOUBLE_EQ(*t, 3.0);
+}
+
+TEST(Segment, Intersection) {
+  EXPECT_TRUE(segments_intersect({Vec2(0, 0), Vec2(2, 2)}, {Vec2(0, 2), Vec2(2, 0)}));
+  EXPECT_FALSE(segments_intersect({Vec2(0, 0), Vec2(1, 0)}, {Vec2(0, 1), Vec2(1, 1)}));
+  EXPECT_TRUE(segments_intersect({Vec2(0, 0), Vec2(1, 0)}, {Vec2(1, 0), Vec2(1, 1)}));  // touch
+}
+
+TEST(Circle, RayAndDistance) {
+  const Circle c{Vec2(3, 0), 1.0};
+  auto t = intersect_ray(c, Vec2(0, 0), Vec2(1, 0));
+  ASSERT_TRUE(t);
+  EXPECT_DOUBLE_EQ(*t, 2.0);
+  EXPECT_FALSE(intersect_ray(c, Vec2(0, 0), Vec2(0, 1)));
+  EXPECT_DOUBLE_EQ(*intersect_ray(c, Vec2(3, 0.5), Vec2(0, 1)), 0.0);  // inside
+  EXPECT_DOUBLE_EQ(signed_distance(c, Vec2(0, 4)), 4.0);             // |(-3,4)| - 1
+  EXPECT_DOUBLE_EQ(signed_distance(c, Vec2(3, 0)), -1.0);
+}
+
+TEST(Polygon, AreaAndWinding) {
+  const std::vector<Vec2> ccw{{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  EXPECT_DOUBLE_EQ(signed_area(ccw), 2.0);
+  const std::vector<Vec2> cw(ccw.rbegin(), ccw.rend());
+  EXPECT_DOUBLE_EQ(signed_area(cw), -2.0);
+}
+
+// Practice problem 1: classify shapes as convex or concave, either winding.
+TEST(Polygon, ConvexityPractice1) {
+  const std::vector<Vec2> square{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const std::vector<Vec2> square_cw{{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+  const std::vector<Vec2> triangle{{0, 0}, {2, 0}, {1, 3}};
+  const std::vector<Vec2> l_shape{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  const std::vector<Vec2> u_shape{{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  const std::vector<Vec2> star{{0, 3}, {1, 1}, {3, 1}, {1.5, -0.5}, {2.5, -3},
+                               {0, -1.5}, {-2.5, -3}, {-1.5, -0.5}, {-3, 1}, {-1, 1}};
+  const std::vector<Vec2> pentagram{{0, 1}, {0.588, -0.809}, {-0.951, 0.309}, {0.951, 0.309},
+                                    {-0.588, -0.809}};
+  EXPECT_TRUE(is_convex(square));
+  EXPECT_TRUE(is_convex(square_cw));
+  EXPECT_TRUE(is_convex(triangle));
+  EXPECT_FALSE(is_convex(l_shape));
+  EXPECT_FALSE(is_convex(u_shape));
+  EXPECT_FALSE(is_convex(star));
+  EXPECT_FALSE(is_convex(pentagram));  // turns all agree, but it winds twice
+  EXPECT_FALSE(is_simple(pentagram));
+  EXPECT_TRUE(is_simple(u_shape));
+}
+
+TEST(Polygon, ContainsConcave) {
+  const std::vector<Vec2> u_shape{{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  EXPECT_TRUE(contains(u_shape, Vec2(0.5, 1.5)));   // left arm
+  EXPECT_FALSE(contains(u_shape, Vec2(1.5, 1.5)));  // the pocket
+  EXPECT_TRUE(contains(u_shape, Vec2(1.5, 0.5)));   // base
+  EXPECT_TRUE(contains(u_shape, Vec2(3, 1)));       // on the boundary
+  EXPECT_FALSE(contains(u_shape, Vec2(4, 1)));
+  EXPECT_DOUBLE_EQ(boundary_distance(u_shape, Vec2(1.5, 1.5)), 0.5);
+}
+
+TEST(Polygon, Rectangle) {
+  const auto r = make_rectangle(Vec2(1, 1), Vec2(2, 1), kPi / 2);
+  EXPECT_NEAR(std::abs(signed_area(r)), 2.0, 1e-12);
+  EXPECT_TRUE(contains(r, Vec2(1, 1.9)));   // rotated: 1 wide in x, 2 tall in y
+  EXPECT_FALSE(contains(r, Vec2(1.9, 1)));
+}
+
+namespace {
+WorldDesc sample_world(std::uint64_t seed, int polygons, int circles) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  WorldDesc d;
+  d.bounds = Box2{Vec2(-5, -4), Vec2(5, 4)};
+  for (int i = 0; i < polygons; ++i)
+    d.polygons.push_back(make_rectangle(Vec2(-4 + 8 * u(rng), -3 + 6 * u(rng)),
+                                        Vec2(0.1 + 0.8 * u(rng), 0.1 + 0.8 * u(rng)),
+                                        6.0 * u(rng)));
+  for (int i = 0; i < circles; ++i)
+    d.circles.push_back({Vec2(-4 + 8 * u(rng), -3 + 6 * u(rng)), 0.05 + 0.3 * u(rng)});
+  return d;
+}
+}  // namespace
+
+// The spatial index must give exactly what testing every edge gives.
+TEST(World, IndexedQueriesMatchBruteForce) {
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    const World w(sample_world(seed, 40, 15));
+    std::mt19937_64 rng(seed + 100);
+    std::uniform_real_distribution<double> x(-6.0, 6.0), y(-5.0, 5.0), a(-kPi, kPi);
+    for (int i = 0; i < 2000; ++i) {
+      const Vec2 p(x(rng), y(rng));
+      const double th = a(rng);
+      const Vec2 dir(std::cos(th), std::sin(th));
+      ASSERT_DOUBLE_EQ(w.cast_ray(p, dir, 20.0), w.cast_ray_brute_force(p, dir, 20.0))
+          << "seed " << seed << " at " << p.transpose() << " dir " << th;
+      ASSERT_DOUBLE_EQ(w.clearance(p), w.clearance_brute_force(p)) << p.transpose();
+    }
+  }
+}
+
+TEST(World, BoundsAreWallsAndOutsideIsSolid) {
+  WorldDesc d;
+  d.bounds = Box2{Vec2(0, 0), Vec2(4, 2)};
+  const World w(d);
+  EXPECT_DOUBLE_EQ(w.clearance(Vec2(1, 0.5)), 0.5);
+  EXPECT_DOUBLE_EQ(w.cast_ray(Vec2(1, 1), Vec2(1, 0), 10.0), 3.0);
+  EXPECT_DOUBLE_EQ(w.cast_ray(Vec2(1, 1), Vec2(1, 0), 2.0), 2.0);  // out of range
+  EXPECT_LT(w.clearance(Vec2(5, 1)), 0.0);
+  EXPECT_TRUE(w.is_inside_obstacle(Vec2(-1, 1)));
+  EXPECT_FALSE(w.is_inside_obstacle(Vec2(2, 1)));
+}
+
+TEST(World, InsideAPolygonIsNegative) {
+  WorldDesc d;
+  d.polygons.push_back({{0, 0}, {2, 0}, {2, 2}, {0, 2}});
+  const World w(d);
+  EXPECT_DOUBLE_EQ(w.clearance(Vec2(1, 0.5)), -0.5);
+  EXPECT_DOUBLE_EQ(w.clearance(Vec2(3, 1)), 1.0);
+  EXPECT_DOUBLE_EQ(w.cast_ray(Vec2(1, 1), Vec2(1, 0), 5.0), 0.0);
+  EXPECT_DOUBLE_EQ(w.cast_ray(Vec2(-1, 1), Vec2(1, 0), 5.0), 1.0);
+}
+
+TEST(World, EmptyWorldSeesNothing) {
+  const World w(WorldDesc{});
+  EXPECT_DOUBLE_EQ(w.cast_ray(Vec2(0, 0), Vec2(1, 0), 3.0), 3.0);
+  EXPECT_TRUE(std::isinf(w.clearance(Vec2(0, 0))));
+}
