@@ -1,9 +1,9 @@
 // floornav: the command line. Subcommands: run, batch, demo, presets.
 // Exit status: 0 when the simulation(s) ran, 2 for bad input, 1 for an internal error.
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <unistd.h>
+#include <CLI/CLI.hpp>
 
 #include <atomic>
 #include <csignal>
@@ -26,9 +26,13 @@ using namespace floornav;
 namespace {
 
 std::atomic<bool> g_stop{false};
-extern "C" void on_signal(int) { g_stop.store(true); }
+extern "C" void on_signal(int) {
+  g_stop.store(true);
+}
 
-std::string default_out_dir(const std::string& name) { return (fs::path("out") / name).string(); }
+std::string default_out_dir(const std::string& name) {
+  return (fs::path("out") / name).string();
+}
 
 int run_one(const Scenario& scenario, const std::string& out, bool quiet) {
   const RunResult r = run_timed(scenario);
@@ -49,8 +53,9 @@ int main(int argc, char** argv) {
   std::string run_file, run_out;
   std::vector<std::string> run_sets;
   bool run_quiet = false;
-  auto* run = app.add_subcommand("run", "Simulate one scenario; writes summary.json, "
-                                        "trajectory.csv and trajectory.svg");
+  auto* run = app.add_subcommand("run",
+                                 "Simulate one scenario; writes summary.json, "
+                                 "trajectory.csv and trajectory.svg");
   run->add_option("scenario", run_file, "scenario YAML file")->required();
   run->add_option("--out", run_out, "output folder (default: out/<scenario name>)");
   run->add_option("--set", run_sets, "override a scenario key: --set controller.kind=blended")
@@ -64,8 +69,9 @@ int main(int argc, char** argv) {
   double batch_cell = 0.0;
   long batch_limit = -1;
   bool batch_no_timing = false, batch_resume = false;
-  auto* batch = app.add_subcommand("batch", "Run many scenarios in parallel; writes "
-                                            "results.jsonl and aggregate.json");
+  auto* batch = app.add_subcommand("batch",
+                                   "Run many scenarios in parallel; writes "
+                                   "results.jsonl and aggregate.json");
   batch->add_option("scenarios", batch_files, "scenario YAML files (or one template with --scen)")
       ->required();
   batch->add_option("--jobs,-j", batch_jobs, "worker threads (default: all cores)")
@@ -75,7 +81,8 @@ int main(int argc, char** argv) {
   batch->add_option("--scen", batch_scen, "MovingAI .scen file: one case per row, on its map");
   batch->add_option("--cell-size", batch_cell, "metres per grid cell for --scen (default 1)")
       ->check(CLI::PositiveNumber);
-  batch->add_option("--limit", batch_limit, "run only the first N cases")->check(CLI::NonNegativeNumber);
+  batch->add_option("--limit", batch_limit, "run only the first N cases")
+      ->check(CLI::NonNegativeNumber);
   batch->add_flag("--no-timing", batch_no_timing,
                   "write wall_time as 0 so that repeated runs give identical files");
   batch->add_flag("--resume", batch_resume, "keep the cases already in results.jsonl");
@@ -107,11 +114,12 @@ int main(int argc, char** argv) {
     if (*presets) {
       for (auto name : robot_preset_names()) {
         const RobotPreset p = *find_robot_preset(name);
-        fmt::print("{:<18} R {:.4f} m, L {:.4f} m, body radius {:.3f} m, max {:.2f} m/s, {} "
-                   "range sensors {:.2f}-{:.2f} m\n",
-                   name, p.robot.drive.wheel_radius, p.robot.drive.track_width,
-                   p.robot.body_radius, max_forward_speed(p.robot.drive), p.robot.sensors.size(),
-                   p.robot.sensors.front().min_range, p.robot.sensors.front().max_range);
+        fmt::print(
+            "{:<18} R {:.4f} m, L {:.4f} m, body radius {:.3f} m, max {:.2f} m/s, {} "
+            "range sensors {:.2f}-{:.2f} m\n",
+            name, p.robot.drive.wheel_radius, p.robot.drive.track_width, p.robot.body_radius,
+            max_forward_speed(p.robot.drive), p.robot.sensors.size(),
+            p.robot.sensors.front().min_range, p.robot.sensors.front().max_range);
       }
       return 0;
     }
@@ -138,12 +146,13 @@ int main(int argc, char** argv) {
       opt.stop = &g_stop;
       const BatchOutcome o = run_batch(cases, opt);
       const auto& a = o.aggregate;
-      fmt::print("{} of {} cases{}: success {:.1f}%, collision {:.1f}%, timeout {:.1f}%, stuck "
-                 "{:.1f}% -> {}\n",
-                 o.completed, o.total, o.interrupted ? " (interrupted; --resume completes it)" : "",
-                 100.0 * a["success_rate"].get<double>(), 100.0 * a["collision_rate"].get<double>(),
-                 100.0 * a["timeout_rate"].get<double>(), 100.0 * a["stuck_rate"].get<double>(),
-                 batch_out);
+      fmt::print(
+          "{} of {} cases{}: success {:.1f}%, collision {:.1f}%, timeout {:.1f}%, stuck "
+          "{:.1f}% -> {}\n",
+          o.completed, o.total, o.interrupted ? " (interrupted; --resume completes it)" : "",
+          100.0 * a["success_rate"].get<double>(), 100.0 * a["collision_rate"].get<double>(),
+          100.0 * a["timeout_rate"].get<double>(), 100.0 * a["stuck_rate"].get<double>(),
+          batch_out);
       return o.interrupted ? 130 : 0;
     }
   } catch (const InputError& e) {

@@ -41,11 +41,11 @@ TEST(HeadingTracker, TurnsTheShortWay) {
   PidState s;
   const PidGains g{2.0, 0.0, 0.0, 1.0};
   const UnicycleCommand u = track_velocity(Vec2(-1, 1), -0.75 * kPi, 0.5, g, s, 0.01, false);
-  EXPECT_NEAR(u.omega, -kPi, 1e-12);   // 2 * (-pi/2)
-  EXPECT_NEAR(u.v, 0.5, 1e-12);        // |u| = sqrt 2 capped at 0.5
+  EXPECT_NEAR(u.omega, -kPi, 1e-12);  // 2 * (-pi/2)
+  EXPECT_NEAR(u.v, 0.5, 1e-12);       // |u| = sqrt 2 capped at 0.5
   PidState s2;
   const UnicycleCommand slow = track_velocity(Vec2(-1, 1), -0.75 * kPi, 0.5, g, s2, 0.01, true);
-  EXPECT_NEAR(slow.v, 0.0, 1e-12);     // cos(-pi/2) = 0: turn first
+  EXPECT_NEAR(slow.v, 0.0, 1e-12);  // cos(-pi/2) = 0: turn first
 }
 
 // Eqs. 5.17-5.19: e = (3, 4), |e| = 5, v0 = 0.2, a = 1: K = 0.2 (1 - e^-25) / 5, u = K e.

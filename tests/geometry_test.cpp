@@ -16,8 +16,8 @@ TEST(WrapAngle, Eq5_14WrapsIntoHalfOpenInterval) {
   // 3 pi/2 is the same direction as -pi/2.
   EXPECT_NEAR(wrap_angle(1.5 * kPi), -0.5 * kPi, 1e-12);
   EXPECT_NEAR(wrap_angle(-1.5 * kPi), 0.5 * kPi, 1e-12);
-  EXPECT_DOUBLE_EQ(wrap_angle(kPi), kPi);         // pi stays pi: (-pi, pi]
-  EXPECT_NEAR(wrap_angle(-kPi), kPi, 1e-12);       // -pi becomes pi
+  EXPECT_DOUBLE_EQ(wrap_angle(kPi), kPi);     // pi stays pi: (-pi, pi]
+  EXPECT_NEAR(wrap_angle(-kPi), kPi, 1e-12);  // -pi becomes pi
   EXPECT_NEAR(wrap_angle(7.0), 7.0 - 2.0 * kPi, 1e-12);
 }
 
@@ -59,8 +59,8 @@ TEST(Rotation, QuarterTurnsAreExact) {
 TEST(Segment, DistanceAndNearestPoint) {
   const Segment s{Vec2(0, 0), Vec2(2, 0)};
   EXPECT_DOUBLE_EQ(distance(s, Vec2(1, 1)), 1.0);
-  EXPECT_DOUBLE_EQ(distance(s, Vec2(3, 0)), 1.0);        // beyond the end: to the endpoint
-  EXPECT_DOUBLE_EQ(distance(s, Vec2(-3, 4)), 5.0);       // 3-4-5 to the start
+  EXPECT_DOUBLE_EQ(distance(s, Vec2(3, 0)), 1.0);   // beyond the end: to the endpoint
+  EXPECT_DOUBLE_EQ(distance(s, Vec2(-3, 4)), 5.0);  // 3-4-5 to the start
   EXPECT_EQ(nearest_point(s, Vec2(0.5, -2)), Vec2(0.5, 0));
   const Segment degenerate{Vec2(1, 1), Vec2(1, 1)};
   EXPECT_DOUBLE_EQ(distance(degenerate, Vec2(4, 5)), 5.0);
@@ -99,7 +99,7 @@ TEST(Circle, RayAndDistance) {
   EXPECT_DOUBLE_EQ(*t, 2.0);
   EXPECT_FALSE(intersect_ray(c, Vec2(0, 0), Vec2(0, 1)));
   EXPECT_DOUBLE_EQ(*intersect_ray(c, Vec2(3, 0.5), Vec2(0, 1)), 0.0);  // inside
-  EXPECT_DOUBLE_EQ(signed_distance(c, Vec2(0, 4)), 4.0);             // |(-3,4)| - 1
+  EXPECT_DOUBLE_EQ(signed_distance(c, Vec2(0, 4)), 4.0);               // |(-3,4)| - 1
   EXPECT_DOUBLE_EQ(signed_distance(c, Vec2(3, 0)), -1.0);
 }
 
@@ -117,10 +117,10 @@ TEST(Polygon, ConvexityPractice1) {
   const std::vector<Vec2> triangle{{0, 0}, {2, 0}, {1, 3}};
   const std::vector<Vec2> l_shape{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
   const std::vector<Vec2> u_shape{{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
-  const std::vector<Vec2> star{{0, 3}, {1, 1}, {3, 1}, {1.5, -0.5}, {2.5, -3},
-                               {0, -1.5}, {-2.5, -3}, {-1.5, -0.5}, {-3, 1}, {-1, 1}};
-  const std::vector<Vec2> pentagram{{0, 1}, {0.588, -0.809}, {-0.951, 0.309}, {0.951, 0.309},
-                                    {-0.588, -0.809}};
+  const std::vector<Vec2> star{{0, 3},    {1, 1},     {3, 1},       {1.5, -0.5}, {2.5, -3},
+                               {0, -1.5}, {-2.5, -3}, {-1.5, -0.5}, {-3, 1},     {-1, 1}};
+  const std::vector<Vec2> pentagram{
+      {0, 1}, {0.588, -0.809}, {-0.951, 0.309}, {0.951, 0.309}, {-0.588, -0.809}};
   EXPECT_TRUE(is_convex(square));
   EXPECT_TRUE(is_convex(square_cw));
   EXPECT_TRUE(is_convex(triangle));
@@ -145,7 +145,7 @@ TEST(Polygon, ContainsConcave) {
 TEST(Polygon, Rectangle) {
   const auto r = make_rectangle(Vec2(1, 1), Vec2(2, 1), kPi / 2);
   EXPECT_NEAR(std::abs(signed_area(r)), 2.0, 1e-12);
-  EXPECT_TRUE(contains(r, Vec2(1, 1.9)));   // rotated: 1 wide in x, 2 tall in y
+  EXPECT_TRUE(contains(r, Vec2(1, 1.9)));  // rotated: 1 wide in x, 2 tall in y
   EXPECT_FALSE(contains(r, Vec2(1.9, 1)));
 }
 

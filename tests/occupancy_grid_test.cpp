@@ -143,9 +143,9 @@ TEST(OccupancyGrid, RejectsBadConstruction) {
                std::invalid_argument);
   EXPECT_THROW(OccupancyGrid(2, 2, 1.0, Pose2{}, std::vector<std::uint8_t>(3)),
                std::invalid_argument);
-  EXPECT_THROW(OccupancyGrid(2, 2, 1.0, Pose2{{std::nan(""), 0.0}, 0.0},
-                             std::vector<std::uint8_t>(4)),
-               std::invalid_argument);
+  EXPECT_THROW(
+      OccupancyGrid(2, 2, 1.0, Pose2{{std::nan(""), 0.0}, 0.0}, std::vector<std::uint8_t>(4)),
+      std::invalid_argument);
 }
 
 // --- brute-force oracle -----------------------------------------------------------------------
@@ -167,7 +167,7 @@ double ray_quad(const std::array<Vec2, 4>& q, const Vec2& o, const Vec2& d) {
     const Vec2 a = q[i];
     const Vec2 b = q[(i + 1) % 4];
     const Vec2 n(b.y() - a.y(), a.x() - b.x());  // outward normal (counter-clockwise quad)
-    const double num = n.dot(a - o);               // inside when >= 0 at t = 0
+    const double num = n.dot(a - o);             // inside when >= 0 at t = 0
     const double den = n.dot(d);
     if (den == 0.0) {
       if (num < 0.0) return kInf;

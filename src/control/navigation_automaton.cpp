@@ -13,7 +13,9 @@ constexpr std::array<std::pair<ControllerKind, std::string_view>, 4> kKindNames{
     {ControllerKind::Hybrid, "hybrid"},
 }};
 
-bool clear_shot(const NavigationInput& in) { return in.u_ao.dot(in.u_gtg) > 0.0; }  // eq. 5.27
+bool clear_shot(const NavigationInput& in) {
+  return in.u_ao.dot(in.u_gtg) > 0.0;
+}  // eq. 5.27
 }  // namespace
 
 std::optional<ControllerKind> parse_controller_kind(std::string_view name) {
@@ -130,8 +132,7 @@ NavigationAutomaton make_navigation_automaton(ControllerKind kind, const Navigat
           gtg, fb_ccw, "obstacle_ahead_ccw",
           [meets](const In& in, const Mem&) { return meets(in, Turn::CounterClockwise); },
           start_following(Turn::CounterClockwise));
-      const auto progress_and_clear_shot = [delta = p.progress_margin](const In& in,
-                                                                       const Mem& m) {
+      const auto progress_and_clear_shot = [delta = p.progress_margin](const In& in, const Mem& m) {
         return in.goal_distance < m.d_tau - delta && clear_shot(in);  // eqs. 5.26, 5.27
       };
       const auto boundary_lost = [](const In& in, const Mem&) { return !in.obstacle_sensed; };

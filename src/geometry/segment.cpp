@@ -13,7 +13,9 @@ Vec2 nearest_point(const Segment& s, const Vec2& p) {
   return s.a + t * d;
 }
 
-double distance(const Segment& s, const Vec2& p) { return (p - nearest_point(s, p)).norm(); }
+double distance(const Segment& s, const Vec2& p) {
+  return (p - nearest_point(s, p)).norm();
+}
 
 std::optional<double> intersect_ray(const Segment& s, const Vec2& origin, const Vec2& dir) {
   const Vec2 e = s.b - s.a;

@@ -114,14 +114,15 @@ void World::build_index() {
       [&](std::size_t i, auto&& emit) {
         const Circle& c = circles_[i];
         const Vec2 r(c.radius, c.radius);
-        box_cells(c.center - r, c.center + r, [](int, int) { return true; }, emit);
+        box_cells(
+            c.center - r, c.center + r, [](int, int) { return true; }, emit);
       },
       ix.circle_offsets, ix.circle_items);
   fill(
       polygons_.size(),
       [&](std::size_t i, auto&& emit) {
-        box_cells(polygon_boxes_[i].min, polygon_boxes_[i].max, [](int, int) { return true; },
-                  emit);
+        box_cells(
+            polygon_boxes_[i].min, polygon_boxes_[i].max, [](int, int) { return true; }, emit);
       },
       ix.polygon_offsets, ix.polygon_items);
 }
@@ -242,8 +243,8 @@ double World::clearance(const Vec2& p) const {
             for (auto j = ix.segment_offsets[c]; j < ix.segment_offsets[c + 1]; ++j)
               unsigned_best = std::min(unsigned_best, distance(segments_[ix.segment_items[j]], p));
             for (auto j = ix.circle_offsets[c]; j < ix.circle_offsets[c + 1]; ++j)
-              unsigned_best = std::min(
-                  unsigned_best, std::abs(signed_distance(circles_[ix.circle_items[j]], p)));
+              unsigned_best = std::min(unsigned_best,
+                                       std::abs(signed_distance(circles_[ix.circle_items[j]], p)));
           }
           if (k == 0) break;
         }

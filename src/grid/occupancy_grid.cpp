@@ -79,9 +79,9 @@ void compute_nearest(int width, int height, const std::vector<std::int32_t>& col
                      std::vector<std::int32_t>& nearest) {
   const std::size_t w = static_cast<std::size_t>(width);
   nearest.assign(w * static_cast<std::size_t>(height), -1);
-  std::vector<std::int32_t> v(w);       // apexes of the envelope's parabolas
-  std::vector<double> z(w + 1);         // where parabola k starts to be the lowest
-  std::vector<std::int64_t> f(w);       // squared column distance per q
+  std::vector<std::int32_t> v(w);  // apexes of the envelope's parabolas
+  std::vector<double> z(w + 1);    // where parabola k starts to be the lowest
+  std::vector<std::int64_t> f(w);  // squared column distance per q
   // 1 / (2 d) for d = q - r in [1, width): a multiplication instead of a division per step (the
   // transform's hot spot). Distinct intersections of integer parabolas differ by at least
   // 1 / (4 width^2), far above the rounding this adds for widths up to ~2^20, so the envelope is
@@ -169,7 +169,9 @@ bool OccupancyGrid::occupied(int ix, int iy) const {
   return occupied_[static_cast<std::size_t>(iy) * width_ + ix] != 0;
 }
 
-std::size_t OccupancyGrid::occupied_count() const { return occupied_count_; }
+std::size_t OccupancyGrid::occupied_count() const {
+  return occupied_count_;
+}
 
 std::int32_t OccupancyGrid::nearest_occupied_index(int ix, int iy) const {
   if (ix < 0 || iy < 0 || ix >= width_ || iy >= height_) return -1;

@@ -23,10 +23,11 @@ void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenari
 }
 
 std::string describe_run(const RunResult& r) {
-  std::string out = fmt::format("{}: {} in {:.1f} s, path {:.2f} m, min clearance {:.3f} m, {} "
-                                "switch{}",
-                                r.scenario, to_string(r.status), r.sim_time, r.path_length,
-                                r.min_clearance, r.mode_switches, r.mode_switches == 1 ? "" : "es");
+  std::string out = fmt::format(
+      "{}: {} in {:.1f} s, path {:.2f} m, min clearance {:.3f} m, {} "
+      "switch{}",
+      r.scenario, to_string(r.status), r.sim_time, r.path_length, r.min_clearance, r.mode_switches,
+      r.mode_switches == 1 ? "" : "es");
   if (r.goal_count > 1) out += fmt::format(", {}/{} goals", r.goals_reached, r.goal_count);
   if (r.chatter_episodes > 0)
     out += fmt::format(", chatter (Zeno) from t = {:.2f} s", r.first_chatter_time);

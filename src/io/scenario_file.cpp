@@ -97,7 +97,8 @@ void read_obstacle(const std::string& file, const YAML::Node& item, const std::s
   if (r.has("point")) {
     ++kinds;
     // A point obstacle is a thin post: with radius 0 no range sensor could ever see it.
-    desc.circles.push_back({read_point(file, r.get("point"), r.path_of("point")), kPointPostRadius});
+    desc.circles.push_back(
+        {read_point(file, r.get("point"), r.path_of("point")), kPointPostRadius});
   }
   if (r.has("polygon")) {
     ++kinds;
@@ -124,8 +125,7 @@ void read_obstacle(const std::string& file, const YAML::Node& item, const std::s
     desc.polygons.push_back(make_rectangle(center, size, angle));
   }
   if (kinds != 1)
-    fail(file, item, key,
-         "an obstacle is exactly one of: circle, point, polygon, rectangle");
+    fail(file, item, key, "an obstacle is exactly one of: circle, point, polygon, rectangle");
   r.finish();
 }
 
@@ -191,7 +191,8 @@ void read_robot(const std::string& file, MapReader& r, Scenario& s) {
     preset = io_detail::read_string(file, n, r.path_of("preset"));
     if (!find_robot_preset(preset)) {
       std::string names;
-      for (auto name : robot_preset_names()) names += (names.empty() ? "" : ", ") + std::string(name);
+      for (auto name : robot_preset_names())
+        names += (names.empty() ? "" : ", ") + std::string(name);
       fail(file, n, r.path_of("preset"),
            fmt::format("unknown preset '{}' (expected one of: {})", preset, names));
     }
@@ -249,7 +250,8 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
   if (top.has("name")) s.name = io_detail::read_string(file, top.get("name"), "name");
 
   // robot first: its preset supplies the controller defaults.
-  if (!top.has("robot")) fail(file, root, "robot", "missing section (robot: {start: [x, y, theta]})");
+  if (!top.has("robot"))
+    fail(file, root, "robot", "missing section (robot: {start: [x, y, theta]})");
   {
     MapReader r(file, top.get("robot"), "robot");
     read_robot(file, r, s);
@@ -268,7 +270,8 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
   if (has_goal == has_goals)
     fail(file, root, has_goal ? "goals" : "goal",
          has_goal ? "give either goal or goals, not both" : "missing (goal: [x, y])");
-  if (has_goal) s.goals.push_back(read_point(file, top.get("goal"), "goal"));
+  if (has_goal)
+    s.goals.push_back(read_point(file, top.get("goal"), "goal"));
   else {
     const YAML::Node n = top.get("goals");
     s.goals = read_points(file, n, "goals");
@@ -283,7 +286,8 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
       const YAML::Node n = w.get("bounds");
       const auto b = io_detail::read_numbers(file, n, "world.bounds", 4);
       if (!(b[2] > b[0] && b[3] > b[1]))
-        fail(file, n, "world.bounds", "expected [xmin, ymin, xmax, ymax] with xmin < xmax, ymin < ymax");
+        fail(file, n, "world.bounds",
+             "expected [xmin, ymin, xmax, ymax] with xmin < xmax, ymin < ymax");
       desc.bounds = Box2{Vec2(b[0], b[1]), Vec2(b[2], b[3])};
     }
     if (w.has("obstacles")) {
@@ -307,7 +311,8 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
       const YAML::Node n = w.get("map");
       std::filesystem::path map = io_detail::read_string(file, n, "world.map");
       if (map.is_relative()) map = origin.parent_path() / map;
-      s.grid = io_detail::load_world_map(map, options, desc, file, io_detail::where_of(n, "world.map"));
+      s.grid =
+          io_detail::load_world_map(map, options, desc, file, io_detail::where_of(n, "world.map"));
     }
     w.finish();
   }
@@ -350,7 +355,8 @@ void validate_scenario(const Scenario& s, const std::string& file) {
   if (!(n.d_unsafe >= 0.0)) bad("controller.d_unsafe", "must not be negative");
   if (!(n.d_fb > n.d_unsafe))
     bad("controller.d_fb", fmt::format("must be larger than d_unsafe ({})", n.d_unsafe));
-  if (!(n.d_o > n.d_fb)) bad("controller.d_o", fmt::format("must be larger than d_fb ({})", n.d_fb));
+  if (!(n.d_o > n.d_fb))
+    bad("controller.d_o", fmt::format("must be larger than d_fb ({})", n.d_fb));
   if (!(n.hysteresis >= 0.0)) bad("controller.hysteresis", "must not be negative");
   if (!(n.d_unsafe + n.hysteresis < n.d_o))
     bad("controller.hysteresis", "d_unsafe + hysteresis must stay below d_o");
@@ -363,11 +369,11 @@ void validate_scenario(const Scenario& s, const std::string& file) {
     bad("controller.chatter_switches",
         fmt::format("must be between 2 and {}", ChatterMonitor::kCapacity));
   if (!(n.chatter_window > 0.0)) bad("controller.chatter_window", "must be positive");
-  if (n.heading_pid.integral_limit < 0.0) bad("controller.pid.integral_limit", "must not be negative");
+  if (n.heading_pid.integral_limit < 0.0)
+    bad("controller.pid.integral_limit", "must not be negative");
 
   const World& w = *s.world;
-  if (w.is_inside_obstacle(s.start.position) ||
-      w.clearance(s.start.position) < r.body_radius)
+  if (w.is_inside_obstacle(s.start.position) || w.clearance(s.start.position) < r.body_radius)
     bad("robot.start",
         fmt::format("the robot at ({}, {}) overlaps an obstacle or lies outside the world "
                     "(clearance {:.3g} m, body radius {} m)",
@@ -407,8 +413,8 @@ Scenario load_scenario_file(const std::filesystem::path& path,
                             std::span<const std::string> overrides) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(path.string(), "", std::filesystem::exists(path, ec) ? "not a regular file"
-                                                                          : "no such file");
+    throw InputError(path.string(), "",
+                     std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
   const auto size = std::filesystem::file_size(path, ec);
   if (ec) throw InputError(path.string(), "", "cannot read: " + ec.message());
   if (size > kMaxScenarioBytes)

@@ -1,13 +1,63 @@
 #include "world_map.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+
+#include "floornav/io/course_world.hpp"
 #include "floornav/io/input_error.hpp"
+#include "floornav/io/movingai_map.hpp"
+#include "floornav/io/ros_map.hpp"
+#include "floornav/io/sdf_world.hpp"
 
 namespace floornav::io_detail {
 
 std::shared_ptr<const OccupancyGrid> load_world_map(const std::filesystem::path& path,
-                                                    const MapOptions&, WorldDesc&,
-                                                    const std::string&, const std::string&) {
-  throw InputError(path.string(), "", "map loading is being wired in");
+                                                    const MapOptions& options, WorldDesc& desc,
+                                                    const std::string& scenario_file,
+                                                    const std::string& key) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(scenario_file, key,
+                     fmt::format("map file '{}' does not exist", path.string()));
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".yaml" || ext == ".yml") {
+    RosMapOptions ro;
+    ro.unknown = options.unknown_is_occupied ? UnknownPolicy::Occupied : UnknownPolicy::Free;
+    return std::make_shared<const OccupancyGrid>(load_ros_map(path, ro));
+  }
+  if (ext == ".pgm" || ext == ".png") {
+    if (options.cell_size <= 0.0)
+      throw InputError(scenario_file, key,
+                       "an image map without a yaml needs world.cell_size (metres per pixel)");
+    RosMapOptions ro;
+    ro.unknown = options.unknown_is_occupied ? UnknownPolicy::Occupied : UnknownPolicy::Free;
+    return std::make_shared<const OccupancyGrid>(load_ros_image_map(path, options.cell_size, ro));
+  }
+  if (ext == ".map") {
+    if (options.cell_size <= 0.0)
+      throw InputError(scenario_file, key,
+                       "a MovingAI .map needs world.cell_size (metres per cell)");
+    return std::make_shared<const OccupancyGrid>(load_movingai_map(path, options.cell_size));
+  }
+  if (ext == ".world" || ext == ".sdf") {
+    SdfWorld w = load_sdf_world(path);
+    desc.circles.insert(desc.circles.end(), w.circles.begin(), w.circles.end());
+    for (auto& p : w.polygons) desc.polygons.push_back(std::move(p));
+    return nullptr;
+  }
+  if (ext == ".xml") {
+    CourseWorld w = load_course_world(path);
+    for (auto& p : w.obstacles) desc.polygons.push_back(std::move(p));
+    return nullptr;
+  }
+  throw InputError(scenario_file, key,
+                   fmt::format("unknown map format '{}' (expected a ROS .yaml, .pgm/.png with "
+                               "cell_size, MovingAI .map, Gazebo .world/.sdf or course .xml)",
+                               ext));
 }
 
 }  // namespace floornav::io_detail

@@ -28,8 +28,9 @@ std::string scalar_of(const std::string& file, const YAML::Node& node, const std
                       const char* expected) {
   if (!node.IsDefined() || node.IsNull())
     fail(file, node, key, fmt::format("expected {}, got nothing", expected));
-  if (!node.IsScalar()) fail(file, node, key, fmt::format("expected {}, got a {}", expected,
-                                                           node.IsMap() ? "mapping" : "list"));
+  if (!node.IsScalar())
+    fail(file, node, key,
+         fmt::format("expected {}, got a {}", expected, node.IsMap() ? "mapping" : "list"));
   return node.Scalar();
 }
 }  // namespace
@@ -58,7 +59,8 @@ double read_double(const std::string& file, const YAML::Node& node, const std::s
     // YAML spellings of infinity and NaN are numbers, but never acceptable ones.
     const std::string lower = [&] {
       std::string t = s;
-      std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return std::tolower(c); });
+      std::transform(t.begin(), t.end(), t.begin(),
+                     [](unsigned char c) { return std::tolower(c); });
       return t;
     }();
     if (lower == ".nan" || lower == ".inf" || lower == "-.inf" || lower == "+.inf")
@@ -155,8 +157,10 @@ void MapReader::finish() const {
 }
 
 void MapReader::operator()(const char* key, double& field, const char*) {
-  if (has(key)) field = read_double(file_, get(key), path_of(key));
-  else known_.insert(key);
+  if (has(key))
+    field = read_double(file_, get(key), path_of(key));
+  else
+    known_.insert(key);
 }
 void MapReader::operator()(const char* key, int& field, const char*) {
   if (!has(key)) {
@@ -169,8 +173,10 @@ void MapReader::operator()(const char* key, int& field, const char*) {
   field = static_cast<int>(v);
 }
 void MapReader::operator()(const char* key, bool& field, const char*) {
-  if (has(key)) field = read_bool(file_, get(key), path_of(key));
-  else known_.insert(key);
+  if (has(key))
+    field = read_bool(file_, get(key), path_of(key));
+  else
+    known_.insert(key);
 }
 void MapReader::operator()(const char* key, std::uint64_t& field, const char*) {
   if (!has(key)) {

@@ -24,8 +24,10 @@ WheelSpeeds saturate_wheels(const DiffDriveParams& p, const UnicycleCommand& u) 
   const double hi = std::max(w.left, w.right);
   const double lo = std::min(w.left, w.right);
   double shift = 0.0;
-  if (hi > w_max) shift = w_max - hi;
-  else if (lo < -w_max) shift = -w_max - lo;
+  if (hi > w_max)
+    shift = w_max - hi;
+  else if (lo < -w_max)
+    shift = -w_max - lo;
   w.left += shift;
   w.right += shift;
   // Rounding can leave a wheel a hair beyond its limit.

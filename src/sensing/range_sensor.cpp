@@ -14,7 +14,8 @@ void sense_ranges(const World& world, const Pose2& robot, std::span<const RangeS
       r = world.cast_ray(m.position, m.heading(), s.max_range);
     } else {
       for (int k = 0; k < s.cone_rays; ++k) {
-        const double a = m.theta + s.cone_angle * (static_cast<double>(k) / (s.cone_rays - 1) - 0.5);
+        const double a =
+            m.theta + s.cone_angle * (static_cast<double>(k) / (s.cone_rays - 1) - 0.5);
         r = std::min(r, world.cast_ray(m.position, Vec2(std::cos(a), std::sin(a)), s.max_range));
       }
     }

@@ -11,13 +11,15 @@ namespace {
 constexpr std::array<std::string_view, 5> kPresetNames{"quickbot", "khepera3", "pioneer_p3dx",
                                                        "turtlebot3_burger", "jackal"};
 
-double rpm_to_rad_s(double rpm) { return rpm * 2.0 * kPi / 60.0; }
+double rpm_to_rad_s(double rpm) {
+  return rpm * 2.0 * kPi / 60.0;
+}
 
 struct Mount {
   double x, y, deg;
 };
-std::vector<RangeSensorSpec> ring(std::span<const Mount> mounts, double min_range,
-                                  double max_range, double cone_deg = 0.0, int cone_rays = 1) {
+std::vector<RangeSensorSpec> ring(std::span<const Mount> mounts, double min_range, double max_range,
+                                  double cone_deg = 0.0, int cone_rays = 1) {
   std::vector<RangeSensorSpec> out;
   for (const Mount& m : mounts)
     out.push_back({{Vec2(m.x, m.y), deg_to_rad(m.deg)},
@@ -30,8 +32,11 @@ std::vector<RangeSensorSpec> ring(std::span<const Mount> mounts, double min_rang
 
 // QuickBot (the course's robot, Sim.I.Am): 5 IR sensors on the chassis edge, 4-30 cm.
 RobotPreset quickbot() {
-  static constexpr Mount kIr[] = {{-0.0474, 0.0534, 90},   {0.0613, 0.0386, 45}, {0.0664, 0.0, 0},
-                                  {0.0613, -0.0386, -45}, {-0.0474, -0.0534, -90}};
+  static constexpr Mount kIr[] = {{-0.0474, 0.0534, 90},
+                                  {0.0613, 0.0386, 45},
+                                  {0.0664, 0.0, 0},
+                                  {0.0613, -0.0386, -45},
+                                  {-0.0474, -0.0534, -90}};
   RobotPreset p;
   p.robot.preset = "quickbot";
   p.robot.drive = {.wheel_radius = 0.0325,
@@ -46,9 +51,10 @@ RobotPreset quickbot() {
 
 // K-Team Khepera III (Sim.I.Am): 9 IR sensors, 2-20 cm, 13 cm diameter, ~0.3 m/s.
 RobotPreset khepera3() {
-  static constexpr Mount kIr[] = {{-0.038, 0.048, 128},  {0.019, 0.064, 75},  {0.050, 0.050, 42},
-                                  {0.070, 0.017, 13},    {0.070, -0.017, -13}, {0.050, -0.050, -42},
-                                  {0.019, -0.064, -75},  {-0.038, -0.048, -128}, {-0.048, 0.0, 180}};
+  static constexpr Mount kIr[] = {
+      {-0.038, 0.048, 128}, {0.019, 0.064, 75},     {0.050, 0.050, 42},
+      {0.070, 0.017, 13},   {0.070, -0.017, -13},   {0.050, -0.050, -42},
+      {0.019, -0.064, -75}, {-0.038, -0.048, -128}, {-0.048, 0.0, 180}};
   RobotPreset p;
   p.robot.preset = "khepera3";
   p.robot.drive = {.wheel_radius = 0.0205,
@@ -72,10 +78,10 @@ RobotPreset khepera3() {
 // cones; 1.2 m/s.
 RobotPreset pioneer_p3dx() {
   static constexpr Mount kSonar[] = {
-      {0.069, 0.136, 90},     {0.114, 0.119, 50},    {0.148, 0.078, 30},    {0.166, 0.027, 10},
-      {0.166, -0.027, -10},   {0.148, -0.078, -30},  {0.114, -0.119, -50},  {0.069, -0.136, -90},
-      {-0.157, -0.136, -90},  {-0.203, -0.119, -130}, {-0.237, -0.078, -150}, {-0.255, -0.027, -170},
-      {-0.255, 0.027, 170},   {-0.237, 0.078, 150},  {-0.203, 0.119, 130},  {-0.157, 0.136, 90}};
+      {0.069, 0.136, 90},    {0.114, 0.119, 50},     {0.148, 0.078, 30},     {0.166, 0.027, 10},
+      {0.166, -0.027, -10},  {0.148, -0.078, -30},   {0.114, -0.119, -50},   {0.069, -0.136, -90},
+      {-0.157, -0.136, -90}, {-0.203, -0.119, -130}, {-0.237, -0.078, -150}, {-0.255, -0.027, -170},
+      {-0.255, 0.027, 170},  {-0.237, 0.078, 150},   {-0.203, 0.119, 130},   {-0.157, 0.136, 90}};
   RobotPreset p;
   p.robot.preset = "pioneer_p3dx";
   p.robot.drive = {.wheel_radius = 0.0975,
@@ -149,7 +155,9 @@ RobotPreset jackal() {
 }
 }  // namespace
 
-std::span<const std::string_view> robot_preset_names() { return kPresetNames; }
+std::span<const std::string_view> robot_preset_names() {
+  return kPresetNames;
+}
 
 std::optional<RobotPreset> find_robot_preset(std::string_view name) {
   if (name == "quickbot") return quickbot();
@@ -165,8 +173,7 @@ std::vector<RangeSensorSpec> make_lidar(int beams, double fov, double min_range,
   std::vector<RangeSensorSpec> out;
   out.reserve(static_cast<std::size_t>(std::max(beams, 0)));
   const bool full_circle = fov >= 2.0 * kPi - 1e-9;
-  const double step =
-      beams <= 1 ? 0.0 : fov / (full_circle ? beams : beams - 1);
+  const double step = beams <= 1 ? 0.0 : fov / (full_circle ? beams : beams - 1);
   const double first = full_circle ? 0.0 : -0.5 * fov;
   for (int i = 0; i < beams; ++i) {
     const double a = beams <= 1 ? 0.0 : first + i * step;

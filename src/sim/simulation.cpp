@@ -25,8 +25,8 @@ Simulation::Simulation(const Scenario& scenario)
   ranges_.assign(n_sensors, 0.0);
   sensed_.assign(n_sensors, Vec2::Zero());
   points_.assign(n_sensors + ObstacleMemory::kCapacity, Vec2::Zero());
-  stuck_radius_ = scenario.sim.stuck_radius > 0.0 ? scenario.sim.stuck_radius
-                                                  : scenario.robot.body_radius;
+  stuck_radius_ =
+      scenario.sim.stuck_radius > 0.0 ? scenario.sim.stuck_radius : scenario.robot.body_radius;
   stuck_anchor_ = pose_.position;
 
   RunResult& r = result_;
@@ -42,10 +42,11 @@ Simulation::Simulation(const Scenario& scenario)
   if (scenario.sim.record_trajectory) {
     const double steps = std::ceil(scenario.sim.t_max / scenario.sim.dt) + 2.0;
     r.trajectory.reserve(static_cast<std::size_t>(std::min(steps, 2.0e6)));
-    r.trajectory.push_back({0.0, pose_.position.x(), pose_.position.y(), pose_.theta, 0.0, 0.0,
-                            0.0, 0.0, state_.mode});
+    r.trajectory.push_back({0.0, pose_.position.x(), pose_.position.y(), pose_.theta, 0.0, 0.0, 0.0,
+                            0.0, state_.mode});
   }
-  if (scenario.goals.empty()) finish(RunStatus::Reached);
+  if (scenario.goals.empty())
+    finish(RunStatus::Reached);
   else if (r.min_clearance < 0.0) {
     r.collided = true;
     finish(RunStatus::Collision);

@@ -102,8 +102,8 @@ class HybridAutomaton {
     /// An edge; edges of one mode are tried in the order they are added.
     void add_edge(int from, int to, std::string guard_name, Guard guard, Reset reset = {},
                   double min_dwell = 0.0) {
-      edges_.push_back({from, to, std::move(guard_name), std::move(guard), std::move(reset),
-                        min_dwell});
+      edges_.push_back(
+          {from, to, std::move(guard_name), std::move(guard), std::move(reset), min_dwell});
     }
     /// The same edge from every non-terminal mode other than `to` (e.g. any -> STOP).
     void add_edge_from_every_mode(int to, const std::string& guard_name, const Guard& guard,
@@ -123,7 +123,8 @@ class HybridAutomaton {
     HybridAutomaton build() const {
       const int n = static_cast<int>(modes_.size());
       if (n == 0) throw std::logic_error("hybrid automaton: no modes");
-      if (initial_ < 0 || initial_ >= n) throw std::logic_error("hybrid automaton: no initial mode");
+      if (initial_ < 0 || initial_ >= n)
+        throw std::logic_error("hybrid automaton: no initial mode");
       bool has_terminal = false;
       for (const Mode& m : modes_) {
         if (!m.flow) throw std::logic_error("hybrid automaton: mode '" + m.name + "' has no flow");
@@ -207,7 +208,9 @@ class HybridAutomaton {
     return modes_[static_cast<std::size_t>(s.mode)].flow(in, s.memory);
   }
 
-  bool is_terminal(const State& s) const { return modes_[static_cast<std::size_t>(s.mode)].terminal; }
+  bool is_terminal(const State& s) const {
+    return modes_[static_cast<std::size_t>(s.mode)].terminal;
+  }
   const std::vector<Mode>& modes() const { return modes_; }
   const std::vector<Edge>& edges() const { return edges_; }
   int mode_count() const { return static_cast<int>(modes_.size()); }

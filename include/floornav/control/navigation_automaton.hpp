@@ -33,15 +33,15 @@ struct NavigationInput {
   Vec2 u_ao{Vec2::Zero()};   ///< eq. 5.20; zero when no obstacle is sensed
   Vec2 away{Vec2::Zero()};   ///< u_AO normalised
   double clearance{std::numeric_limits<double>::infinity()};  ///< nearest sensed, from the body
-  double goal_distance{0.0};  ///< |x - x_g|
+  double goal_distance{0.0};                                  ///< |x - x_g|
   bool obstacle_sensed{false};
 };
 
 /// The automaton's memory, written only by resets.
 struct NavigationMemory {
   double d_tau{std::numeric_limits<double>::infinity()};  ///< |x - x_g| when FB was entered
-  Turn turn{Turn::Clockwise};  ///< the direction FB took
-  bool following{false};       ///< inside a boundary-following episode (FB or AO from FB)
+  Turn turn{Turn::Clockwise};                             ///< the direction FB took
+  bool following{false};  ///< inside a boundary-following episode (FB or AO from FB)
 };
 
 using NavigationAutomaton = HybridAutomaton<NavigationInput, NavigationMemory, Vec2>;

@@ -23,22 +23,22 @@ std::optional<ControllerKind> parse_controller_kind(std::string_view name);
 std::string_view to_string(ControllerKind kind);
 
 struct NavigationParams {
-  double v0{0.15};           ///< m/s cruise speed, the cap on |u|
-  double gtg_a{40.0};        ///< 1/m^2 shape of the capped GTG gain (eq. 5.19 note)
-  double d_o{0.12};          ///< m: an obstacle this close is "met" (GTG -> FB, Fig 5.11)
-  double d_fb{0.08};         ///< m: clearance that follow-boundary holds
-  double k_fb{10.0};         ///< 1/m: distance-keeping gain of follow-boundary
-  double d_unsafe{0.03};     ///< m: closer than this, AO takes over (FB -> AO)
-  double hysteresis{0.02};   ///< m: AO is left only at d_unsafe + hysteresis (fat guard)
+  double v0{0.15};               ///< m/s cruise speed, the cap on |u|
+  double gtg_a{40.0};            ///< 1/m^2 shape of the capped GTG gain (eq. 5.19 note)
+  double d_o{0.12};              ///< m: an obstacle this close is "met" (GTG -> FB, Fig 5.11)
+  double d_fb{0.08};             ///< m: clearance that follow-boundary holds
+  double k_fb{10.0};             ///< 1/m: distance-keeping gain of follow-boundary
+  double d_unsafe{0.03};         ///< m: closer than this, AO takes over (FB -> AO)
+  double hysteresis{0.02};       ///< m: AO is left only at d_unsafe + hysteresis (fat guard)
   double progress_margin{0.02};  ///< m: delta in |x - x_g| < d_tau - delta (eq. 5.26)
-  double epsilon{0.05};      ///< m: goal radius, any -> STOP
-  double blend_near{0.03};   ///< m: blended, sigma_2 = 1 at this clearance
-  double blend_far{0.15};    ///< m: blended, sigma_2 = 0 beyond this clearance
+  double epsilon{0.05};          ///< m: goal radius, any -> STOP
+  double blend_near{0.03};       ///< m: blended, sigma_2 = 1 at this clearance
+  double blend_far{0.15};        ///< m: blended, sigma_2 = 0 beyond this clearance
   double obstacle_memory{1.0};   ///< s: sensed points are remembered this long (sparse IR rings)
   bool slow_when_turning{true};  ///< V *= max(0, cos e): turn before driving (an extension)
-  int chatter_switches{8};   ///< this many switches ...
-  double chatter_window{2.0};  ///< ... within this many seconds is a chatter (Zeno) episode
-  PidGains heading_pid{};    ///< eqs. 5.12-5.15
+  int chatter_switches{8};       ///< this many switches ...
+  double chatter_window{2.0};    ///< ... within this many seconds is a chatter (Zeno) episode
+  PidGains heading_pid{};        ///< eqs. 5.12-5.15
 
   template <class Archive>
   void serialize(Archive& a) {

@@ -17,7 +17,11 @@ inline double wrap_angle(double angle) {
   return wrapped <= -kPi ? kPi : wrapped;  // atan2 can return -pi itself; the interval is (-pi, pi]
 }
 
-inline constexpr double deg_to_rad(double deg) { return deg * kPi / 180.0; }
-inline constexpr double rad_to_deg(double rad) { return rad * 180.0 / kPi; }
+inline constexpr double deg_to_rad(double deg) {
+  return deg * kPi / 180.0;
+}
+inline constexpr double rad_to_deg(double rad) {
+  return rad * 180.0 / kPi;
+}
 
 }  // namespace floornav

@@ -11,7 +11,9 @@ namespace floornav {
 using Vec2 = Eigen::Vector2d;
 
 /// z-component of the 3D cross product; > 0 when `b` lies counter-clockwise of `a`.
-inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline double cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 /// `v` rotated by `phi` radians counter-clockwise: R(phi) v, the rotation of eqs. 5.22-5.24.
 inline Vec2 rotate(const Vec2& v, double phi) {
@@ -21,12 +23,18 @@ inline Vec2 rotate(const Vec2& v, double phi) {
 }
 
 /// `v` rotated by +pi/2 exactly (no trigonometry, so no rounding).
-inline Vec2 rotate_ccw90(const Vec2& v) { return {-v.y(), v.x()}; }
+inline Vec2 rotate_ccw90(const Vec2& v) {
+  return {-v.y(), v.x()};
+}
 /// `v` rotated by -pi/2 exactly.
-inline Vec2 rotate_cw90(const Vec2& v) { return {v.y(), -v.x()}; }
+inline Vec2 rotate_cw90(const Vec2& v) {
+  return {v.y(), -v.x()};
+}
 
 /// True when both coordinates are finite.
-inline bool is_finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
+inline bool is_finite(const Vec2& v) {
+  return std::isfinite(v.x()) && std::isfinite(v.y());
+}
 
 /// `v / |v|`, or the zero vector when `|v|` is below `tiny` (never NaN).
 inline Vec2 normalized_or_zero(const Vec2& v, double tiny = 1e-12) {

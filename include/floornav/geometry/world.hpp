@@ -30,10 +30,10 @@ struct Box2 {
 
 /// What a world is made of, as a user describes it. Polygons may wind either way.
 struct WorldDesc {
-  std::optional<Box2> bounds;                 ///< walls on all four sides; outside is solid
-  std::vector<Circle> circles;                ///< solid discs (radius 0: a point obstacle)
-  std::vector<std::vector<Vec2>> polygons;    ///< solid simple polygons, convex or concave
-  const OccupancyGrid* grid{nullptr};         ///< optional occupancy map; must outlive the World
+  std::optional<Box2> bounds;               ///< walls on all four sides; outside is solid
+  std::vector<Circle> circles;              ///< solid discs (radius 0: a point obstacle)
+  std::vector<std::vector<Vec2>> polygons;  ///< solid simple polygons, convex or concave
+  const OccupancyGrid* grid{nullptr};       ///< optional occupancy map; must outlive the World
 };
 
 /// Immutable obstacle world. Queries are `const` and thread-safe.

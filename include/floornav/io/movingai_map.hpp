@@ -19,15 +19,15 @@ OccupancyGrid load_movingai_map(const std::filesystem::path& map, double cell_si
 
 /// One line of a `.scen` file. Coordinates are MovingAI cells: x = column, y = row from the top.
 struct MovingAiCase {
-  int bucket{0};                ///< floor(optimal_length / 4)
-  std::string map_file;         ///< the `.map` it refers to, as written
-  int width{0};                 ///< map width (cells)
-  int height{0};                ///< map height (cells)
+  int bucket{0};         ///< floor(optimal_length / 4)
+  std::string map_file;  ///< the `.map` it refers to, as written
+  int width{0};          ///< map width (cells)
+  int height{0};         ///< map height (cells)
   int start_x{0};
   int start_y{0};
   int goal_x{0};
   int goal_y{0};
-  double optimal_length{0.0};   ///< octile distance in cells (diagonal sqrt 2, no corner cutting)
+  double optimal_length{0.0};  ///< octile distance in cells (diagonal sqrt 2, no corner cutting)
 };
 
 /// Loads a `.scen` file: "version 1" (or "version 1.0"), then one case per line with 9

@@ -14,9 +14,9 @@ namespace floornav {
 
 /// The 2D obstacles of a Gazebo world, world frame (m).
 struct SdfWorld {
-  std::vector<Circle> circles;                ///< cylinders (and spheres), by radius
-  std::vector<std::vector<Vec2>> polygons;    ///< boxes as rotated rectangles, counter-clockwise
-  std::vector<std::string> skipped;           ///< what was left out and why, e.g. "model 'x': mesh"
+  std::vector<Circle> circles;              ///< cylinders (and spheres), by radius
+  std::vector<std::vector<Vec2>> polygons;  ///< boxes as rotated rectangles, counter-clockwise
+  std::vector<std::string> skipped;         ///< what was left out and why, e.g. "model 'x': mesh"
 };
 
 /// Loads the `<collision>` geometry of every static `<model>` (`<static>1</static>` or `true`,

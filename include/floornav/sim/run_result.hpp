@@ -15,20 +15,24 @@ enum class RunStatus { Reached, Collision, Timeout, Stuck };
 
 inline std::string_view to_string(RunStatus s) {
   switch (s) {
-    case RunStatus::Reached: return "reached";
-    case RunStatus::Collision: return "collision";
-    case RunStatus::Timeout: return "timeout";
-    case RunStatus::Stuck: return "stuck";
+    case RunStatus::Reached:
+      return "reached";
+    case RunStatus::Collision:
+      return "collision";
+    case RunStatus::Timeout:
+      return "timeout";
+    case RunStatus::Stuck:
+      return "stuck";
   }
   return "unknown";
 }
 
 /// One row of trajectory.csv: the state after a step and the commands that drove it.
 struct TrajectorySample {
-  double t, x, y, theta;  ///< s, m, m, rad
-  double v, omega;        ///< m/s, rad/s actually driven (after saturation)
-  double w_left, w_right; ///< rad/s
-  int mode;               ///< index into RunResult::mode_names
+  double t, x, y, theta;   ///< s, m, m, rad
+  double v, omega;         ///< m/s, rad/s actually driven (after saturation)
+  double w_left, w_right;  ///< rad/s
+  int mode;                ///< index into RunResult::mode_names
 };
 
 struct RunResult {
@@ -46,9 +50,9 @@ struct RunResult {
   double wall_time{0.0};  ///< s, set by the caller that timed the run
   int chatter_episodes{0};
   double first_chatter_time{-1.0};
-  std::vector<std::string> mode_names;  ///< indexable by mode
-  std::vector<std::string> guard_names; ///< indexable by Transition::edge
-  std::vector<double> mode_time;        ///< s per mode
+  std::vector<std::string> mode_names;   ///< indexable by mode
+  std::vector<std::string> guard_names;  ///< indexable by Transition::edge
+  std::vector<double> mode_time;         ///< s per mode
   std::vector<Transition> transitions;
   std::vector<double> transition_x, transition_y;  ///< where each transition happened
   std::vector<TrajectorySample> trajectory;

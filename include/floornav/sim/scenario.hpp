@@ -18,11 +18,11 @@ namespace floornav {
 
 /// How a run is simulated.
 struct SimConfig {
-  double dt{0.01};            ///< s, fixed control and integration step
-  double t_max{120.0};        ///< s, then the run ends as `timeout`
-  std::uint64_t seed{1};      ///< the run's random seed (sensor noise)
-  double stuck_window{10.0};  ///< s: a robot that stays within stuck_radius this long is `stuck`
-  double stuck_radius{0.0};   ///< m; 0 means the robot's body radius
+  double dt{0.01};               ///< s, fixed control and integration step
+  double t_max{120.0};           ///< s, then the run ends as `timeout`
+  std::uint64_t seed{1};         ///< the run's random seed (sensor noise)
+  double stuck_window{10.0};     ///< s: a robot that stays within stuck_radius this long is `stuck`
+  double stuck_radius{0.0};      ///< m; 0 means the robot's body radius
   bool record_trajectory{true};  ///< keep every step (for CSV and SVG); off in big batches
 
   template <class Archive>

@@ -24,9 +24,9 @@ Pose2 read_pose(const XMLElement* parent, const std::string& file) {
     throw InputError(file, io_detail::where_of(pose->NextSiblingElement("pose")),
                      std::string("<") + parent->Name() + "> has more than one <pose>");
   }
-  return Pose2{{io_detail::number_attribute(pose, "x", file),
-                io_detail::number_attribute(pose, "y", file)},
-               wrap_angle(io_detail::number_attribute(pose, "theta", file))};
+  return Pose2{
+      {io_detail::number_attribute(pose, "x", file), io_detail::number_attribute(pose, "y", file)},
+      wrap_angle(io_detail::number_attribute(pose, "theta", file))};
 }
 
 }  // namespace
@@ -64,13 +64,13 @@ CourseWorld load_course_world(const std::filesystem::path& xml) {
       std::vector<Vec2> polygon;
       for (const XMLElement* p = geometry->FirstChildElement("point"); p != nullptr;
            p = p->NextSiblingElement("point")) {
-        polygon.push_back(pose.transform_point(
-            {io_detail::number_attribute(p, "x", file), io_detail::number_attribute(p, "y", file)}));
+        polygon.push_back(pose.transform_point({io_detail::number_attribute(p, "x", file),
+                                                io_detail::number_attribute(p, "y", file)}));
       }
       if (polygon.size() < 3) {
-        throw InputError(file, io_detail::where_of(e),
-                         "an obstacle needs at least 3 <point>s, got " +
-                             std::to_string(polygon.size()));
+        throw InputError(
+            file, io_detail::where_of(e),
+            "an obstacle needs at least 3 <point>s, got " + std::to_string(polygon.size()));
       }
       world.obstacles.push_back(std::move(polygon));
     }

@@ -50,7 +50,9 @@ bool split_pair(std::string_view line, std::string_view& word, std::string_view&
   return true;
 }
 
-bool is_free(char c) { return c == '.' || c == 'G' || c == 'S'; }
+bool is_free(char c) {
+  return c == '.' || c == 'G' || c == 'S';
+}
 
 }  // namespace
 
@@ -64,7 +66,8 @@ OccupancyGrid load_movingai_map(const std::filesystem::path& map, double cell_si
   if (!in.next(line)) in.fail("empty file: expected 'type octile'");
   std::string_view word, value;
   if (!split_pair(line, word, value) || word != "type") in.fail("expected 'type octile'");
-  if (value != "octile") in.fail("unsupported map type '" + std::string(value) + "' (expected octile)");
+  if (value != "octile")
+    in.fail("unsupported map type '" + std::string(value) + "' (expected octile)");
 
   long long width = -1;
   long long height = -1;
@@ -74,7 +77,8 @@ OccupancyGrid load_movingai_map(const std::filesystem::path& map, double cell_si
       in.fail("expected 'height H' or 'width W', got '" + line + "'");
     }
     const auto n = io_detail::parse_int(value);
-    if (!n || *n <= 0) in.fail(std::string(word) + " must be a positive integer, got '" + std::string(value) + "'");
+    if (!n || *n <= 0)
+      in.fail(std::string(word) + " must be a positive integer, got '" + std::string(value) + "'");
     long long& slot = word == "height" ? height : width;
     if (slot >= 0) in.fail("'" + std::string(word) + "' given twice");
     slot = *n;
@@ -114,14 +118,13 @@ std::vector<MovingAiCase> load_movingai_scen(const std::filesystem::path& scen) 
   if (!in.next(line)) in.fail("empty file: expected 'version 1'");
   {
     std::string_view word, value;
-    if (!split_pair(line, word, value) || word != "version" ||
-        (value != "1" && value != "1.0")) {
+    if (!split_pair(line, word, value) || word != "version" || (value != "1" && value != "1.0")) {
       in.fail("expected 'version 1' or 'version 1.0', got '" + line + "'");
     }
   }
-  static constexpr const char* kFields[9] = {"bucket",  "map",     "map width",
+  static constexpr const char* kFields[9] = {"bucket",     "map",     "map width",
                                              "map height", "start x", "start y",
-                                             "goal x",  "goal y",  "optimal length"};
+                                             "goal x",     "goal y",  "optimal length"};
   std::vector<MovingAiCase> cases;
   while (in.next(line)) {
     if (io_detail::trim(line).empty()) continue;

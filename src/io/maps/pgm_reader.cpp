@@ -95,9 +95,9 @@ RasterImage read_pgm(const std::filesystem::path& path) {
   const std::uint64_t height = tok.number("height");
   const std::uint64_t maxval = tok.number("maxval");
   if (width == 0 || height == 0) {
-    throw InputError(file, tok.where(),
-                     "image size " + std::to_string(width) + " x " + std::to_string(height) +
-                         " is empty");
+    throw InputError(
+        file, tok.where(),
+        "image size " + std::to_string(width) + " x " + std::to_string(height) + " is empty");
   }
   if (width * height > kMaxMapCells) {
     throw InputError(file, tok.where(),
@@ -121,9 +121,9 @@ RasterImage read_pgm(const std::filesystem::path& path) {
   };
   auto check_max = [&](std::uint64_t v, const std::string& where) {
     if (v > maxval) {
-      throw InputError(file, where,
-                       "pixel value " + std::to_string(v) + " exceeds maxval " +
-                           std::to_string(maxval));
+      throw InputError(
+          file, where,
+          "pixel value " + std::to_string(v) + " exceeds maxval " + std::to_string(maxval));
     }
   };
 

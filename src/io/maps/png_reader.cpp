@@ -5,6 +5,7 @@
 #include <png.h>
 
 #include <csetjmp>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -72,6 +73,16 @@ bool read_rows(PngReader* r, png_bytepp rows) {
   return true;
 }
 
+void check_size(const std::string& file, std::uint64_t width, std::uint64_t height) {
+  if (width == 0 || height == 0) throw InputError(file, "header", "empty image");
+  if (width * height > kMaxMapCells) {
+    throw InputError(file, "header",
+                     "image of " + std::to_string(width) + " x " + std::to_string(height) +
+                         " pixels is too large (limit 2^28 = " + std::to_string(kMaxMapCells) +
+                         " cells)");
+  }
+}
+
 }  // namespace
 
 RasterImage read_png(const std::filesystem::path& path) {
@@ -83,6 +94,18 @@ RasterImage read_png(const std::filesystem::path& path) {
   if (std::fread(signature, 1, 8, r.file) != 8 || png_sig_cmp(signature, 0, 8) != 0) {
     throw InputError(file, "", "not a PNG image (bad signature)");
   }
+  // Check the size in IHDR ourselves first: libpng's png_read_info goes on past IHDR, so a
+  // header-only file of 10^10 pixels must be refused before libpng sees it.
+  unsigned char ihdr[16] = {};
+  if (std::fread(ihdr, 1, 16, r.file) != 16 || std::memcmp(ihdr + 4, "IHDR", 4) != 0) {
+    throw InputError(file, "header", "truncated or corrupt PNG: no IHDR chunk");
+  }
+  const auto be32 = [](const unsigned char* b) {
+    return (std::uint64_t{b[0]} << 24) | (std::uint64_t{b[1]} << 16) | (std::uint64_t{b[2]} << 8) |
+           std::uint64_t{b[3]};
+  };
+  check_size(file, be32(ihdr + 8), be32(ihdr + 12));
+  if (std::fseek(r.file, 8, SEEK_SET) != 0) throw InputError(file, "", "cannot seek in the file");
   r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r, on_png_error, on_png_warning);
   if (r.png == nullptr) throw InputError(file, "", "libpng could not start");
   r.info = png_create_info_struct(r.png);
@@ -92,14 +115,8 @@ RasterImage read_png(const std::filesystem::path& path) {
   if (!read_header(&r, &h)) {
     throw InputError(file, "header", std::string("bad PNG header: ") + r.message);
   }
-  if (h.width == 0 || h.height == 0) throw InputError(file, "header", "empty image");
+  check_size(file, h.width, h.height);
   const std::uint64_t cells = std::uint64_t{h.width} * std::uint64_t{h.height};
-  if (cells > kMaxMapCells) {
-    throw InputError(file, "header",
-                     "image of " + std::to_string(h.width) + " x " + std::to_string(h.height) +
-                         " pixels is too large (limit 2^28 = " + std::to_string(kMaxMapCells) +
-                         " cells)");
-  }
   if ((h.channels != 1 && h.channels != 3) ||
       h.row_bytes != static_cast<png_size_t>(h.width) * static_cast<png_size_t>(h.channels)) {
     throw InputError(file, "header", "unsupported PNG layout after conversion to 8 bits");

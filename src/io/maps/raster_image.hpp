@@ -23,9 +23,9 @@ struct RasterImage {
 
   /// Mean of the pixel's channels, 0 (black) .. 255 (white), as map_server computes it.
   double mean(int x, int y) const {
-    const std::size_t i =
-        (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) *
-        static_cast<std::size_t>(channels);
+    const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                           static_cast<std::size_t>(x)) *
+                          static_cast<std::size_t>(channels);
     if (channels == 1) return samples[i];
     return (samples[i] + samples[i + 1] + samples[i + 2]) / 3.0;
   }

@@ -103,7 +103,8 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
 
   const YAML::Node res = keys.require("resolution");
   meta.resolution = keys.number(res, "resolution");
-  if (!(meta.resolution > 0.0)) keys.fail(res, "resolution", "must be positive, got " + res.Scalar());
+  if (!(meta.resolution > 0.0))
+    keys.fail(res, "resolution", "must be positive, got " + res.Scalar());
 
   const YAML::Node origin = keys.require("origin");
   if (!origin.IsSequence() || origin.size() != 3) {

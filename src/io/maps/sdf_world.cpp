@@ -32,9 +32,9 @@ std::vector<double> numbers(const XMLElement* e, std::size_t count, const std::s
     const std::string_view token = rest.substr(0, end);
     const auto v = io_detail::parse_double(token);
     if (!v) {
-      throw InputError(file, io_detail::where_of(e),
-                       std::string("<") + e->Name() + ">: '" + std::string(token) +
-                           "' is not a finite number");
+      throw InputError(
+          file, io_detail::where_of(e),
+          std::string("<") + e->Name() + ">: '" + std::string(token) + "' is not a finite number");
     }
     out.push_back(*v);
     if (end == std::string_view::npos) break;
@@ -134,7 +134,8 @@ class SdfReader {
     const std::string kind = shape->Name();
     if (kind == "box") {
       const XMLElement* size = shape->FirstChildElement("size");
-      if (size == nullptr) throw InputError(file_, io_detail::where_of(shape), "<box> lacks <size>");
+      if (size == nullptr)
+        throw InputError(file_, io_detail::where_of(shape), "<box> lacks <size>");
       const std::vector<double> s = numbers(size, 3, file_);
       const double hx = 0.5 * positive(size, s[0], file_);
       const double hy = 0.5 * positive(size, s[1], file_);
@@ -146,7 +147,8 @@ class SdfReader {
       if (radius == nullptr) {
         throw InputError(file_, io_detail::where_of(shape), "<" + kind + "> lacks <radius>");
       }
-      out_.circles.push_back(Circle{pose.position, positive(radius, numbers(radius, 1, file_)[0], file_)});
+      out_.circles.push_back(
+          Circle{pose.position, positive(radius, numbers(radius, 1, file_)[0], file_)});
     } else if (kind != "plane") {
       out_.skipped.push_back("model '" + owner + "': <" + kind + "> collision");
     }
@@ -194,7 +196,8 @@ SdfWorld load_sdf_world(const std::filesystem::path& path) {
   }
 
   std::set<std::string> seen;
-  for (const XMLElement* e = scope->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
+  for (const XMLElement* e = scope->FirstChildElement(); e != nullptr;
+       e = e->NextSiblingElement()) {
     const std::string_view kind = e->Name();
     if (kind == "include") {
       const XMLElement* uri = e->FirstChildElement("uri");

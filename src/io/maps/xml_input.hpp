@@ -21,13 +21,14 @@ inline std::string where_of(const tinyxml2::XMLElement* e) {
 inline void load_xml(const std::filesystem::path& path, tinyxml2::XMLDocument& doc) {
   const std::string file = path.string();
   const tinyxml2::XMLError err = doc.LoadFile(file.c_str());
-  if (err == tinyxml2::XML_ERROR_FILE_NOT_FOUND || err == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED ||
+  if (err == tinyxml2::XML_ERROR_FILE_NOT_FOUND ||
+      err == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED ||
       err == tinyxml2::XML_ERROR_FILE_READ_ERROR) {
     throw InputError(file, "", "cannot open the file");
   }
   if (err != tinyxml2::XML_SUCCESS) {
     throw InputError(file, "line " + std::to_string(doc.ErrorLineNum()),
-                     std::string("malformed XML: ") + doc.ErrorName());
+                     std::string("malformed XML: ") + doc.ErrorStr());
   }
 }
 
@@ -41,9 +42,9 @@ inline double number_attribute(const tinyxml2::XMLElement* e, const char* name,
   }
   const auto v = parse_double(text);
   if (!v) {
-    throw InputError(file, where_of(e),
-                     std::string("<") + e->Name() + " " + name + "=\"" + text +
-                         "\">: expected a finite number");
+    throw InputError(
+        file, where_of(e),
+        std::string("<") + e->Name() + " " + name + "=\"" + text + "\">: expected a finite number");
   }
   return *v;
 }

@@ -1,0 +1,234 @@
+#include "floornav/io/sdf_world.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <utility>
+
+#include "floornav/io/input_error.hpp"
+
+namespace floornav {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SdfWorldTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("floornav_sdf_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write(const std::string& name, const std::string& text) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p, std::ios::binary) << text;
+    return p;
+  }
+
+  fs::path dir_;
+};
+
+template <class F>
+void expect_input_error(F load, const std::string& needle) {
+  try {
+    load();
+    ADD_FAILURE() << "no InputError; expected one containing '" << needle << "'";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos)
+        << "message: " << e.what() << "\nexpected to contain: " << needle;
+  }
+}
+
+void expect_point(const Vec2& p, double x, double y) {
+  EXPECT_NEAR(p.x(), x, 1e-12);
+  EXPECT_NEAR(p.y(), y, 1e-12);
+}
+
+const std::string kWorld = R"(<?xml version="1.0" ?>
+<sdf version='1.6'>
+  <world name='w'>
+    <include><uri>model://sun</uri></include>
+    <model name='ground_plane'>
+      <static>1</static>
+      <link name='link'><collision name='c'><geometry><plane><normal>0 0 1</normal>
+        <size>100 100</size></plane></geometry></collision></link>
+    </model>
+    <model name='shelf'>
+      <static>true</static>
+      <pose frame=''>1 2 0 0 0 1.5707963267948966</pose>
+      <link name='l'>
+        <pose>1 0 0 0 0 0</pose>
+        <collision name='c'>
+          <pose>0 1 0.5 0 0 0</pose>
+          <geometry><box><size>2 1 1</size></box></geometry>
+        </collision>
+        <visual name='v'><geometry><box><size>9 9 9</size></box></geometry></visual>
+      </link>
+    </model>
+    <model name='post'>
+      <static>1</static>
+      <pose>5 5 0 0 0 0</pose>
+      <link name='l'><collision name='c'><geometry><cylinder><radius>0.2</radius>
+        <length>1</length></cylinder></geometry></collision></link>
+    </model>
+    <model name='robot'>
+      <pose>0 0 0 0 0 0</pose>
+      <link name='base'><collision name='c'><geometry><box><size>1 1 1</size></box></geometry>
+      </collision></link>
+    </model>
+    <model name='statue'>
+      <static>1</static>
+      <link name='l'><collision name='c'><geometry><mesh><uri>x.dae</uri></mesh></geometry>
+      </collision></link>
+    </model>
+    <model name='outer'>
+      <static>1</static>
+      <pose>10 0 0 0 0 0</pose>
+      <model name='inner'>
+        <pose>0 1 0 0 0 0</pose>
+        <link name='l'><collision name='c'><geometry><sphere><radius>0.5</radius></sphere>
+        </geometry></collision></link>
+      </model>
+    </model>
+    <state world_name='w'>
+      <model name='post'>
+        <pose frame=''>7 -1 0 0 0 0</pose>
+        <link name='l'><pose frame=''>7 -1 0 0 0 0</pose></link>
+      </model>
+      <model name='ground_plane'><pose frame=''>0 0 0 0 -0 0</pose></model>
+    </state>
+  </world>
+</sdf>
+)";
+
+TEST_F(SdfWorldTest, ComposesPosesAndPrefersTheState) {
+  const SdfWorld w = load_sdf_world(write("w.world", kWorld));
+  // Shelf: model (1, 2, 90 deg) * link (1, 0) = (1, 3); * collision (0, 1) = (0, 3), yaw 90 deg.
+  // The 2 x 1 box turned 90 deg spans x in [-0.5, 0.5], y in [2, 4].
+  ASSERT_EQ(w.polygons.size(), 1u);
+  ASSERT_EQ(w.polygons[0].size(), 4u);
+  expect_point(w.polygons[0][0], 0.5, 2.0);
+  expect_point(w.polygons[0][1], 0.5, 4.0);
+  expect_point(w.polygons[0][2], -0.5, 4.0);
+  expect_point(w.polygons[0][3], -0.5, 2.0);
+  // The post at its <state> pose (7, -1), once; the nested sphere at (10, 0) + (0, 1).
+  ASSERT_EQ(w.circles.size(), 2u);
+  expect_point(w.circles[0].center, 7.0, -1.0);
+  EXPECT_EQ(w.circles[0].radius, 0.2);
+  expect_point(w.circles[1].center, 10.0, 1.0);
+  EXPECT_EQ(w.circles[1].radius, 0.5);
+  // The include, the non-static robot and the mesh are reported; the ground plane is not.
+  ASSERT_EQ(w.skipped.size(), 3u);
+  EXPECT_EQ(w.skipped[0], "include 'model://sun'");
+  EXPECT_EQ(w.skipped[1], "model 'robot': not static");
+  EXPECT_EQ(w.skipped[2], "model 'statue::l': <mesh> collision");
+}
+
+TEST_F(SdfWorldTest, BareModelFileAndDegrees) {
+  const SdfWorld w = load_sdf_world(write("m.sdf", R"(<sdf version='1.9'>
+  <model name='m'><static>true</static><pose degrees='true'>0 0 0 0 0 90</pose>
+    <link name='l'><collision name='c'><pose>2 0 0 0 0 0</pose>
+      <geometry><cylinder><radius>1</radius><length>1</length></cylinder></geometry>
+    </collision></link></model></sdf>)"));
+  ASSERT_EQ(w.circles.size(), 1u);
+  expect_point(w.circles[0].center, 0.0, 2.0);
+}
+
+TEST_F(SdfWorldTest, BadWorlds) {
+  auto world = [](const std::string& models) {
+    return "<sdf version='1.6'><world name='w'>\n" + models + "</world></sdf>";
+  };
+  auto cylinder = [](const std::string& name, const std::string& pose) {
+    return "<model name='" + name + "'><static>1</static><pose>" + pose +
+           "</pose><link name='l'><collision name='c'><geometry><cylinder><radius>1</radius>"
+           "</cylinder></geometry></collision></link></model>\n";
+  };
+  struct Case {
+    std::string text;
+    std::string needle;
+  };
+  const std::vector<Case> cases = {
+      {world(cylinder("a", "1 2 0 0 0")), "line 2: <pose>: expected 6 numbers, got 5"},
+      {world(cylinder("a", "1 2 x 0 0 0")), "<pose>: 'x' is not a finite number"},
+      {world(cylinder("a", "1 nan 0 0 0 0")), "'nan' is not a finite number"},
+      {world(cylinder("a", "1 2 0 0 0 0") + cylinder("a", "3 4 0 0 0 0")),
+       "line 3: duplicate model name 'a'"},
+      {world("<model name='a'><static>1</static><pose relative_to='b'>0 0 0 0 0 0</pose></model>"),
+       "poses relative to other frames are not supported"},
+      {world("<model name='a'><static>yes</static></model>"),
+       "<static> must be 0, 1, true or false"},
+      {world("<model name='a'><static>1</static><link name='l'><collision name='c'><geometry>"
+             "<box><size>1 -2 1</size></box></geometry></collision></link></model>"),
+       "<size> must be positive"},
+      {world("<model name='a'><static>1</static><link name='l'><collision name='c'><geometry>"
+             "<box><size>1 2</size></box></geometry></collision></link></model>"),
+       "<size>: expected 3 numbers, got 2"},
+      {world("<model name='a'><static>1</static><link name='l'><collision name='c'><geometry>"
+             "<cylinder><length>1</length></cylinder></geometry></collision></link></model>"),
+       "<cylinder> lacks <radius>"},
+      {world("<model name='a'><static>1</static><link name='l'><collision name='c'>"
+             "</collision></link></model>"),
+       "<collision> without a <geometry> shape"},
+      {"<world name='w'></world>", "expected an <sdf> root"},
+      {"<sdf version='1.6'><light name='sun'/></sdf>", "no <world> or <model>"},
+      {"<sdf version='1.6'><world name='w'>\n<model name='a'>\n</world></sdf>", "malformed XML"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE("case " + std::to_string(i));
+    const fs::path p = write("bad.world", cases[i].text);
+    expect_input_error([&] { load_sdf_world(p); }, cases[i].needle);
+  }
+  expect_input_error([&] { load_sdf_world(dir_ / "none.world"); }, "cannot open");
+}
+
+fs::path barn() {
+  return fs::path(FLOORNAV_SHARED_MAPS_DIR) / "barn/world_files";
+}
+
+TEST(SdfWorldRealFiles, BarnWorlds) {
+  if (!fs::is_directory(barn())) GTEST_SKIP() << "no " << barn().string();
+  // Unique unit_cylinder_K models, counted with
+  //   grep -o "<model name='unit_cylinder_[0-9]*'" world_N.world | sort -u | wc -l
+  // (each appears twice: as a model and again under <state>).
+  const std::pair<const char*, std::size_t> worlds[] = {
+      {"world_0.world", 209}, {"world_150.world", 292}, {"world_299.world", 277}};
+  for (const auto& [name, count] : worlds) {
+    SCOPED_TRACE(name);
+    const SdfWorld w = load_sdf_world(barn() / name);
+    EXPECT_EQ(w.circles.size(), count);
+    EXPECT_TRUE(w.polygons.empty());
+    EXPECT_TRUE(w.skipped.empty());
+    std::set<std::pair<long, long>> cells;
+    for (const Circle& c : w.circles) {
+      EXPECT_EQ(c.radius, 0.075);
+      // On the 0.15 m lattice x = -0.075 - 0.15 i, y = 0.075 + 0.15 j (SOURCES.md section 7).
+      const double i = (-0.075 - c.center.x()) / 0.15;
+      const double j = (c.center.y() - 0.075) / 0.15;
+      EXPECT_NEAR(i, std::round(i), 1e-9);
+      EXPECT_NEAR(j, std::round(j), 1e-9);
+      EXPECT_GE(std::round(i), 0.0);
+      EXPECT_LE(std::round(i), 29.0);
+      cells.insert({std::lround(i), std::lround(j)});
+    }
+    EXPECT_EQ(cells.size(), count);  // no duplicates
+  }
+  // world_150.world, model unit_cylinder_100:
+  //   <pose frame=''>-4.425000 5.775000 0.000000 0.000000 0.000000 0.000000</pose>
+  //   <radius>0.075000</radius>
+  const SdfWorld w = load_sdf_world(barn() / "world_150.world");
+  ASSERT_GT(w.circles.size(), 100u);
+  EXPECT_EQ(w.circles[100].center, Vec2(-4.425, 5.775));
+  EXPECT_EQ(w.circles[100].radius, 0.075);
+}
+
+}  // namespace
+}  // namespace floornav
