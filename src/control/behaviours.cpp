@@ -48,8 +48,11 @@ Turn choose_turn(const Vec2& u_gtg, const Vec2& u_ao) {
 Vec2 follow_boundary_velocity(const Vec2& away, double clearance, Turn turn, double d_fb,
                               double k_distance, double v0) {
   const Vec2 tangent = follow_boundary_tangent(away, turn);
-  // Positive error: too close, move out along `away`; negative: drifting off, move in.
-  const double correction = std::clamp(k_distance * (d_fb - clearance), -1.5, 1.5);
+  // Positive error: too close, move out along `away`; negative: drifting off, move in. Moving in
+  // is capped more gently (at most ~27 degrees off the tangent): sparse range sensors report a
+  // convex corner late, and a steep pull towards remembered points would cut the corner.
+  constexpr double kMaxPushOut = 1.5, kMaxPullIn = 0.5;
+  const double correction = std::clamp(k_distance * (d_fb - clearance), -kMaxPullIn, kMaxPushOut);
   return v0 * normalized_or_zero(tangent + correction * away);
 }
 

@@ -65,6 +65,9 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
   YAML::Node parent = chain.back();
   if (!parent.IsMap() && !parent.IsNull())
     throw InputError("", "--set " + key, "the key's parent is not a mapping");
+  // `goal` and `goals` are alternatives: setting one replaces the other.
+  if (parts.size() == 1 && (key == "goal" || key == "goals") && parent.IsMap())
+    parent.remove(key == "goal" ? "goals" : "goal");
   parent[parts.back()] = value;
 }
 
@@ -400,7 +403,8 @@ Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& 
   }
   if (root.IsDefined() && !root.IsNull() && !root.IsMap())
     throw InputError(file, "line 1", "a scenario is a mapping of sections (world, robot, goal)");
-  if (!root.IsDefined() || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  if (!root.IsDefined() || root.IsNull())
+    throw InputError(file, "", "the file is empty (a scenario needs world, robot and goal)");
   for (const std::string& o : overrides) apply_override(root, o);
   try {
     return read_scenario(root, origin);

@@ -1,0 +1,115 @@
+// The command-line contract: files written, exit statuses, one clear message for bad input.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+struct Output {
+  int status;
+  std::string text;  // stdout and stderr
+};
+
+Output floornav(const std::string& args) {
+  const std::string cmd = std::string(FLOORNAV_BINARY) + " " + args + " 2>&1";
+  Output out{0, ""};
+  FILE* p = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), p)) out.text += buf.data();
+  const int raw = pclose(p);
+  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return out;
+}
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("floornav_cli_" + name);
+  fs::remove_all(d);
+  return d;
+}
+
+std::string scenario(const std::string& file) {
+  return std::string(FLOORNAV_SCENARIO_DIR) + "/" + file;
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+}  // namespace
+
+TEST(Cli, RunWritesTheThreeFiles) {
+  const fs::path out = temp_dir("run");
+  const Output o = floornav("run " + scenario("rectangle.yaml") + " --out " + out.string());
+  ASSERT_EQ(o.status, 0) << o.text;
+  EXPECT_NE(o.text.find("rectangle: reached"), std::string::npos) << o.text;
+  const auto summary = nlohmann::json::parse(read(out / "summary.json"));
+  EXPECT_EQ(summary["scenario"], "rectangle");
+  EXPECT_EQ(summary["status"], "reached");
+  EXPECT_TRUE(summary["reached_goal"].get<bool>());
+  EXPECT_GT(summary["mode_time"].value("follow_boundary_cw", 0.0) +
+                summary["mode_time"].value("follow_boundary_ccw", 0.0),
+            0.0);
+  const std::string csv = read(out / "trajectory.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "t,x,y,theta,v,omega,w_left,w_right,mode");
+  EXPECT_EQ(read(out / "trajectory.svg").rfind("<svg", 0), 0u);
+}
+
+TEST(Cli, SetChangesTheController) {
+  const fs::path out = temp_dir("set");
+  const Output o = floornav("run " + scenario("rectangle.yaml") +
+                            " --set controller.kind=go_to_goal --out " + out.string());
+  ASSERT_EQ(o.status, 0) << o.text;
+  EXPECT_NE(o.text.find("collision"), std::string::npos);
+}
+
+TEST(Cli, BadInputExitsWithStatus2AndOneMessage) {
+  Output o = floornav("run /nonexistent.yaml");
+  EXPECT_EQ(o.status, 2);
+  EXPECT_NE(o.text.find("/nonexistent.yaml: no such file"), std::string::npos) << o.text;
+  o = floornav("run " + scenario("rectangle.yaml") + " --set controller.kind=zigzag --out " +
+               temp_dir("bad").string());
+  EXPECT_EQ(o.status, 2);
+  EXPECT_NE(o.text.find("controller.kind"), std::string::npos) << o.text;
+  EXPECT_EQ(std::count(o.text.begin(), o.text.end(), '\n'), 1) << o.text;
+  EXPECT_FALSE(fs::exists(temp_dir("bad")));  // nothing written half-way
+  o = floornav("run");
+  EXPECT_EQ(o.status, 2);
+  o = floornav("frobnicate");
+  EXPECT_EQ(o.status, 2);
+}
+
+TEST(Cli, BatchWritesOrderedResultsIdenticalForAnyJobCount) {
+  const std::string files = scenario("rectangle.yaml") + " " + scenario("circle_obstacle.yaml") +
+                            " " + scenario("week7_pocket.yaml") + " " +
+                            scenario("point_obstacle.yaml");
+  const fs::path one = temp_dir("batch1"), two = temp_dir("batch2");
+  Output o = floornav("batch " + files + " --no-timing --jobs 1 --out " + one.string());
+  ASSERT_EQ(o.status, 0) << o.text;
+  o = floornav("batch " + files + " --no-timing --jobs 2 --out " + two.string());
+  ASSERT_EQ(o.status, 0) << o.text;
+  const std::string a = read(one / "results.jsonl");
+  EXPECT_EQ(a, read(two / "results.jsonl"));
+  EXPECT_EQ(std::count(a.begin(), a.end(), '\n'), 4);
+  EXPECT_EQ(nlohmann::json::parse(a.substr(0, a.find('\n')))["scenario"], "rectangle");
+  const auto agg = nlohmann::json::parse(read(one / "aggregate.json"));
+  EXPECT_EQ(agg["runs"], 4);
+  EXPECT_DOUBLE_EQ(agg["success_rate"].get<double>(), 1.0);
+}
+
+TEST(Cli, DemoRunsWithNoFiles) {
+  const fs::path out = temp_dir("demo");
+  const Output o = floornav("demo --out " + out.string());
+  ASSERT_EQ(o.status, 0) << o.text;
+  EXPECT_NE(o.text.find("factory-delivery: reached"), std::string::npos) << o.text;
+  EXPECT_TRUE(fs::exists(out / "trajectory.svg"));
+}
