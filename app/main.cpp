@@ -9,16 +9,17 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "batch_sources.hpp"
 #include "demo_scenario.hpp"
 #include "floornav/io/batch.hpp"
 #include "floornav/io/input_error.hpp"
 #include "floornav/io/run_outputs.hpp"
 #include "floornav/io/scenario_file.hpp"
 #include "floornav/sim/robot_spec.hpp"
-#include "scen_cases.hpp"
 
 namespace fs = std::filesystem;
 using namespace floornav;
@@ -69,6 +70,7 @@ int main(int argc, char** argv) {
   double batch_cell = 0.0;
   long batch_limit = -1;
   bool batch_no_timing = false, batch_resume = false;
+  std::string batch_worlds, batch_barn_paths, batch_shard;
   auto* batch = app.add_subcommand("batch",
                                    "Run many scenarios in parallel; writes "
                                    "results.jsonl and aggregate.json");
@@ -86,6 +88,19 @@ int main(int argc, char** argv) {
   batch->add_flag("--no-timing", batch_no_timing,
                   "write wall_time as 0 so that repeated runs give identical files");
   batch->add_flag("--resume", batch_resume, "keep the cases already in results.jsonl");
+  batch->add_option("--worlds", batch_worlds,
+                    "folder of Gazebo .world/.sdf files: one case per world, on the template");
+  batch->add_option("--barn-paths", batch_barn_paths,
+                    "with --worlds: BARN path_N.npy folder, adds optimal_time and the BARN score");
+  batch->add_option("--shard", batch_shard,
+                    "K/N: run only shard K of N (every N-th case); join shards with merge");
+
+  // merge
+  std::vector<std::string> merge_dirs;
+  std::string merge_out = "out/merged";
+  auto* merge = app.add_subcommand("merge", "Join the results of sharded batches");
+  merge->add_option("dirs", merge_dirs, "batch output folders")->required();
+  merge->add_option("--out", merge_out, "output folder (default: out/merged)");
 
   // demo
   std::string demo_out;
@@ -125,16 +140,30 @@ int main(int argc, char** argv) {
     }
     if (*batch) {
       std::vector<BatchCase> cases;
-      if (!batch_scen.empty()) {
+      if (!batch_worlds.empty()) {
+        if (batch_files.size() != 1)
+          throw InputError("", "--worlds", "give exactly one template scenario with --worlds");
+        cases = make_world_cases(batch_files[0], batch_worlds, batch_barn_paths, batch_sets);
+      } else if (!batch_scen.empty()) {
         if (batch_files.size() != 1)
           throw InputError("", "--scen", "give exactly one template scenario with --scen");
         cases = make_scen_cases(batch_files[0], batch_scen, batch_cell > 0 ? batch_cell : 1.0,
                                 batch_sets);
       } else {
-        for (const auto& f : batch_files) cases.push_back({load_scenario_file(f, batch_sets), f});
+        for (const auto& f : batch_files)
+          cases.push_back({load_scenario_file(f, batch_sets), f, cases.size(), {}, {}});
       }
       if (batch_limit >= 0 && static_cast<std::size_t>(batch_limit) < cases.size())
         cases.resize(static_cast<std::size_t>(batch_limit));
+      if (!batch_shard.empty()) {
+        int k = 0, n = 0;
+        char slash = 0;
+        std::istringstream ss(batch_shard);
+        if (!(ss >> k >> slash >> n) || slash != '/' || n < 1 || k < 1 || k > n || !ss.eof())
+          throw InputError("", "--shard",
+                           "expected K/N with 1 <= K <= N, got '" + batch_shard + "'");
+        cases = select_shard(std::move(cases), k, n);
+      }
       std::signal(SIGINT, on_signal);
       std::signal(SIGTERM, on_signal);
       BatchOptions opt;
@@ -154,6 +183,13 @@ int main(int argc, char** argv) {
           100.0 * a["timeout_rate"].get<double>(), 100.0 * a["stuck_rate"].get<double>(),
           batch_out);
       return o.interrupted ? 130 : 0;
+    }
+    if (*merge) {
+      std::vector<fs::path> dirs(merge_dirs.begin(), merge_dirs.end());
+      const auto a = merge_batches(dirs, merge_out);
+      fmt::print("{} cases merged: success {:.1f}% -> {}\n", a["runs"].get<std::size_t>(),
+                 100.0 * a["success_rate"].get<double>(), merge_out);
+      return 0;
     }
   } catch (const InputError& e) {
     fmt::print(stderr, "floornav: error: {}\n", e.what());

@@ -30,6 +30,21 @@ std::string_view to_string(ControllerKind kind) {
   return "unknown";
 }
 
+namespace {
+constexpr std::size_t kMaxNearPoints = 1024;
+
+NavigationInput finish_input(NavigationInput in, const Vec2& x, std::span<const Vec2> points,
+                             double body_radius, const NavigationParams& p) {
+  in.u_ao = avoid_obstacle_velocity(x, points, p.v0);
+  in.away = normalized_or_zero(in.u_ao);
+  for (const Vec2& q : points) {
+    in.clearance = std::min(in.clearance, (q - x).norm() - body_radius);
+    in.obstacle_sensed = true;
+  }
+  return in;
+}
+}  // namespace
+
 NavigationInput make_navigation_input(const Vec2& x, const Vec2& goal,
                                       std::span<const Vec2> obstacle_points, double body_radius,
                                       const NavigationParams& p) {
@@ -38,13 +53,17 @@ NavigationInput make_navigation_input(const Vec2& x, const Vec2& goal,
   in.goal = goal;
   in.goal_distance = (goal - x).norm();
   in.u_gtg = go_to_goal_velocity(x, goal, p.v0, p.gtg_a);
-  in.u_ao = avoid_obstacle_velocity(x, obstacle_points, p.v0);
-  in.away = normalized_or_zero(in.u_ao);
-  for (const Vec2& q : obstacle_points) {
-    in.clearance = std::min(in.clearance, (q - x).norm() - body_radius);
-    in.obstacle_sensed = true;
+  if (p.obstacle_range > 0.0) {
+    // A long-range lidar sees the whole room; only the obstacles near the robot should push it.
+    // The filtered points go to a fixed buffer (no allocation); overflow keeps the nearest ones.
+    std::array<Vec2, kMaxNearPoints> near;
+    std::size_t n = 0;
+    const double limit = p.obstacle_range + body_radius;
+    for (const Vec2& q : obstacle_points)
+      if ((q - x).squaredNorm() <= limit * limit && n < near.size()) near[n++] = q;
+    return finish_input(in, x, std::span<const Vec2>(near.data(), n), body_radius, p);
   }
-  return in;
+  return finish_input(in, x, obstacle_points, body_radius, p);
 }
 
 NavigationAutomaton make_navigation_automaton(ControllerKind kind, const NavigationParams& p) {

@@ -292,4 +292,52 @@ double World::clearance_brute_force(const Vec2& p) const {
   return d;
 }
 
+namespace {
+// Distance between segment s and the solid polygon; 0 when they meet.
+double segment_polygon_distance(const Segment& s, std::span<const Vec2> poly) {
+  if (contains(poly, s.a) || contains(poly, s.b)) return 0.0;
+  double d = kInf;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Segment e = edge(poly, i);
+    if (segments_intersect(s, e)) return 0.0;
+    d = std::min({d, distance(e, s.a), distance(e, s.b), distance(s, e.a)});
+  }
+  return d;
+}
+}  // namespace
+
+double World::polygon_clearance(std::span<const Vec2> poly, double reach) const {
+  const Box2 box = box_of(poly);
+  const Vec2 centre = 0.5 * (box.min + box.max);
+  double radius = 0.0;  // of the circumscribed disc about the box centre
+  for (const Vec2& v : poly) radius = std::max(radius, (v - centre).norm());
+  double best = kInf;
+  if (grid_) best = grid_->clearance(centre) - radius;
+  for (const Vec2& v : poly)
+    if (inside_solid_shape(v)) return std::min(best, 0.0);
+  const Index& ix = index_;
+  const int x0 = cell_x(box.min.x() - reach), x1 = cell_x(box.max.x() + reach);
+  const int y0 = cell_y(box.min.y() - reach), y1 = cell_y(box.max.y() + reach);
+  double found = kInf;
+  if (!segments_.empty() || !circles_.empty()) {
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const auto c = static_cast<std::size_t>(y) * ix.nx + x;
+        for (auto j = ix.segment_offsets[c]; j < ix.segment_offsets[c + 1]; ++j)
+          found = std::min(found, segment_polygon_distance(segments_[ix.segment_items[j]], poly));
+        for (auto j = ix.circle_offsets[c]; j < ix.circle_offsets[c + 1]; ++j) {
+          const Circle& ci = circles_[ix.circle_items[j]];
+          const double d = contains(poly, ci.center)
+                               ? -ci.radius
+                               : boundary_distance(poly, ci.center) - ci.radius;
+          found = std::min(found, d);
+        }
+      }
+  }
+  // Nothing within reach: the disc about the polygon gives a finite lower bound.
+  if (found == kInf && (!segments_.empty() || !circles_.empty()))
+    found = std::max(reach, clearance(centre) - radius);
+  return std::min(best, found);
+}
+
 }  // namespace floornav

@@ -22,10 +22,9 @@ namespace floornav {
 
 namespace {
 
-nlohmann::ordered_json result_line(std::size_t index, const BatchCase& c, const RunResult& r,
-                                   bool timing) {
+nlohmann::ordered_json result_line(const BatchCase& c, const RunResult& r, bool timing) {
   nlohmann::ordered_json line;
-  line["case"] = index;
+  line["case"] = c.id;
   line["source"] = c.source;
   line["controller"] = std::string(to_string(c.scenario.controller));
   line["robot"] = c.scenario.robot.preset;
@@ -34,6 +33,16 @@ nlohmann::ordered_json result_line(std::size_t index, const BatchCase& c, const 
   if (!timing) line["wall_time"] = 0.0;
   line.erase("transitions");  // the per-case detail stays out of a batch's lines
   line.erase("transitions_truncated");
+  if (c.optimal_length) {
+    line["optimal_length"] = *c.optimal_length;
+    line["path_efficiency"] = r.reached_goal && r.path_length > 0
+                                  ? nlohmann::ordered_json(*c.optimal_length / r.path_length)
+                                  : nlohmann::ordered_json(nullptr);
+  }
+  if (c.optimal_time) {
+    line["optimal_time"] = *c.optimal_time;
+    line["score"] = barn_score(r.reached_goal && !r.collided, r.sim_time, *c.optimal_time);
+  }
   return line;
 }
 
@@ -72,6 +81,8 @@ nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_jso
   struct Totals {
     std::size_t n = 0, reached = 0, collision = 0, timeout = 0, stuck = 0;
     double time_sum = 0, path_sum = 0, clearance_min = 1e300;
+    std::size_t efficiency_n = 0, score_n = 0;
+    double efficiency_sum = 0, score_sum = 0;
   };
   auto add = [](Totals& t, const nlohmann::ordered_json& l) {
     ++t.n;
@@ -84,6 +95,10 @@ nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_jso
     t.collision += s == "collision";
     t.timeout += s == "timeout";
     t.stuck += s == "stuck";
+    if (l.contains("path_efficiency") && l["path_efficiency"].is_number())
+      ++t.efficiency_n, t.efficiency_sum += l["path_efficiency"].get<double>();
+    if (l.contains("score") && l["score"].is_number())
+      ++t.score_n, t.score_sum += l["score"].get<double>();
     if (l.contains("min_clearance") && l["min_clearance"].is_number())
       t.clearance_min = std::min(t.clearance_min, l["min_clearance"].get<double>());
   };
@@ -101,6 +116,9 @@ nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_jso
     j["mean_path_length_reached"] =
         t.reached ? nlohmann::ordered_json(t.path_sum / static_cast<double>(t.reached)) : nullptr;
     j["min_clearance"] = t.n ? nlohmann::ordered_json(t.clearance_min) : nullptr;
+    if (t.efficiency_n)
+      j["mean_path_efficiency_reached"] = t.efficiency_sum / static_cast<double>(t.efficiency_n);
+    if (t.score_n) j["mean_score"] = t.score_sum / static_cast<double>(t.score_n);
     return j;
   };
   Totals all;
@@ -121,9 +139,12 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
   const auto results_path = options.out_dir / "results.jsonl";
   const std::size_t n = cases.size();
   std::vector<std::optional<nlohmann::ordered_json>> lines(n);
-  if (options.resume)
-    for (auto& [i, line] : read_existing(results_path))
-      if (i < n) lines[i] = std::move(line);
+  if (options.resume) {
+    std::map<std::size_t, std::size_t> position;  // case id -> index in `cases`
+    for (std::size_t i = 0; i < n; ++i) position[cases[i].id] = i;
+    for (auto& [id, line] : read_existing(results_path))
+      if (auto it = position.find(id); it != position.end()) lines[it->second] = std::move(line);
+  }
 
   std::vector<std::size_t> todo;
   for (std::size_t i = 0; i < n; ++i)
@@ -153,7 +174,7 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
       Scenario sc = cases[i].scenario;  // shares the world; copies only small data
       sc.sim.record_trajectory = false;
       RunResult r = run_timed(sc);
-      auto line = result_line(i, cases[i], r, options.timing);
+      auto line = result_line(cases[i], r, options.timing);
       {
         std::lock_guard lock(mutex);
         lines[i] = std::move(line);
@@ -216,6 +237,57 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
   }
   write_file_atomically(options.out_dir / "aggregate.json", outcome.aggregate.dump(2) + "\n");
   return outcome;
+}
+
+double barn_score(bool success, double time, double optimal_time) {
+  if (!success || !(optimal_time > 0.0)) return 0.0;
+  return optimal_time / std::clamp(time, 2.0 * optimal_time, 8.0 * optimal_time);
+}
+
+std::vector<BatchCase> select_shard(std::vector<BatchCase> cases, int k, int n) {
+  std::vector<BatchCase> out;
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    if (static_cast<int>(i % static_cast<std::size_t>(n)) == k - 1)
+      out.push_back(std::move(cases[i]));
+  return out;
+}
+
+nlohmann::ordered_json merge_batches(std::span<const std::filesystem::path> dirs,
+                                     const std::filesystem::path& out_dir) {
+  std::map<std::size_t, nlohmann::ordered_json> all;
+  for (const auto& d : dirs) {
+    const auto path = d / "results.jsonl";
+    std::ifstream in(path);
+    if (!in) throw InputError(path.string(), "", "cannot open for reading");
+    std::string text;
+    for (std::size_t n = 1; std::getline(in, text); ++n) {
+      if (text.empty()) continue;
+      nlohmann::ordered_json j;
+      try {
+        j = nlohmann::ordered_json::parse(text);
+      } catch (const std::exception&) {
+        throw InputError(path.string(), "line " + std::to_string(n), "not a JSON line");
+      }
+      if (!j.contains("case") || !j["case"].is_number_unsigned())
+        throw InputError(path.string(), "line " + std::to_string(n), "no case number");
+      const auto id = j["case"].get<std::size_t>();
+      if (auto it = all.find(id); it != all.end() && it->second != j)
+        throw InputError(path.string(), "line " + std::to_string(n),
+                         "case " + std::to_string(id) + " differs from another shard's");
+      all[id] = std::move(j);
+    }
+  }
+  ensure_directory(out_dir);
+  std::string text;
+  std::vector<nlohmann::ordered_json> lines;
+  for (auto& [id, j] : all) {
+    text += j.dump() + "\n";
+    lines.push_back(j);
+  }
+  write_file_atomically(out_dir / "results.jsonl", text);
+  nlohmann::ordered_json aggregate = aggregate_results(lines);
+  write_file_atomically(out_dir / "aggregate.json", aggregate.dump(2) + "\n");
+  return aggregate;
 }
 
 }  // namespace floornav

@@ -10,6 +10,7 @@
 #include "floornav/automaton/hybrid_automaton.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
+#include "floornav/sim/body_clearance.hpp"
 #include "world_map.hpp"
 #include "yaml_reader.hpp"
 
@@ -220,6 +221,14 @@ void read_robot(const std::string& file, MapReader& r, Scenario& s) {
         s.robot.drive.min_wheel_speed >= s.robot.drive.max_wheel_speed)
       fail(file, n, r.path_of("min_wheel_speed"), "must be in [0, max_wheel_speed)");
   }
+  if (r.has("footprint")) {
+    const YAML::Node n = r.get("footprint");
+    auto pts = read_points(file, n, r.path_of("footprint"));
+    if (!pts.empty() && (pts.size() < 3 || pts.size() > 16 || !is_simple(pts)))
+      fail(file, n, r.path_of("footprint"),
+           "a footprint is a simple polygon of 3 to 16 points (or [] for the body disc)");
+    s.robot.footprint = std::move(pts);
+  }
   if (r.has("sensors")) {
     MapReader sr(file, r.get("sensors"), r.path_of("sensors"));
     read_sensors(file, sr, s.robot);
@@ -376,7 +385,7 @@ void validate_scenario(const Scenario& s, const std::string& file) {
     bad("controller.pid.integral_limit", "must not be negative");
 
   const World& w = *s.world;
-  if (w.is_inside_obstacle(s.start.position) || w.clearance(s.start.position) < r.body_radius)
+  if (w.is_inside_obstacle(s.start.position) || body_clearance(w, r, s.start) <= 0.0)
     bad("robot.start",
         fmt::format("the robot at ({}, {}) overlaps an obstacle or lies outside the world "
                     "(clearance {:.3g} m, body radius {} m)",

@@ -102,6 +102,7 @@ RobotPreset pioneer_p3dx() {
   p.navigation.blend_near = 0.15;
   p.navigation.blend_far = 0.8;
   p.navigation.obstacle_memory = 2.0;
+  p.navigation.obstacle_range = 1.5;
   return p;
 }
 
@@ -126,6 +127,7 @@ RobotPreset turtlebot3_burger() {
   p.navigation.blend_near = 0.06;
   p.navigation.blend_far = 0.35;
   p.navigation.obstacle_memory = 0.0;
+  p.navigation.obstacle_range = 0.6;
   return p;
 }
 
@@ -138,6 +140,8 @@ RobotPreset jackal() {
                    .max_wheel_speed = 2.0 / 0.098,
                    .min_wheel_speed = 0.0};
   p.robot.body_radius = 0.25;
+  // BARN's passages are sized for the Jackal's rectangular footprint, 0.508 x 0.430 m.
+  p.robot.footprint = {{-0.254, -0.215}, {0.254, -0.215}, {0.254, 0.215}, {-0.254, 0.215}};
   p.robot.sensors = make_lidar(720, deg_to_rad(270.0), 0.1, 30.0, {Vec2(0.12, 0.0), 0.0});
   p.navigation.v0 = 1.0;
   p.navigation.gtg_a = 2.0;
@@ -148,6 +152,7 @@ RobotPreset jackal() {
   p.navigation.hysteresis = 0.06;
   p.navigation.progress_margin = 0.1;
   p.navigation.epsilon = 0.3;
+  p.navigation.obstacle_range = 1.0;
   p.navigation.blend_near = 0.08;
   p.navigation.blend_far = 0.6;
   p.navigation.obstacle_memory = 0.0;

@@ -6,6 +6,7 @@
 #include "floornav/control/heading_tracker.hpp"
 #include "floornav/kinematics/unicycle.hpp"
 #include "floornav/sensing/range_sensor.hpp"
+#include "floornav/sim/body_clearance.hpp"
 
 namespace floornav {
 
@@ -35,7 +36,7 @@ Simulation::Simulation(const Scenario& scenario)
   for (const auto& m : automaton_.modes()) r.mode_names.push_back(m.name);
   for (const auto& e : automaton_.edges()) r.guard_names.push_back(e.guard_name);
   r.mode_time.assign(r.mode_names.size(), 0.0);
-  r.min_clearance = scenario.world->clearance(pose_.position) - scenario.robot.body_radius;
+  r.min_clearance = body_clearance(*scenario.world, scenario.robot, pose_);
   r.final_x = pose_.position.x();
   r.final_y = pose_.position.y();
   r.final_theta = pose_.theta;
@@ -127,7 +128,7 @@ bool Simulation::step() {
                             driven.omega, wheels.left, wheels.right, state_.mode});
 
   // 6. check
-  const double clearance = sc.world->clearance(pose_.position) - robot.body_radius;
+  const double clearance = body_clearance(*sc.world, robot, pose_);
   r.min_clearance = std::min(r.min_clearance, clearance);
   if (clearance <= 0.0) {
     r.collided = true;

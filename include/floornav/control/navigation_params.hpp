@@ -35,6 +35,7 @@ struct NavigationParams {
   double blend_near{0.03};       ///< m: blended, sigma_2 = 1 at this clearance
   double blend_far{0.15};        ///< m: blended, sigma_2 = 0 beyond this clearance
   double obstacle_memory{1.0};   ///< s: sensed points are remembered this long (sparse IR rings)
+  double obstacle_range{0.0};    ///< m clearance: farther sensed points are ignored (0: use all)
   bool slow_when_turning{true};  ///< V *= max(0, cos e): turn before driving (an extension)
   int chatter_switches{8};       ///< this many switches ...
   double chatter_window{2.0};    ///< ... within this many seconds is a chatter (Zeno) episode
@@ -54,6 +55,8 @@ struct NavigationParams {
     a("blend_near", blend_near, "blended: sigma_2 = 1 at this clearance, m");
     a("blend_far", blend_far, "blended: sigma_2 = 0 beyond this clearance, m");
     a("obstacle_memory", obstacle_memory, "seconds a sensed obstacle point is remembered");
+    a("obstacle_range", obstacle_range,
+      "sensed points farther than this clearance are ignored by the behaviours, m (0: all)");
     a("slow_when_turning", slow_when_turning, "scale V by max(0, cos(heading error))");
     a("chatter_switches", chatter_switches, "switches within chatter_window that count as chatter");
     a("chatter_window", chatter_window, "window of the chatter (Zeno) detector, s");

@@ -49,6 +49,12 @@ class World {
   /// outside the bounds. +infinity in an empty, unbounded world.
   double clearance(const Vec2& p) const;
 
+  /// Signed distance between the solid polygon `poly` (world frame, e.g. a robot footprint) and
+  /// the obstacles: <= 0 when they touch or overlap. Exact up to `reach` metres; beyond it the
+  /// result is a lower bound of at least `reach`. Occupancy grids count by the polygon's
+  /// circumscribed disc.
+  double polygon_clearance(std::span<const Vec2> poly, double reach) const;
+
   /// The obstacle surface point nearest to `p`, if there is any obstacle.
   std::optional<Vec2> nearest_obstacle_point(const Vec2& p) const;
 

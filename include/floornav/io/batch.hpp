@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -27,7 +28,21 @@ struct BatchOptions {
 struct BatchCase {
   Scenario scenario;
   std::string source;  ///< the file (and row) it came from, for the results line
+  std::size_t id{0};   ///< the case number in the whole sweep (kept across --shard)
+  std::optional<double> optimal_length;  ///< m, for path_efficiency = optimal / driven
+  std::optional<double> optimal_time;    ///< s, for the BARN score
 };
+
+/// The BARN challenge's score: success * t_opt / clip(t, 2 t_opt, 8 t_opt).
+double barn_score(bool success, double time, double optimal_time);
+
+/// Keeps the cases of shard `k` of `n` (1-based): every n-th case starting at k - 1.
+std::vector<BatchCase> select_shard(std::vector<BatchCase> cases, int k, int n);
+
+/// Joins the results.jsonl of several (sharded) batch folders into `out_dir`, in case order;
+/// returns the aggregate. Throws InputError for unreadable or inconsistent inputs.
+nlohmann::ordered_json merge_batches(std::span<const std::filesystem::path> dirs,
+                                     const std::filesystem::path& out_dir);
 
 struct BatchOutcome {
   std::size_t completed{0};  ///< cases with a result line (including resumed ones)

@@ -17,7 +17,8 @@ namespace floornav {
 struct RobotSpec {
   std::string preset;                    ///< the preset it started from ("" for none)
   DiffDriveParams drive{};               ///< R, L, wheel limits (eqs. 5.5-5.11)
-  double body_radius{0.075};             ///< m: the body is a disc for collision and clearance
+  double body_radius{0.075};             ///< m: the body disc (guards, clearance, collision)
+  std::vector<Vec2> footprint;           ///< robot-frame polygon for collision; empty: the disc
   std::vector<RangeSensorSpec> sensors;  ///< in the robot frame
   double sensor_noise{0.0};              ///< m: std. dev. of Gaussian range noise
 };

@@ -1,10 +1,12 @@
-#include "scen_cases.hpp"
+#include "batch_sources.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
+#include "floornav/io/barn.hpp"
 #include "floornav/io/input_error.hpp"
 #include "floornav/io/movingai_map.hpp"
 #include "floornav/io/scenario_file.hpp"
@@ -52,7 +54,56 @@ std::vector<BatchCase> make_scen_cases(const std::string& template_file,
     s.goals = {goal};
     s.name = fmt::format("{}-{}", base.name, i);
     validate_scenario(s, fmt::format("{} (row {})", scen_file, i + 2));
-    cases.push_back({std::move(s), fmt::format("{}:{}", scen_file, i + 2)});
+    BatchCase c{std::move(s), fmt::format("{}:{}", scen_file, i + 2), i, {}, {}};
+    c.optimal_length = row.optimal_length * cell_size;  // the scen's octile optimum, in metres
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+namespace {
+// The number in a file name ("world_17.world" -> 17), or -1.
+long number_in(const std::string& name) {
+  long value = -1;
+  for (char c : name) {
+    if (c >= '0' && c <= '9')
+      value = (value < 0 ? 0 : value * 10) + (c - '0');
+    else if (value >= 0)
+      break;
+  }
+  return value;
+}
+}  // namespace
+
+std::vector<BatchCase> make_world_cases(const std::string& template_file, const std::string& dir,
+                                        const std::string& barn_paths,
+                                        std::span<const std::string> overrides) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw InputError(dir, "", "--worlds needs a folder of .world/.sdf files");
+  std::vector<std::filesystem::path> worlds;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().extension() == ".world" || e.path().extension() == ".sdf")
+      worlds.push_back(e.path());
+  if (worlds.empty()) throw InputError(dir, "", "no .world or .sdf files in the folder");
+  std::sort(worlds.begin(), worlds.end(), [](const auto& a, const auto& b) {
+    const long na = number_in(a.filename().string()), nb = number_in(b.filename().string());
+    return na != nb ? na < nb : a < b;
+  });
+  std::vector<BatchCase> cases;
+  for (std::size_t i = 0; i < worlds.size(); ++i) {
+    std::vector<std::string> sets(overrides.begin(), overrides.end());
+    sets.push_back("world.map=" + std::filesystem::absolute(worlds[i]).string());
+    Scenario s = load_scenario_file(template_file, sets);
+    s.name = fmt::format("{}-{}", s.name, worlds[i].stem().string());
+    BatchCase c{std::move(s), worlds[i].string(), i, {}, {}};
+    if (!barn_paths.empty()) {
+      const long n = number_in(worlds[i].filename().string());
+      const auto path = std::filesystem::path(barn_paths) / fmt::format("path_{}.npy", n);
+      c.optimal_time = barn_optimal_time(load_npy_int_pairs(path), c.scenario.start.position,
+                                         c.scenario.goals.back());
+    }
+    cases.push_back(std::move(c));
   }
   return cases;
 }

@@ -1,0 +1,25 @@
+#pragma once
+/// @file
+/// The BARN benchmark (Perille et al., SSRR 2020; the BARN challenge): its reference paths
+/// (`path_N.npy`, cells of the 30 x 30 grid) and the optimal time the challenge scores against.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "floornav/geometry/vec2.hpp"
+
+namespace floornav {
+
+/// Reads a NumPy .npy file holding an (n, 2) array of little-endian int64 (dtype '<i8', C order).
+std::vector<std::array<std::int64_t, 2>> load_npy_int_pairs(const std::filesystem::path& path);
+
+/// The challenge's cell -> Gazebo transform: x = 0.15 row - 4.575, y = 0.15 col + 5.075.
+Vec2 barn_cell_to_world(std::int64_t row, std::int64_t col);
+
+/// The challenge's optimal time: the length of start -> reference path -> goal, at 2 m/s.
+double barn_optimal_time(const std::vector<std::array<std::int64_t, 2>>& path, const Vec2& start,
+                         const Vec2& goal);
+
+}  // namespace floornav

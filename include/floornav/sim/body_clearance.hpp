@@ -1,0 +1,16 @@
+#pragma once
+/// @file
+/// How far the robot's body is from the obstacles: the disc, or the footprint polygon when the
+/// robot has one (a Jackal in BARN's narrow passages is a rectangle, not a disc).
+
+#include "floornav/geometry/pose2.hpp"
+#include "floornav/geometry/world.hpp"
+#include "floornav/sim/robot_spec.hpp"
+
+namespace floornav {
+
+/// Signed clearance (m) between the body at `pose` and the world; <= 0 is a collision.
+/// For a footprint it is exact within 0.5 m and a lower bound beyond.
+double body_clearance(const World& world, const RobotSpec& robot, const Pose2& pose);
+
+}  // namespace floornav
