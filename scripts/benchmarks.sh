@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Reproduces the tables of docs/BENCHMARKS.md. Usage: scripts/benchmarks.sh [chapter|movingai|ros|barn|all]
+# Needs ./build (scripts/quickstart.sh) and ../shared/maps beside the repository.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+fn=build/floornav
+maps=../shared/maps
+out=${FLOORNAV_BENCH_OUT:-out/benchmarks}
+what=${1:-all}
+kinds=(hybrid hard_switch blended go_to_goal)
+
+row() {  # label aggregate.json
+  python3 - "$1" "$2" <<'PY'
+import json, sys
+a = json.load(open(sys.argv[2]))
+f = lambda v, d=3: "–" if v is None else f"{v:.{d}f}"
+print(f"| {sys.argv[1]} | {a['runs']} | {f(a['success_rate'])} | {f(a['collision_rate'])} | "
+      f"{f(a['timeout_rate'])} | {f(a['stuck_rate'])} | {f(a['mean_time_reached'], 1)} | "
+      f"{f(a.get('mean_path_efficiency_reached'))} | {f(a.get('mean_score'))} |")
+PY
+}
+header() {
+  echo "| case | runs | success | collision | timeout | stuck | mean time (s) | path efficiency | BARN score |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+}
+
+if [[ $what == chapter || $what == all ]]; then
+  echo "### Chapter scenarios (scenarios/*.yaml, without the BARN template)"; header
+  for k in "${kinds[@]}"; do
+    $fn batch $(ls scenarios/*.yaml | grep -v template) --set controller.kind=$k --no-timing \
+      --out "$out/chapter-$k" >/dev/null
+    row "$k" "$out/chapter-$k/aggregate.json"
+  done
+fi
+if [[ $what == movingai || $what == all ]]; then
+  echo "### MovingAI (TurtleBot3 Burger, 1 m cells, first 100 rows of random-1)"; header
+  for m in room-32-32-4 warehouse-10-20-10-2-1; do
+    for k in "${kinds[@]}"; do
+      $fn batch scenarios/movingai_template.yaml --scen "$maps/movingai-mapf/$m-random-1.scen" \
+        --cell-size 1 --limit 100 --set controller.kind=$k --no-timing --out "$out/$m-$k" >/dev/null
+      row "$m $k" "$out/$m-$k/aggregate.json"
+    done
+  done
+fi
+if [[ $what == ros || $what == all ]]; then
+  echo "### ROS map_server maps (scenarios/ros/*.yaml)"; header
+  for k in "${kinds[@]}"; do
+    $fn batch scenarios/ros/*.yaml --set controller.kind=$k --no-timing --out "$out/ros-$k" >/dev/null
+    row "$k" "$out/ros-$k/aggregate.json"
+  done
+fi
+if [[ $what == barn || $what == all ]]; then
+  worlds=${BARN_WORLDS:-/tmp/floornav-barn-worlds}
+  if [[ ! -f $worlds/world_299.world ]]; then
+    mkdir -p "$worlds" && tar -xJf "$maps/barn/BARN_world_files.tar.xz" -C "$worlds"
+  fi
+  echo "### BARN, 300 worlds (Jackal; success within 1 m, no collision, 100 s)"; header
+  $fn batch scenarios/barn_template.yaml --worlds "$worlds" --barn-paths "$maps/barn/path_files" \
+    --no-timing --out "$out/barn" >/dev/null
+  row "hybrid (floornav)" "$out/barn/aggregate.json"
+  python3 - "$maps/barn/dwa_out.txt" <<'PY'
+import sys
+rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
+n = len(rows); s = sum(int(r[1]) for r in rows); c = sum(int(r[2]) for r in rows); t = sum(int(r[3]) for r in rows)
+print(f"| DWA baseline (dwa_out.txt, 50 worlds x 10) | {n} | {s/n:.3f} | {c/n:.3f} | {t/n:.3f} | – | "
+      f"{sum(float(r[4]) for r in rows if r[1]=='1')/max(s,1):.1f} | – | 0.169 (published) |")
+PY
+fi
