@@ -13,6 +13,12 @@ namespace floornav {
 namespace {
 // Robots with more sensors than this see enough at once; remembering points would only cost time.
 constexpr std::size_t kMaxSensorsForMemory = 32;
+// The transition log is reserved for this many switches, so that logging one allocates nothing
+// in the step loop; a run that chatters beyond it grows the log (amortised, rare).
+constexpr std::size_t kReservedTransitions = 1024;
+// Slack subtracted per step from the clearance lower bound, far above the rounding of a
+// clearance (~1e-15 m) or a step length, so the bound stays a true lower bound.
+constexpr double kClearanceBoundSlack = 1e-9;  // m
 }  // namespace
 
 Simulation::Simulation(const Scenario& scenario)
@@ -24,6 +30,7 @@ Simulation::Simulation(const Scenario& scenario)
   const std::size_t n_sensors = scenario.robot.sensors.size();
   use_memory_ = scenario.navigation.obstacle_memory > 0.0 && n_sensors <= kMaxSensorsForMemory;
   ranges_.assign(n_sensors, 0.0);
+  beams_.assign(n_sensors, SensorBeam{});
   sensed_.assign(n_sensors, Vec2::Zero());
   points_.assign(n_sensors + ObstacleMemory::kCapacity, Vec2::Zero());
   stuck_radius_ =
@@ -36,7 +43,12 @@ Simulation::Simulation(const Scenario& scenario)
   for (const auto& m : automaton_.modes()) r.mode_names.push_back(m.name);
   for (const auto& e : automaton_.edges()) r.guard_names.push_back(e.guard_name);
   r.mode_time.assign(r.mode_names.size(), 0.0);
+  r.transitions.reserve(kReservedTransitions);
+  r.transition_x.reserve(kReservedTransitions);
+  r.transition_y.reserve(kReservedTransitions);
   r.min_clearance = body_clearance(*scenario.world, scenario.robot, pose_);
+  disc_body_ = scenario.robot.footprint.empty();
+  clearance_bound_ = r.min_clearance;
   r.final_x = pose_.position.x();
   r.final_y = pose_.position.y();
   r.final_theta = pose_.theta;
@@ -48,7 +60,7 @@ Simulation::Simulation(const Scenario& scenario)
   }
   if (scenario.goals.empty())
     finish(RunStatus::Reached);
-  else if (r.min_clearance < 0.0) {
+  else if (r.min_clearance <= 0.0) {  // touching is a collision, as in step()
     r.collided = true;
     finish(RunStatus::Collision);
   }
@@ -74,8 +86,12 @@ bool Simulation::step() {
   RunResult& r = result_;
 
   // 1. sense
-  sense_ranges(*sc.world, pose_, robot.sensors, robot.sensor_noise, rng_, ranges_);
-  std::size_t n = ranges_to_points(pose_, robot.sensors, ranges_, sensed_);
+  // The body disc is clear of every obstacle by at least clearance_bound_, so sensors mounted
+  // within it start outside the obstacles: the world need not test that per ray.
+  compute_sensor_beams(pose_, robot.sensors, beams_);
+  const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
+  sense_ranges(*sc.world, beams_, robot.sensors, robot.sensor_noise, rng_, ranges_, free);
+  std::size_t n = ranges_to_points(beams_, robot.sensors, ranges_, sensed_);
   std::span<const Vec2> points(sensed_.data(), n);
   if (use_memory_) {
     n = memory_.update(points, t_, sc.navigation.obstacle_memory, 0.25 * robot.body_radius,
@@ -116,7 +132,8 @@ bool Simulation::step() {
 
   // 5. integrate
   const Pose2 next = integrate_unicycle(pose_, driven, dt);
-  r.path_length += (next.position - pose_.position).norm();
+  const double moved = (next.position - pose_.position).norm();
+  r.path_length += moved;
   pose_ = next;
   t_ += dt;
   ++r.steps;
@@ -127,13 +144,19 @@ bool Simulation::step() {
     r.trajectory.push_back({t_, pose_.position.x(), pose_.position.y(), pose_.theta, driven.v,
                             driven.omega, wheels.left, wheels.right, state_.mode});
 
-  // 6. check
-  const double clearance = body_clearance(*sc.world, robot, pose_);
-  r.min_clearance = std::min(r.min_clearance, clearance);
-  if (clearance <= 0.0) {
-    r.collided = true;
-    finish(RunStatus::Collision);
-    return false;
+  // 6. check. A disc body's clearance changes by at most the distance moved, so while that
+  // lower bound stays above min_clearance the exact value could change neither min_clearance
+  // nor the collision test (min_clearance >= 0 while running): it is computed only when it might.
+  clearance_bound_ -= moved + kClearanceBoundSlack;
+  if (!disc_body_ || clearance_bound_ <= r.min_clearance) {
+    const double clearance = body_clearance(*sc.world, robot, pose_);
+    clearance_bound_ = clearance;
+    r.min_clearance = std::min(r.min_clearance, clearance);
+    if (clearance <= 0.0) {
+      r.collided = true;
+      finish(RunStatus::Collision);
+      return false;
+    }
   }
   if ((pose_.position - stuck_anchor_).norm() > stuck_radius_) {
     stuck_anchor_ = pose_.position;
