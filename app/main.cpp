@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "batch_sources.hpp"
+#include "bench_command.hpp"
 #include "demo_scenario.hpp"
 #include "floornav/io/batch.hpp"
 #include "floornav/io/input_error.hpp"
@@ -107,6 +108,14 @@ int main(int argc, char** argv) {
   auto* demo = app.add_subcommand("demo", "Run the built-in factory floor demo (no files needed)");
   demo->add_option("--out", demo_out, "output folder (default: out/factory-delivery)");
 
+  // bench
+  BenchOptions bench_opt;
+  auto* bench = app.add_subcommand("bench", "Measure simulation speed on the standard cases");
+  bench->add_flag("--json", bench_opt.json, "one JSON object instead of the table");
+  bench->add_option("--seconds", bench_opt.seconds_per_case, "timed seconds per case (default 1)")
+      ->check(CLI::PositiveNumber);
+  bench->add_option("--filter", bench_opt.filter, "only cases whose name contains this");
+
   // presets
   auto* presets = app.add_subcommand("presets", "List the robot presets");
 
@@ -126,6 +135,7 @@ int main(int argc, char** argv) {
       const Scenario s = load_scenario_text(app::kDemoScenarioYaml, "factory-delivery.yaml");
       return run_one(s, demo_out, false);
     }
+    if (*bench) return run_bench(bench_opt);
     if (*presets) {
       for (auto name : robot_preset_names()) {
         const RobotPreset p = *find_robot_preset(name);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "floornav/geometry/polygon.hpp"
 #include "floornav/grid/occupancy_grid.hpp"
@@ -109,6 +110,11 @@ void World::build_index() {
             emit);
       },
       ix.segment_offsets, ix.segment_items);
+  ix.segment_rays.reserve(ix.segment_items.size());
+  for (const std::uint32_t i : ix.segment_items)
+    ix.segment_rays.push_back({segments_[i].a, segments_[i].b - segments_[i].a,
+                               segments_[i].a.cwiseMin(segments_[i].b),
+                               segments_[i].a.cwiseMax(segments_[i].b)});
   fill(
       circles_.size(),
       [&](std::size_t i, auto&& emit) {
@@ -127,13 +133,21 @@ void World::build_index() {
       ix.polygon_offsets, ix.polygon_items);
 }
 
+namespace {
+// clamp(floor(v), 0, n - 1) without a call to floor(): for 0 <= v < n, truncation is the floor.
+// The same cell for every v (NaN and anything below 0 give cell 0).
+int clamp_cell(double v, int n) {
+  if (!(v >= 0.0)) return 0;
+  if (v >= n) return n - 1;
+  return static_cast<int>(v);
+}
+}  // namespace
+
 int World::cell_x(double x) const {
-  return std::clamp(static_cast<int>(std::floor((x - index_.origin.x()) * index_.inv_cell)), 0,
-                    index_.nx - 1);
+  return clamp_cell((x - index_.origin.x()) * index_.inv_cell, index_.nx);
 }
 int World::cell_y(double y) const {
-  return std::clamp(static_cast<int>(std::floor((y - index_.origin.y()) * index_.inv_cell)), 0,
-                    index_.ny - 1);
+  return clamp_cell((y - index_.origin.y()) * index_.inv_cell, index_.ny);
 }
 
 bool World::inside_solid_shape(const Vec2& p) const {
@@ -155,12 +169,41 @@ bool World::is_inside_obstacle(const Vec2& p) const {
   return grid_ != nullptr && grid_->clearance(p) <= 0.0;
 }
 
-double World::ray_in_cell(int cell, const Vec2& origin, const Vec2& dir, double best) const {
+double World::ray_in_cell(int cell, const Vec2& origin, const Vec2& dir, double best,
+                          const Box2* ray_box) const {
   const auto c = static_cast<std::size_t>(cell);
-  for (std::uint32_t k = index_.segment_offsets[c]; k < index_.segment_offsets[c + 1]; ++k) {
-    if (auto t = intersect_ray(segments_[index_.segment_items[k]], origin, dir); t && *t < best)
-      best = *t;
-  }
+  const SegmentRay* rays = index_.segment_rays.data();
+  const auto segments = [&](auto boxed) {
+    for (std::uint32_t k = index_.segment_offsets[c]; k < index_.segment_offsets[c + 1]; ++k) {
+      const SegmentRay& s = rays[k];
+      // A segment whose box misses the (short) ray's box cannot be hit: skip the test.
+      if constexpr (decltype(boxed)::value) {
+        if (s.lo.x() > ray_box->max.x() || s.hi.x() < ray_box->min.x() ||
+            s.lo.y() > ray_box->max.y() || s.hi.y() < ray_box->min.y())
+          continue;
+      }
+      // intersect_ray(Segment) of segment.cpp, inlined: the same arithmetic in the same order
+      // (so the same bits), on contiguous data with b - a stored. The along-segment division is
+      // only paid for a hit that would be nearer than `best`.
+      const Vec2 w = s.a - origin;
+      const double denom = cross(dir, s.e);
+      if (std::abs(denom) < 1e-15) {
+        // Parallel: take the reference path (rare).
+        if (auto t = intersect_ray(segments_[index_.segment_items[k]], origin, dir); t && *t < best)
+          best = *t;
+        continue;
+      }
+      const double t = cross(w, s.e) / denom;  // along the ray
+      if (!(t >= 0.0 && t < best)) continue;   // behind, no nearer, or NaN: no change either way
+      const double u = cross(w, dir) / denom;  // along the segment, 0..1
+      if (u < 0.0 || u > 1.0) continue;
+      best = t;
+    }
+  };
+  if (ray_box != nullptr)
+    segments(std::true_type{});
+  else
+    segments(std::false_type{});
   for (std::uint32_t k = index_.circle_offsets[c]; k < index_.circle_offsets[c + 1]; ++k) {
     if (auto t = intersect_ray(circles_[index_.circle_items[k]], origin, dir); t && *t < best)
       best = *t;
@@ -169,18 +212,43 @@ double World::ray_in_cell(int cell, const Vec2& origin, const Vec2& dir, double 
 }
 
 double World::cast_ray(const Vec2& origin, const Vec2& dir, double max_range) const {
+  if (inside_solid_shape(origin)) return 0.0;
+  return cast_ray_from_free(origin, dir, max_range);
+}
+
+double World::cast_ray_from_free(const Vec2& origin, const Vec2& dir, double max_range) const {
   double best = max_range;
   if (grid_) best = std::min(best, grid_->cast_ray(origin, dir, max_range));
-  if (inside_solid_shape(origin)) return 0.0;
   if (segments_.empty() && circles_.empty()) return best;
 
-  // Clip the ray to the index box, then walk its cells in order (Amanatides & Woo). A hit found
-  // in a cell is final once it lies before the cell's exit.
   const Index& ix = index_;
   const Vec2 lo = ix.origin;
   const Vec2 hi = ix.origin + Vec2(ix.nx * ix.cell, ix.ny * ix.cell);
+
+  // A short ray (an IR sensor's) usually stays in one cell. Then every surface it can hit before
+  // `best` passes through that cell, so it is among the cell's items: the cell alone gives the
+  // walk's answer, bit for bit. The margin keeps the box test clear of rounding.
+  // (A ray longer than a cell's diagonal cannot fit in one.)
+  if (best <= 1.5 * ix.cell) {
+    constexpr double kMargin = 1e-9;  // m
+    const Vec2 end = origin + best * dir;
+    const Box2 ray_box{origin.cwiseMin(end).array() - kMargin,
+                       origin.cwiseMax(end).array() + kMargin};
+    if (ray_box.min.x() >= lo.x() && ray_box.min.y() >= lo.y() && ray_box.max.x() <= hi.x() &&
+        ray_box.max.y() <= hi.y()) {
+      const int x = cell_x(ray_box.min.x()), y = cell_y(ray_box.min.y());
+      if (x == cell_x(ray_box.max.x()) && y == cell_y(ray_box.max.y()))
+        return ray_in_cell(y * ix.nx + x, origin, dir, best, &ray_box);
+    }
+  }
+
+  // Clip the ray to the index box, then walk its cells in order (Amanatides & Woo). A hit found
+  // in a cell is final once it lies before the cell's exit. A ray starting inside the box needs
+  // no clipping: it enters at t = 0, and the walk stops where it leaves the box.
   double t_enter = 0.0, t_exit = best;
-  for (int a = 0; a < 2; ++a) {
+  const bool starts_inside =
+      origin.x() > lo.x() && origin.x() < hi.x() && origin.y() > lo.y() && origin.y() < hi.y();
+  for (int a = 0; a < 2 && !starts_inside; ++a) {
     if (std::abs(dir[a]) < 1e-300) {
       if (origin[a] < lo[a] || origin[a] > hi[a]) return best;
       continue;

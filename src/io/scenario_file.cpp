@@ -1,10 +1,12 @@
 #include "floornav/io/scenario_file.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "floornav/automaton/hybrid_automaton.hpp"
@@ -27,6 +29,23 @@ namespace {
 constexpr std::size_t kMaxScenarioBytes = 16u << 20;  // a scenario is text, not data
 constexpr std::size_t kMaxObstacles = 1000000;
 constexpr double kPointPostRadius = 0.03;  // m, the radius given to `point:` obstacles
+// The simplicity check is quadratic in the points: bound it so that no file can make it hang.
+constexpr std::size_t kMaxPolygonPoints = 10000;
+
+/// YAML text -> tree; errors name `file` (or the --set value when `file` is empty).
+YAML::Node parse_yaml(const std::string& text, const std::string& file, const std::string& where) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    throw InputError(file, where.empty() ? fmt::format("line {}", e.mark.line + 1) : where,
+                     "not valid YAML: the text nests too deeply");
+  } catch (const YAML::ParserException& e) {
+    throw InputError(file, where.empty() ? fmt::format("line {}", e.mark.line + 1) : where,
+                     "not valid YAML: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw InputError(file, where, std::string("not valid YAML: ") + e.what());
+  }
+}
 
 // --- --set overrides ------------------------------------------------------------------------
 
@@ -38,9 +57,9 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
   const std::string text = assignment.substr(eq + 1);
   YAML::Node value;
   try {
-    value = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError("", "--set " + key, fmt::format("cannot read value '{}': {}", text, e.msg));
+    value = parse_yaml(text, "", "--set " + key);
+  } catch (const InputError& e) {
+    throw InputError("", "--set " + key, fmt::format("cannot read value '{}': {}", text, e.detail));
   }
   std::vector<std::string> parts;
   std::stringstream ss(key);
@@ -107,6 +126,9 @@ void read_obstacle(const std::string& file, const YAML::Node& item, const std::s
   if (r.has("polygon")) {
     ++kinds;
     const YAML::Node n = r.get("polygon");
+    if (n.IsSequence() && n.size() > kMaxPolygonPoints)
+      fail(file, n, r.path_of("polygon"),
+           fmt::format("a polygon has at most {} points, got {}", kMaxPolygonPoints, n.size()));
     auto pts = read_points(file, n, r.path_of("polygon"));
     if (pts.size() < 3)
       fail(file, n, r.path_of("polygon"),
@@ -385,6 +407,16 @@ void validate_scenario(const Scenario& s, const std::string& file) {
     bad("controller.pid.integral_limit", "must not be negative");
 
   const World& w = *s.world;
+  // Without bounds a map is the whole world: off the map is unknown space, not free floor.
+  Vec2 map_lo, map_hi;
+  const bool map_only = w.grid() != nullptr && !w.bounds();
+  if (map_only) w.grid()->world_extent(&map_lo, &map_hi);
+  auto off_map = [&](const Vec2& p) { return map_only && !Box2{map_lo, map_hi}.contains(p); };
+  if (off_map(s.start.position))
+    bad("robot.start",
+        fmt::format("({}, {}) is outside the map, which spans ({}, {}) to ({}, {}) m",
+                    s.start.position.x(), s.start.position.y(), map_lo.x(), map_lo.y(), map_hi.x(),
+                    map_hi.y()));
   if (w.is_inside_obstacle(s.start.position) || body_clearance(w, r, s.start) <= 0.0)
     bad("robot.start",
         fmt::format("the robot at ({}, {}) overlaps an obstacle or lies outside the world "
@@ -394,22 +426,44 @@ void validate_scenario(const Scenario& s, const std::string& file) {
   for (std::size_t i = 0; i < s.goals.size(); ++i) {
     const Vec2 g = s.goals[i];
     const std::string key = s.goals.size() == 1 ? "goal" : fmt::format("goals[{}]", i);
+    if (off_map(g))
+      bad(key, fmt::format("({}, {}) is outside the map, which spans ({}, {}) to ({}, {}) m", g.x(),
+                           g.y(), map_lo.x(), map_lo.y(), map_hi.x(), map_hi.y()));
     if (w.is_inside_obstacle(g) || w.clearance(g) <= 0.0)
       bad(key, fmt::format("({}, {}) is inside an obstacle or outside the world", g.x(), g.y()));
   }
 }
 
+namespace {
+
+/// An error about a key that a --set replaced, blamed on that --set: the file's line numbers
+/// mean nothing for it. nullopt for errors about the file's own keys or another file.
+std::optional<InputError> blame_override(const InputError& e, const std::string& file,
+                                         std::span<const std::string> overrides) {
+  if (e.file != file) return std::nullopt;
+  std::string key = e.where;  // "line 3: sim.dt", "sim.dt" or "line 3"
+  if (key.rfind("line ", 0) == 0) {
+    const auto colon = key.find(": ");
+    key = colon == std::string::npos ? std::string() : key.substr(colon + 2);
+  }
+  if (key.empty()) return std::nullopt;
+  for (auto it = overrides.rbegin(); it != overrides.rend(); ++it) {  // the last --set wins
+    const std::string set_key = it->substr(0, it->find('='));
+    const bool below = key.size() > set_key.size() &&
+                       key.compare(0, set_key.size(), set_key) == 0 &&
+                       (key[set_key.size()] == '.' || key[set_key.size()] == '[');
+    if (key != set_key && !below) continue;
+    return InputError(file, "--set " + *it + (below ? ": " + key : std::string()), e.detail);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& origin,
                             std::span<const std::string> overrides) {
   const std::string file = origin.string();
-  YAML::Node root;
-  try {
-    root = YAML::Load(std::string(yaml));
-  } catch (const YAML::ParserException& e) {
-    throw InputError(file, fmt::format("line {}", e.mark.line + 1), "not valid YAML: " + e.msg);
-  } catch (const YAML::Exception& e) {
-    throw InputError(file, "", std::string("not valid YAML: ") + e.what());
-  }
+  YAML::Node root = parse_yaml(std::string(yaml), file, "");
   if (root.IsDefined() && !root.IsNull() && !root.IsMap())
     throw InputError(file, "line 1", "a scenario is a mapping of sections (world, robot, goal)");
   if (!root.IsDefined() || root.IsNull())
@@ -419,6 +473,9 @@ Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& 
     return read_scenario(root, origin);
   } catch (const YAML::Exception& e) {
     throw InputError(file, fmt::format("line {}", e.mark.line + 1), e.msg);
+  } catch (const InputError& e) {
+    if (auto blamed = blame_override(e, file, overrides)) throw std::move(*blamed);
+    throw;
   }
 }
 

@@ -36,8 +36,10 @@ std::string scalar_of(const std::string& file, const YAML::Node& node, const std
 }  // namespace
 
 std::string where_of(const YAML::Node& node, const std::string& key) {
+  // A missing node has no place in the file: name the key alone. (Values given with --set are
+  // blamed on their --set by load_scenario_text.)
   const auto mark = node.Mark();
-  if (mark.line < 0) return key.empty() ? std::string("--set") : key + " (from --set)";
+  if (mark.line < 0) return key;
   const std::string line = fmt::format("line {}", mark.line + 1);
   return key.empty() ? line : line + ": " + key;
 }
@@ -68,6 +70,8 @@ double read_double(const std::string& file, const YAML::Node& node, const std::s
     fail(file, node, key, fmt::format("expected a number, got '{}'", s));
   }
   if (!std::isfinite(v)) fail(file, node, key, fmt::format("'{}' is not a finite number", s));
+  if (std::abs(v) > kMaxInputMagnitude)
+    fail(file, node, key, fmt::format("'{}' is too large (more than 1e9 in magnitude)", s));
   return v;
 }
 
@@ -93,6 +97,9 @@ std::string read_string(const std::string& file, const YAML::Node& node, const s
 
 std::vector<double> read_numbers(const std::string& file, const YAML::Node& node,
                                  const std::string& key, std::size_t n) {
+  if (!node.IsDefined())
+    fail(file, node, key,
+         n ? fmt::format("missing (expected a list of {} numbers)", n) : std::string("missing"));
   if (!node.IsSequence())
     fail(file, node, key,
          n ? fmt::format("expected a list of {} numbers", n) : std::string("expected a list"));
@@ -123,6 +130,12 @@ MapReader::MapReader(std::string file, YAML::Node node, std::string path)
   if (!node_.IsMap())
     fail(file_, node_, path_.empty() ? "(top level)" : path_,
          "expected a mapping of keys to values");
+  // yaml-cpp keeps both entries of a repeated key and returns the first: refuse the ambiguity.
+  std::set<std::string> seen;
+  for (const auto& kv : node_) {
+    if (kv.first.IsScalar() && !seen.insert(kv.first.Scalar()).second)
+      fail(file_, kv.first, path_of(kv.first.Scalar()), "given twice");
+  }
 }
 
 bool MapReader::has(const std::string& key) const {

@@ -12,10 +12,12 @@
 
 #include "floornav/geometry/vec2.hpp"
 #include "floornav/io/input_error.hpp"
+#include "maps/text_parse.hpp"  // kMaxInputMagnitude
 
 namespace floornav::io_detail {
 
-/// Where a node came from, for error messages: "line 12" or "--set" for override values.
+/// Where a node came from, for error messages: "line 12: key", or the key alone for a missing
+/// node.
 std::string where_of(const YAML::Node& node, const std::string& key);
 
 [[noreturn]] void fail(const std::string& file, const YAML::Node& node, const std::string& key,

@@ -1,37 +1,91 @@
 #include "floornav/sensing/range_sensor.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace floornav {
 
-void sense_ranges(const World& world, const Pose2& robot, std::span<const RangeSensorSpec> sensors,
-                  double noise_stddev, Rng& rng, std::span<double> ranges) {
-  for (std::size_t i = 0; i < sensors.size(); ++i) {
-    const RangeSensorSpec& s = sensors[i];
-    const Pose2 m = robot.compose(s.mount);
-    double r = s.max_range;
-    if (s.cone_rays <= 1 || s.cone_angle <= 0.0) {
-      r = world.cast_ray(m.position, m.heading(), s.max_range);
-    } else {
-      for (int k = 0; k < s.cone_rays; ++k) {
-        const double a =
-            m.theta + s.cone_angle * (static_cast<double>(k) / (s.cone_rays - 1) - 0.5);
-        r = std::min(r, world.cast_ray(m.position, Vec2(std::cos(a), std::sin(a)), s.max_range));
-      }
-    }
-    // A sensor sees nothing beyond its range: noise is added only to real returns.
-    if (noise_stddev > 0.0 && r < s.max_range) r += noise_stddev * rng.normal();
-    ranges[i] = std::clamp(r, s.min_range, s.max_range);
-  }
+namespace {
+
+// Pose2::compose and Pose2::heading spelled out, with cos/sin of the robot's heading passed in:
+// the same operations in the same order as rotate(), so the same bits.
+SensorBeam beam_of(const Pose2& robot, double c, double s, const RangeSensorSpec& spec) {
+  const Vec2& m = spec.mount.position;
+  SensorBeam b;
+  b.origin = robot.position + Vec2(c * m.x() - s * m.y(), s * m.x() + c * m.y());
+  b.theta = wrap_angle(robot.theta + spec.mount.theta);
+  b.dir = Vec2(std::cos(b.theta), std::sin(b.theta));
+  return b;
 }
 
-std::size_t ranges_to_points(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
+// A margin against rounding: the disc's radius is a lower bound computed in floating point.
+constexpr double kFreeMargin = 1e-9;  // m
+
+double sense_one(const World& world, const SensorBeam& b, const RangeSensorSpec& s,
+                 double noise_stddev, Rng& rng, const FreeDisc& free) {
+  const double free_radius = free.radius - kFreeMargin;
+  const bool known_free =
+      free_radius > 0.0 && (b.origin - free.centre).squaredNorm() < free_radius * free_radius;
+  const auto cast = [&](const Vec2& dir) {
+    return known_free ? world.cast_ray_from_free(b.origin, dir, s.max_range)
+                      : world.cast_ray(b.origin, dir, s.max_range);
+  };
+  double r = s.max_range;
+  if (s.cone_rays <= 1 || s.cone_angle <= 0.0) {
+    r = cast(b.dir);
+  } else {
+    for (int k = 0; k < s.cone_rays; ++k) {
+      const double a = b.theta + s.cone_angle * (static_cast<double>(k) / (s.cone_rays - 1) - 0.5);
+      r = std::min(r, cast(Vec2(std::cos(a), std::sin(a))));
+    }
+  }
+  // A sensor sees nothing beyond its range: noise is added only to real returns.
+  if (noise_stddev > 0.0 && r < s.max_range) r += noise_stddev * rng.normal();
+  return std::clamp(r, s.min_range, s.max_range);
+}
+
+}  // namespace
+
+void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
+                          std::span<SensorBeam> beams) {
+  const double c = std::cos(robot.theta), s = std::sin(robot.theta);
+  for (std::size_t i = 0; i < sensors.size(); ++i) beams[i] = beam_of(robot, c, s, sensors[i]);
+}
+
+void sense_ranges(const World& world, std::span<const SensorBeam> beams,
+                  std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
+                  std::span<double> ranges, const FreeDisc& free) {
+  for (std::size_t i = 0; i < sensors.size(); ++i)
+    ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free);
+}
+
+std::size_t ranges_to_points(std::span<const SensorBeam> beams,
+                             std::span<const RangeSensorSpec> sensors,
                              std::span<const double> ranges, std::span<Vec2> points) {
   std::size_t n = 0;
   for (std::size_t i = 0; i < sensors.size(); ++i) {
     if (ranges[i] >= sensors[i].max_range) continue;
-    const Pose2 m = robot.compose(sensors[i].mount);
-    points[n++] = m.position + ranges[i] * m.heading();
+    points[n++] = beams[i].origin + ranges[i] * beams[i].dir;
+  }
+  return n;
+}
+
+void sense_ranges(const World& world, const Pose2& robot, std::span<const RangeSensorSpec> sensors,
+                  double noise_stddev, Rng& rng, std::span<double> ranges) {
+  const double c = std::cos(robot.theta), s = std::sin(robot.theta);
+  for (std::size_t i = 0; i < sensors.size(); ++i)
+    ranges[i] = sense_one(world, beam_of(robot, c, s, sensors[i]), sensors[i], noise_stddev, rng,
+                          FreeDisc{});
+}
+
+std::size_t ranges_to_points(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
+                             std::span<const double> ranges, std::span<Vec2> points) {
+  const double c = std::cos(robot.theta), s = std::sin(robot.theta);
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    if (ranges[i] >= sensors[i].max_range) continue;
+    const SensorBeam b = beam_of(robot, c, s, sensors[i]);
+    points[n++] = b.origin + ranges[i] * b.dir;
   }
   return n;
 }

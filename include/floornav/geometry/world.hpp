@@ -45,6 +45,12 @@ class World {
   /// nothing is hit closer. 0 when `origin` is inside an obstacle.
   double cast_ray(const Vec2& origin, const Vec2& dir, double max_range) const;
 
+  /// `cast_ray` for an `origin` the caller knows to lie outside every obstacle shape (circles,
+  /// polygons, bounds; the occupancy grid is still checked), e.g. because it is nearer than
+  /// `clearance(c)` to a point `c`. Skips the inside test, so a fan of rays pays for it once.
+  /// The result is bit for bit that of `cast_ray`.
+  double cast_ray_from_free(const Vec2& origin, const Vec2& dir, double max_range) const;
+
   /// Signed distance from `p` to the nearest obstacle surface: negative inside an obstacle or
   /// outside the bounds. +infinity in an empty, unbounded world.
   double clearance(const Vec2& p) const;
@@ -75,6 +81,14 @@ class World {
   std::size_t edge_count() const { return segments_.size(); }
 
  private:
+  /// A segment as the ray test reads it (hot data, 64 bytes): start point, edge vector b - a,
+  /// and bounding box.
+  struct SegmentRay {
+    Vec2 a{Vec2::Zero()};
+    Vec2 e{Vec2::Zero()};
+    Vec2 lo{Vec2::Zero()};
+    Vec2 hi{Vec2::Zero()};
+  };
   struct Index {
     Vec2 origin{Vec2::Zero()};
     double cell{1.0};
@@ -83,6 +97,7 @@ class World {
     int ny{0};
     // Compressed rows: items of cell c are [offsets[c], offsets[c+1]) in each list.
     std::vector<std::uint32_t> segment_offsets, segment_items;
+    std::vector<SegmentRay> segment_rays;  ///< segments_[segment_items[k]], copied in cell order
     std::vector<std::uint32_t> circle_offsets, circle_items;
     std::vector<std::uint32_t> polygon_offsets, polygon_items;
   };
@@ -91,8 +106,10 @@ class World {
   bool inside_solid_shape(const Vec2& p) const;
   int cell_x(double x) const;
   int cell_y(double y) const;
-  /// Smallest hit distance among the items of one cell, below `best`.
-  double ray_in_cell(int cell, const Vec2& origin, const Vec2& dir, double best) const;
+  /// Smallest hit distance among the items of one cell, below `best`. With `ray_box` (the ray's
+  /// box up to `best`, with a margin), segments whose boxes miss it are skipped untested.
+  double ray_in_cell(int cell, const Vec2& origin, const Vec2& dir, double best,
+                     const Box2* ray_box = nullptr) const;
 
   std::optional<Box2> bounds_;
   std::vector<Circle> circles_;

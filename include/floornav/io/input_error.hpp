@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace floornav {
 
@@ -13,18 +14,18 @@ struct InputError : std::runtime_error {
   InputError(std::string file_, std::string where_, std::string what_)
       : std::runtime_error(render(file_, where_, what_)),
         file(std::move(file_)),
-        where(std::move(where_)) {}
+        where(std::move(where_)),
+        detail(std::move(what_)) {}
 
-  std::string file;   ///< the file at fault ("" for a command-line value)
-  std::string where;  ///< "line 12", "controller.kind", ...
+  std::string file;    ///< the file at fault ("" for a command-line value)
+  std::string where;   ///< "line 12", "controller.kind", ...
+  std::string detail;  ///< what is wrong, without the file and the place
 
  private:
+  /// "file:where: what" on one line: control characters and bytes that are not UTF-8 are
+  /// spelled as escapes (\n, \r, \xHH), whatever the input the message quotes held.
   static std::string render(const std::string& file, const std::string& where,
-                            const std::string& what) {
-    std::string out = file.empty() ? std::string("<command line>") : file;
-    if (!where.empty()) out += ":" + where;
-    return out + ": " + what;
-  }
+                            const std::string& what);
 };
 
 }  // namespace floornav

@@ -19,6 +19,39 @@ struct RangeSensorSpec {
   int cone_rays{1};        ///< rays cast across the cone (the nearest return wins)
 };
 
+/// One sensor's axis in the world frame at one step: `robot.compose(mount)`, with its unit
+/// direction computed once for both the ray cast and the obstacle point.
+struct SensorBeam {
+  Vec2 origin{Vec2::Zero()};  ///< m, world frame
+  Vec2 dir{1.0, 0.0};         ///< unit vector (cos theta, sin theta)
+  double theta{0.0};          ///< rad, world frame, wrapped to (-pi, pi]
+};
+
+/// A disc known to hold no obstacle shape (circles, polygons, outside of the bounds; an occupancy
+/// grid is not counted): beams starting strictly inside it skip World's inside test. Radius 0
+/// (the default) claims nothing.
+struct FreeDisc {
+  Vec2 centre{Vec2::Zero()};  ///< m, world frame
+  double radius{0.0};         ///< m
+};
+
+/// Writes the world-frame beam of each of `sensors` mounted on `robot` to `beams` (same size).
+/// Bit for bit `robot.compose(mount)` and its heading, with the robot's sine and cosine taken
+/// once for all sensors. No allocation.
+void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
+                          std::span<SensorBeam> beams);
+
+/// `sense_ranges` below, from beams already computed (`beams[i]` belongs to `sensors[i]`).
+/// Beams starting inside `free` skip the inside-obstacle test; the ranges are the same.
+void sense_ranges(const World& world, std::span<const SensorBeam> beams,
+                  std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
+                  std::span<double> ranges, const FreeDisc& free = {});
+
+/// `ranges_to_points` below, from beams already computed.
+std::size_t ranges_to_points(std::span<const SensorBeam> beams,
+                             std::span<const RangeSensorSpec> sensors,
+                             std::span<const double> ranges, std::span<Vec2> points);
+
 /// Casts every sensor of `sensors` from `robot` into `world`, writing one range per sensor to
 /// `ranges` (same size as `sensors`). With `noise_stddev` > 0, Gaussian noise (metres) from
 /// `rng` is added before clamping to [min_range, max_range]. No allocation.

@@ -10,8 +10,9 @@
 ///   7. record: metrics, and the trajectory row when recording.
 /// A run ends `reached` (every goal), `collision`, `timeout` (t_max) or `stuck` (the robot stayed
 /// within stuck_radius for stuck_window seconds). The step never throws and allocates nothing
-/// once running (trajectory recording aside). Same scenario and seed: the same trajectory, bit for
-/// bit.
+/// once running (trajectory recording aside; the transition log is reserved for 1024 switches and
+/// grows only beyond that; tests/allocation_test.cpp checks). Same scenario and seed: the same
+/// trajectory, bit for bit.
 
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "floornav/control/navigation_automaton.hpp"
 #include "floornav/control/pid.hpp"
 #include "floornav/sensing/obstacle_memory.hpp"
+#include "floornav/sensing/range_sensor.hpp"
 #include "floornav/sim/run_result.hpp"
 #include "floornav/sim/scenario.hpp"
 
@@ -57,6 +59,11 @@ class Simulation {
   Vec2 stuck_anchor_{Vec2::Zero()};
   double stuck_anchor_time_{0.0};
   double stuck_radius_{0.0};
+  /// m: a lower bound on the body's clearance at pose_ (exact right after it is computed).
+  /// Disc bodies only; it lets a step skip the clearance query and the per-ray inside test.
+  double clearance_bound_{0.0};
+  bool disc_body_{true};  ///< no footprint polygon: the body is the disc
+  std::vector<SensorBeam> beams_;
   std::vector<double> ranges_;
   std::vector<Vec2> sensed_;
   std::vector<Vec2> points_;

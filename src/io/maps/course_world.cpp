@@ -5,6 +5,7 @@
 #include <string>
 
 #include "floornav/geometry/angle.hpp"
+#include "floornav/geometry/polygon.hpp"
 #include "floornav/io/input_error.hpp"
 #include "io/maps/xml_input.hpp"
 
@@ -12,6 +13,9 @@ namespace floornav {
 namespace {
 
 using tinyxml2::XMLElement;
+
+// The simplicity check is quadratic in the points: bound it so that no file can make it hang.
+constexpr std::size_t kMaxPolygonPoints = 10000;
 
 /// The `<pose x y theta>` child of `parent`, required.
 Pose2 read_pose(const XMLElement* parent, const std::string& file) {
@@ -67,10 +71,20 @@ CourseWorld load_course_world(const std::filesystem::path& xml) {
         polygon.push_back(pose.transform_point({io_detail::number_attribute(p, "x", file),
                                                 io_detail::number_attribute(p, "y", file)}));
       }
+      if (polygon.size() > kMaxPolygonPoints) {
+        throw InputError(file, io_detail::where_of(geometry),
+                         "an obstacle has at most " + std::to_string(kMaxPolygonPoints) +
+                             " <point>s, got " + std::to_string(polygon.size()));
+      }
       if (polygon.size() < 3) {
         throw InputError(
             file, io_detail::where_of(e),
             "an obstacle needs at least 3 <point>s, got " + std::to_string(polygon.size()));
+      }
+      if (!is_simple(polygon)) {
+        throw InputError(file, io_detail::where_of(geometry),
+                         "the obstacle's polygon crosses itself or has repeated points (it must "
+                         "be simple)");
       }
       world.obstacles.push_back(std::move(polygon));
     }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -83,12 +84,22 @@ OccupancyGrid load_movingai_map(const std::filesystem::path& map, double cell_si
     if (slot >= 0) in.fail("'" + std::string(word) + "' given twice");
     slot = *n;
   }
-  if (static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) >
-      io_detail::kMaxMapCells) {
+  // Each side alone first: the product of two sides near 2^32 would wrap around.
+  const auto w64 = static_cast<std::uint64_t>(width);
+  const auto h64 = static_cast<std::uint64_t>(height);
+  if (w64 > io_detail::kMaxMapCells || h64 > io_detail::kMaxMapCells ||
+      w64 * h64 > io_detail::kMaxMapCells) {
     in.fail("map of " + std::to_string(width) + " x " + std::to_string(height) +
             " cells is too large (limit 2^28)");
   }
   if (!in.next(line) || io_detail::trim(line) != "map") in.fail("expected 'map'");
+  // Refuse a header that promises more cells than the file holds before allocating for them.
+  std::error_code ec;
+  const std::uint64_t file_bytes = std::filesystem::file_size(map, ec);
+  if (!ec && file_bytes < w64 * h64) {
+    in.fail("file ends before its " + std::to_string(height) + " map rows of " +
+            std::to_string(width) + " cells (" + std::to_string(file_bytes) + " bytes in all)");
+  }
 
   const int w = static_cast<int>(width);
   const int h = static_cast<int>(height);
@@ -159,7 +170,15 @@ std::vector<MovingAiCase> load_movingai_scen(const std::filesystem::path& scen) 
     c.goal_y = integer(7, 0, c.height - 1);
     const auto length = io_detail::parse_double(f[8]);
     if (!length || *length < 0.0) {
-      in.fail("optimal length must be a non-negative number, got '" + std::string(f[8]) + "'");
+      std::string what = "optimal length must be a non-negative number, got ";
+      if (const auto size = io_detail::magnitude_problem(f[8])) {
+        what += *size;
+      } else {
+        what += '\'';
+        what.append(f[8]);
+        what += '\'';
+      }
+      in.fail(what);
     }
     c.optimal_length = *length;
     cases.push_back(std::move(c));

@@ -5,6 +5,7 @@
 // decimal numbers.
 
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -99,7 +100,8 @@ RasterImage read_pgm(const std::filesystem::path& path) {
         file, tok.where(),
         "image size " + std::to_string(width) + " x " + std::to_string(height) + " is empty");
   }
-  if (width * height > kMaxMapCells) {
+  // Each side alone first: two sides of up to 2^40 would wrap their product around 2^64.
+  if (width > kMaxMapCells || height > kMaxMapCells || width * height > kMaxMapCells) {
     throw InputError(file, tok.where(),
                      "image of " + std::to_string(width) + " x " + std::to_string(height) +
                          " pixels is too large (limit 2^28 = " + std::to_string(kMaxMapCells) +
@@ -110,11 +112,34 @@ RasterImage read_pgm(const std::filesystem::path& path) {
                      "maxval must be in 1..65535, got " + std::to_string(maxval));
   }
 
+  const std::size_t count = static_cast<std::size_t>(width * height);
+  const std::size_t bytes_per_sample = maxval < 256 ? 1 : 2;
+  if (binary) tok.end_of_header();
+  // Refuse a header that promises more pixels than the file holds before allocating for them:
+  // P5 stores bytes_per_sample bytes per pixel, P2 at least a digit and a separator.
+  std::error_code ec;
+  const auto file_bytes = std::filesystem::file_size(path, ec);
+  const auto here = static_cast<std::uint64_t>(in.tellg());
+  if (!ec && in && file_bytes >= here) {
+    const std::uint64_t left = file_bytes - here;
+    if (binary && left < count * bytes_per_sample) {
+      throw InputError(file, "",
+                       "truncated image data: expected " +
+                           std::to_string(count * bytes_per_sample) + " bytes of pixels, got " +
+                           std::to_string(left));
+    }
+    if (!binary && left < 2 * count - 1) {
+      throw InputError(file, tok.where(),
+                       "truncated: " + std::to_string(count) + " pixel values need at least " +
+                           std::to_string(2 * count - 1) + " bytes, the file has " +
+                           std::to_string(left) + " after the header");
+    }
+  }
+
   RasterImage image;
   image.width = static_cast<int>(width);
   image.height = static_cast<int>(height);
   image.channels = 1;
-  const std::size_t count = static_cast<std::size_t>(width * height);
   image.samples.resize(count);
   auto to_8bit = [maxval](std::uint64_t v) {
     return static_cast<std::uint8_t>(maxval == 255 ? v : (v * 255 + maxval / 2) / maxval);
@@ -128,9 +153,7 @@ RasterImage read_pgm(const std::filesystem::path& path) {
   };
 
   if (binary) {
-    tok.end_of_header();
-    const auto raster_start = static_cast<std::uint64_t>(in.tellg());
-    const std::size_t bytes_per_sample = maxval < 256 ? 1 : 2;
+    const auto raster_start = here;
     std::string raster(count * bytes_per_sample, '\0');
     in.read(raster.data(), static_cast<std::streamsize>(raster.size()));
     const auto got = static_cast<std::size_t>(in.gcount());

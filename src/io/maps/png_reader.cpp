@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <string>
 
 #include "floornav/io/input_error.hpp"
@@ -120,6 +121,17 @@ RasterImage read_png(const std::filesystem::path& path) {
   if ((h.channels != 1 && h.channels != 3) ||
       h.row_bytes != static_cast<png_size_t>(h.width) * static_cast<png_size_t>(h.channels)) {
     throw InputError(file, "header", "unsupported PNG layout after conversion to 8 bits");
+  }
+
+  // Refuse a header that promises more pixels than the file could hold before allocating for
+  // them: deflate expands at most 1032:1, and 1-bit palette pixels grow 24-fold to 8-bit RGB.
+  std::error_code ec;
+  const std::uint64_t file_bytes = std::filesystem::file_size(path, ec);
+  if (!ec && cells * static_cast<std::uint64_t>(h.channels) > 1032u * 24u * file_bytes) {
+    throw InputError(file, "",
+                     "truncated or corrupt image data: " + std::to_string(file_bytes) +
+                         " bytes cannot hold " + std::to_string(h.width) + " x " +
+                         std::to_string(h.height) + " pixels");
   }
 
   RasterImage image;

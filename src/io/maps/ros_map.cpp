@@ -1,9 +1,11 @@
 #include "floornav/io/ros_map.hpp"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -58,7 +60,11 @@ class YamlKeys {
   double number(const YAML::Node& n, const std::string& key) const {
     if (!n.IsScalar()) fail(n, key, "expected a number, got a " + kind(n));
     const auto v = io_detail::parse_double(n.Scalar());
-    if (!v) fail(n, key, "expected a finite number, got '" + n.Scalar() + "'");
+    if (!v) {
+      fail(n, key,
+           io_detail::magnitude_problem(n.Scalar())
+               .value_or("expected a finite number, got '" + n.Scalar() + "'"));
+    }
     return *v;
   }
 
@@ -88,12 +94,21 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
     root = YAML::LoadFile(file);
   } catch (const YAML::BadFile&) {
     throw InputError(file, "", "cannot open the map yaml");
+  } catch (const YAML::DeepRecursion& e) {
+    throw InputError(file, e.mark.is_null() ? "" : "line " + std::to_string(e.mark.line + 1),
+                     "invalid YAML: nested too deeply");
   } catch (const YAML::Exception& e) {
     throw InputError(file, e.mark.is_null() ? "" : "line " + std::to_string(e.mark.line + 1),
                      "invalid YAML: " + e.msg);
   }
   if (!root.IsMap()) throw InputError(file, "", "expected a YAML map of map_server keys");
   const YamlKeys keys(root, file);
+  // yaml-cpp keeps both entries of a repeated key and returns the first: refuse the ambiguity.
+  std::set<std::string> seen;
+  for (const auto& kv : root) {
+    if (kv.first.IsScalar() && !seen.insert(kv.first.Scalar()).second)
+      keys.fail(kv.first, kv.first.Scalar(), "given twice");
+  }
 
   RosMapMeta meta;
   const std::string image = keys.text("image");
@@ -130,6 +145,12 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
     const double v = keys.number(n, key);
     if (v < 0.0 || v > 1.0) keys.fail(n, key, "must be in [0, 1], got " + n.Scalar());
     (std::string(key) == "free_thresh" ? meta.free_thresh : meta.occupied_thresh) = v;
+  }
+  if (meta.free_thresh > meta.occupied_thresh) {
+    // A pixel between the two would be both free and occupied.
+    keys.fail(keys.require("free_thresh"), "free_thresh",
+              "must not be above occupied_thresh (" + std::to_string(meta.occupied_thresh) +
+                  "), got " + keys.require("free_thresh").Scalar());
   }
 
   if (keys.has("mode")) {

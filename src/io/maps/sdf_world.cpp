@@ -32,9 +32,10 @@ std::vector<double> numbers(const XMLElement* e, std::size_t count, const std::s
     const std::string_view token = rest.substr(0, end);
     const auto v = io_detail::parse_double(token);
     if (!v) {
-      throw InputError(
-          file, io_detail::where_of(e),
-          std::string("<") + e->Name() + ">: '" + std::string(token) + "' is not a finite number");
+      throw InputError(file, io_detail::where_of(e),
+                       std::string("<") + e->Name() + ">: " +
+                           io_detail::magnitude_problem(token).value_or(
+                               "'" + std::string(token) + "' is not a finite number"));
     }
     out.push_back(*v);
     if (end == std::string_view::npos) break;

@@ -42,9 +42,9 @@ inline double number_attribute(const tinyxml2::XMLElement* e, const char* name,
   }
   const auto v = parse_double(text);
   if (!v) {
-    throw InputError(
-        file, where_of(e),
-        std::string("<") + e->Name() + " " + name + "=\"" + text + "\">: expected a finite number");
+    throw InputError(file, where_of(e),
+                     std::string("<") + e->Name() + " " + name + "=\"" + text +
+                         "\">: " + magnitude_problem(text).value_or("expected a finite number"));
   }
   return *v;
 }

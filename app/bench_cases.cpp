@@ -1,0 +1,151 @@
+#include "bench_cases.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "floornav/common/rng.hpp"
+#include "floornav/geometry/angle.hpp"
+#include "floornav/io/ros_map.hpp"
+#include "floornav/io/scenario_file.hpp"
+#include "floornav/sim/robot_spec.hpp"
+
+namespace floornav {
+
+namespace {
+
+struct Disc {
+  Vec2 centre;
+  double radius;
+};
+
+double uniform(Rng& rng, double lo, double hi) {
+  return lo + (hi - lo) * rng.uniform();
+}
+
+// A star-shaped polygon about `d.centre`: vertices at evenly spaced angles (jittered by up to a
+// third of the spacing) and radii between 0.6 and 1 times `d.radius`. Star-shaped means simple.
+std::vector<Vec2> star_polygon(const Disc& d, int vertices, Rng& rng) {
+  std::vector<Vec2> poly;
+  poly.reserve(static_cast<std::size_t>(vertices));
+  const double step = 2.0 * kPi / vertices;
+  const double phase = uniform(rng, 0.0, step);
+  for (int i = 0; i < vertices; ++i) {
+    const double a = phase + i * step + uniform(rng, -step / 3.0, step / 3.0);
+    const double r = d.radius * uniform(rng, 0.6, 1.0);
+    poly.emplace_back(d.centre.x() + r * std::cos(a), d.centre.y() + r * std::sin(a));
+  }
+  return poly;
+}
+
+Vec2 pick_free_point(const World& world, Rng& rng, double side, double min_clearance) {
+  for (int attempt = 0; attempt < 100000; ++attempt) {
+    const Vec2 p(uniform(rng, 0.0, side), uniform(rng, 0.0, side));
+    if (!world.is_inside_obstacle(p) && world.clearance(p) >= min_clearance) return p;
+  }
+  throw std::runtime_error("bench floor: no free point found");
+}
+
+}  // namespace
+
+WorldDesc make_bench_floor(const BenchFloorParams& p) {
+  Rng rng(p.seed);
+  WorldDesc desc;
+  desc.bounds = Box2{Vec2(0.0, 0.0), Vec2(p.side, p.side)};
+  std::vector<Disc> discs;
+  const double wall_gap = 0.5 * p.gap;
+  for (int attempt = 0; static_cast<int>(discs.size()) < p.polygons; ++attempt) {
+    if (attempt > 1000 * (p.polygons + 10))
+      throw std::runtime_error("bench floor: " + std::to_string(p.polygons) +
+                               " polygons do not fit on a " + std::to_string(p.side) + " m floor");
+    const double r = uniform(rng, p.min_radius, p.max_radius);
+    const double lo = r + wall_gap, hi = p.side - r - wall_gap;
+    if (hi <= lo) continue;
+    const Disc d{Vec2(uniform(rng, lo, hi), uniform(rng, lo, hi)), r};
+    const bool clear = std::all_of(discs.begin(), discs.end(), [&](const Disc& o) {
+      return (o.centre - d.centre).norm() >= o.radius + d.radius + p.gap;
+    });
+    if (clear) discs.push_back(d);
+  }
+  const int n = p.polygons;
+  for (int i = 0; i < n; ++i) {
+    int vertices = 3 + static_cast<int>(rng.uniform() * 6.0);  // 3-8
+    if (p.total_edges > 0) {
+      // Spread the edges evenly: the first (total % n) polygons take one more.
+      vertices = p.total_edges / n + (i < p.total_edges % n ? 1 : 0);
+    }
+    desc.polygons.push_back(star_polygon(discs[static_cast<std::size_t>(i)], vertices, rng));
+  }
+  return desc;
+}
+
+BenchFloorParams bench_floor_with_edges(int edges) {
+  BenchFloorParams p;
+  p.total_edges = std::max(edges, 3);
+  p.polygons = std::max(1, p.total_edges / 8);
+  // Same density as the 50-polygon, 20 m floor; never below 4 m so one polygon still fits.
+  p.side = std::max(4.0, 20.0 * std::sqrt(p.polygons / 50.0));
+  return p;
+}
+
+Scenario make_floor_scenario(std::shared_ptr<const World> world, int beams, int index) {
+  const bool lidar = beams > 0;
+  const RobotPreset preset = *find_robot_preset(lidar ? "turtlebot3_burger" : "quickbot");
+  Scenario s;
+  s.name = lidar ? "lidar" + std::to_string(beams) + "-floor" : "quickbot-floor";
+  s.world = std::move(world);
+  s.robot = preset.robot;
+  s.navigation = preset.navigation;
+  if (lidar) s.robot.sensors = make_lidar(beams, 2.0 * kPi, 0.12, 3.5, {Vec2(-0.032, 0.0), 0.0});
+  s.sim.dt = 0.01;
+  s.sim.t_max = 1.0e5;
+  s.sim.record_trajectory = false;
+  s.sim.seed = 1;
+
+  const double side = s.world->extent().max.x();
+  Rng rng(1000 + static_cast<std::uint64_t>(index));
+  const double margin = s.robot.body_radius + 0.3;
+  const Vec2 start = pick_free_point(*s.world, rng, side, margin);
+  s.start = {start, uniform(rng, -kPi, kPi)};
+  Vec2 from = start;
+  while (s.goals.size() < 4) {
+    const Vec2 g = pick_free_point(*s.world, rng, side, margin);
+    if ((g - from).norm() < side / 3.0) continue;  // cross the floor, not a step aside
+    s.goals.push_back(g);
+    from = g;
+  }
+  validate_scenario(s, s.name);
+  return s;
+}
+
+std::filesystem::path aws_warehouse_map(const std::filesystem::path& maps_dir) {
+  return maps_dir / "aws-robomaker-small-warehouse" / "005" / "map.yaml";
+}
+
+std::optional<Scenario> make_aws_scenario(const std::filesystem::path& maps_dir) {
+  const std::filesystem::path map = aws_warehouse_map(maps_dir);
+  std::error_code ec;
+  if (!std::filesystem::exists(map, ec)) return std::nullopt;
+  const RobotPreset preset = *find_robot_preset("turtlebot3_burger");
+  Scenario s;
+  s.name = "lidar360-aws-warehouse";
+  auto grid = std::make_shared<const OccupancyGrid>(load_ros_map(map));
+  WorldDesc desc;
+  desc.grid = grid.get();
+  s.grid = std::move(grid);
+  s.world = std::make_shared<const World>(std::move(desc));
+  s.robot = preset.robot;
+  s.navigation = preset.navigation;
+  s.start = {Vec2(-5.0, -8.5), 0.5 * kPi};
+  s.goals = {Vec2(-5.0, 8.5)};
+  s.sim.dt = 0.01;
+  s.sim.t_max = 1.0e5;
+  s.sim.record_trajectory = false;
+  validate_scenario(s, map.string());
+  return s;
+}
+
+}  // namespace floornav

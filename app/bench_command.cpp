@@ -1,0 +1,378 @@
+#include "bench_command.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench_cases.hpp"
+#include "demo_scenario.hpp"
+#include "floornav/io/scenario_file.hpp"
+#include "floornav/sim/simulation.hpp"
+
+namespace fs = std::filesystem;
+
+namespace floornav {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Seconds = std::chrono::duration<double>;
+
+constexpr int kWarmUpSteps = 200;  // per robot, untimed: caches and branch predictors settle
+constexpr int kChunk = 256;        // steps timed between two clock reads
+constexpr int kFleetRobots = 100;
+
+/// What one case measured.
+struct CaseResult {
+  std::string name;
+  std::string what;  ///< one line: the robot, the world
+  int robots{1};
+  std::uint64_t robot_steps{0};
+  double seconds{0.0};        ///< timed
+  double rays_per_step{0.0};  ///< per robot-step
+  std::uint64_t runs{0};      ///< whole-run cases: runs completed
+  std::uint64_t restarts{0};  ///< stepping cases: runs that ended and were restarted (untimed)
+  std::string skipped;        ///< why the case did not run ("" if it ran)
+
+  double steps_per_second() const { return seconds > 0.0 ? robot_steps / seconds : 0.0; }
+  double ns_per_step() const { return robot_steps > 0 ? 1e9 * seconds / robot_steps : 0.0; }
+};
+
+double rays_per_step(const Scenario& s) {
+  double n = 0.0;
+  for (const RangeSensorSpec& r : s.robot.sensors)
+    n += (r.cone_rays > 1 && r.cone_angle > 0.0) ? r.cone_rays : 1;
+  return n;
+}
+
+void require_running(const Simulation& sim, const std::string& name) {
+  if (sim.finished()) throw std::runtime_error("bench case " + name + " ends before it starts");
+}
+
+/// One robot stepped for `budget` seconds of timed work. A run that ends is restarted outside
+/// the timed chunks, so the timed loop holds nothing but Simulation::step().
+void time_stepping(const Scenario& s, double budget, CaseResult& out) {
+  std::optional<Simulation> sim(std::in_place, s);
+  require_running(*sim, out.name);
+  for (int i = 0; i < kWarmUpSteps; ++i)
+    if (!sim->step()) sim.emplace(s);
+  Clock::duration timed{};
+  std::uint64_t steps = 0, restarts = 0;
+  while (Seconds(timed).count() < budget) {
+    bool ended = false;
+    const Clock::time_point t0 = Clock::now();
+    for (int i = 0; i < kChunk; ++i) {
+      ++steps;
+      if (!sim->step()) {
+        ended = true;
+        break;
+      }
+    }
+    timed += Clock::now() - t0;
+    if (ended) {
+      sim.emplace(s);
+      ++restarts;
+    }
+  }
+  out.robot_steps = steps;
+  out.seconds = Seconds(timed).count();
+  out.restarts = restarts;
+  out.rays_per_step = rays_per_step(s);
+}
+
+/// A fleet of independent simulations over one shared World, stepped in lockstep: each timed
+/// round advances every robot by one step.
+void time_fleet(const std::vector<Scenario>& fleet, double budget, CaseResult& out) {
+  std::vector<std::optional<Simulation>> sims(fleet.size());
+  for (std::size_t i = 0; i < fleet.size(); ++i) {
+    sims[i].emplace(fleet[i]);
+    require_running(*sims[i], out.name);
+  }
+  std::vector<std::size_t> ended;
+  ended.reserve(fleet.size());
+  const auto restart_ended = [&] {
+    for (const std::size_t i : ended) sims[i].emplace(fleet[i]);
+    const std::size_t n = ended.size();
+    ended.clear();
+    return n;
+  };
+  for (int k = 0; k < kWarmUpSteps / 10; ++k) {
+    for (std::size_t i = 0; i < sims.size(); ++i)
+      if (!sims[i]->step()) ended.push_back(i);
+    restart_ended();
+  }
+  Clock::duration timed{};
+  std::uint64_t steps = 0, restarts = 0;
+  while (Seconds(timed).count() < budget) {
+    const Clock::time_point t0 = Clock::now();
+    for (std::size_t i = 0; i < sims.size(); ++i)
+      if (!sims[i]->step()) ended.push_back(i);
+    timed += Clock::now() - t0;
+    steps += sims.size();
+    restarts += restart_ended();
+  }
+  out.robots = static_cast<int>(fleet.size());
+  out.robot_steps = steps;
+  out.seconds = Seconds(timed).count();
+  out.restarts = restarts;
+  out.rays_per_step = rays_per_step(fleet.front());
+}
+
+/// Whole runs of `s`, as `floornav run` simulates them (output files aside).
+void time_runs(const Scenario& s, double budget, CaseResult& out) {
+  simulate(s);  // warm-up
+  Clock::duration timed{};
+  std::uint64_t steps = 0, runs = 0;
+  while (Seconds(timed).count() < budget) {
+    const Clock::time_point t0 = Clock::now();
+    const RunResult r = simulate(s);
+    timed += Clock::now() - t0;
+    steps += static_cast<std::uint64_t>(r.steps);
+    ++runs;
+  }
+  out.robot_steps = steps;
+  out.seconds = Seconds(timed).count();
+  out.runs = runs;
+  out.rays_per_step = rays_per_step(s);
+}
+
+/// The first of `candidates` that holds `probe`, or "" when none does.
+fs::path find_dir(const std::vector<fs::path>& candidates, const fs::path& probe) {
+  std::error_code ec;
+  for (const fs::path& c : candidates)
+    if (!c.empty() && fs::exists(c / probe, ec)) return c;
+  return {};
+}
+
+fs::path source_tree() {
+  return fs::path(__FILE__).parent_path().parent_path();  // app/.. (absolute under CMake)
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const std::size_t colon = line.find(':');
+      if (colon != std::string::npos) {
+        const std::size_t start = line.find_first_not_of(" \t", colon + 1);
+        return start == std::string::npos ? "" : line.substr(start);
+      }
+    }
+  }
+  return "unknown";
+}
+
+std::string compiler() {
+#if defined(__clang__)
+  return std::string("clang ") + __clang_version__;
+#elif defined(__GNUC__)
+  return std::string("GCC ") + __VERSION__;
+#else
+  return "unknown";
+#endif
+}
+
+std::string build_type() {
+#if defined(__OPTIMIZE__) && defined(NDEBUG)
+  return "optimised, NDEBUG (Release)";
+#elif defined(__OPTIMIZE__)
+  return "optimised, assertions on";
+#else
+  return "unoptimised (Debug)";
+#endif
+}
+
+std::string utc_date() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+/// 1234567.8 -> "1,234,568".
+std::string grouped(double v) {
+  std::string digits = fmt::format("{:.0f}", v);
+  std::string out;
+  const std::size_t n = digits.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    out += digits[i];
+    const std::size_t left = n - 1 - i;
+    if (left > 0 && left % 3 == 0 && digits[i] != '-') out += ',';
+  }
+  return out;
+}
+
+struct Case {
+  std::string name;
+  std::function<void(CaseResult&)> run;  ///< fills the result, or sets `skipped`
+};
+
+}  // namespace
+
+int run_bench(const BenchOptions& options) {
+  if (!(options.seconds_per_case > 0.0)) {
+    fmt::print(stderr, "floornav: error: --seconds must be positive, got {}\n",
+               options.seconds_per_case);
+    return 2;
+  }
+  const double budget = options.seconds_per_case;
+  const fs::path scenario_dir =
+      find_dir({options.scenario_dir, "scenarios", source_tree() / "scenarios"}, "rectangle.yaml");
+  const fs::path maps_dir = find_dir({options.maps_dir, fs::path("..") / "shared" / "maps",
+                                      source_tree().parent_path() / "shared" / "maps"},
+                                     aws_warehouse_map("").relative_path());
+
+  // Shared by the cases that use it; built on first use, outside any timing.
+  std::shared_ptr<const World> floor;
+  const auto floor50 = [&] {
+    if (!floor) floor = std::make_shared<const World>(make_bench_floor({}));
+    return floor;
+  };
+  const auto scenario_file = [&](const char* file, CaseResult& r) -> std::optional<Scenario> {
+    if (scenario_dir.empty()) {
+      r.skipped =
+          fmt::format("{} not found (run from the repository, or pass a scenario dir)", file);
+      return std::nullopt;
+    }
+    return load_scenario_file(scenario_dir / file);
+  };
+
+  const std::vector<Case> cases = {
+      {"quickbot_5ir_50_polygons",
+       [&](CaseResult& r) {
+         r.what = "QuickBot, 5 IR (0.3 m), 20 x 20 m floor of 50 random polygons";
+         time_stepping(make_floor_scenario(floor50(), 0), budget, r);
+       }},
+      {"lidar180_50_polygons",
+       [&](CaseResult& r) {
+         r.what = "TurtleBot3 base, 180-beam 360-degree lidar (3.5 m), same floor";
+         time_stepping(make_floor_scenario(floor50(), 180), budget, r);
+       }},
+      {"lidar360_aws_warehouse",
+       [&](CaseResult& r) {
+         r.what = "TurtleBot3 Burger, 360-beam lidar, AWS small warehouse map (0.05 m cells)";
+         const std::optional<Scenario> s =
+             maps_dir.empty() ? std::nullopt : make_aws_scenario(maps_dir);
+         if (!s) {
+           r.skipped = "AWS warehouse map not found (../shared/maps)";
+           return;
+         }
+         time_stepping(*s, budget, r);
+       }},
+      {"fleet_100x_lidar180_50_polygons",
+       [&](CaseResult& r) {
+         r.what = "100 independent 180-beam lidar robots in lockstep on one shared floor";
+         std::vector<Scenario> fleet;
+         for (int i = 0; i < kFleetRobots; ++i)
+           fleet.push_back(make_floor_scenario(floor50(), 180, i));
+         time_fleet(fleet, budget, r);
+       }},
+      {"run_factory_delivery",
+       [&](CaseResult& r) {
+         r.what = "whole run of scenarios/factory_delivery.yaml (QuickBot, trajectory kept)";
+         std::optional<Scenario> s;
+         if (scenario_dir.empty())
+           s = load_scenario_text(app::kDemoScenarioYaml, "factory-delivery.yaml");
+         else
+           s = scenario_file("factory_delivery.yaml", r);
+         time_runs(*s, budget, r);
+       }},
+      {"run_rectangle",
+       [&](CaseResult& r) {
+         r.what = "whole run of scenarios/rectangle.yaml (QuickBot, trajectory kept)";
+         const std::optional<Scenario> s = scenario_file("rectangle.yaml", r);
+         if (s) time_runs(*s, budget, r);
+       }},
+  };
+
+  std::vector<CaseResult> results;
+  for (const Case& c : cases) {
+    if (!options.filter.empty() && c.name.find(options.filter) == std::string::npos) continue;
+    CaseResult r;
+    r.name = c.name;
+    c.run(r);
+    results.push_back(r);
+  }
+  if (results.empty()) {
+    std::string names;
+    for (const Case& c : cases) names += (names.empty() ? "" : ", ") + c.name;
+    fmt::print(stderr, "floornav: error: --filter '{}' matches no case (cases: {})\n",
+               options.filter, names);
+    return 2;
+  }
+
+  const std::string cpu = cpu_model();
+  const unsigned cores = std::thread::hardware_concurrency();
+  if (options.json) {
+    nlohmann::json out;
+    out["machine"] = {{"cpu", cpu},
+                      {"cores", cores},
+                      {"compiler", compiler()},
+                      {"build", build_type()},
+                      {"date", utc_date()}};
+    out["seconds_per_case"] = budget;
+    out["cases"] = nlohmann::json::array();
+    for (const CaseResult& r : results) {
+      nlohmann::json j = {{"name", r.name}, {"what", r.what}};
+      if (!r.skipped.empty()) {
+        j["skipped"] = r.skipped;
+      } else {
+        j["robots"] = r.robots;
+        j["robot_steps"] = r.robot_steps;
+        j["seconds"] = r.seconds;
+        j["robot_steps_per_s"] = r.steps_per_second();
+        j["world_steps_per_s"] = r.steps_per_second() / r.robots;
+        j["rays_per_step"] = r.rays_per_step;
+        j["rays_per_s"] = r.steps_per_second() * r.rays_per_step;
+        j["ns_per_step"] = r.ns_per_step();
+        if (r.runs > 0) {
+          j["runs"] = r.runs;
+          j["ms_per_run"] = 1e3 * r.seconds / static_cast<double>(r.runs);
+        } else {
+          j["restarts"] = r.restarts;
+        }
+      }
+      out["cases"].push_back(j);
+    }
+    fmt::print("{}\n", out.dump(2));
+    return 0;
+  }
+
+  fmt::print("floornav bench: {} ({} cores), {}, {}; single thread, ~{:g} s per case\n", cpu, cores,
+             compiler(), build_type(), budget);
+  fmt::print("{:<34} {:>15} {:>15} {:>10}  {}\n", "case", "robot-steps/s", "rays/s", "ns/step",
+             "notes");
+  for (const CaseResult& r : results) {
+    if (!r.skipped.empty()) {
+      fmt::print("{:<34} {:>15} {:>15} {:>10}  skipped: {}\n", r.name, "-", "-", "-", r.skipped);
+      continue;
+    }
+    std::string notes;
+    if (r.robots > 1)
+      notes = fmt::format("{} robots: {} world-steps/s", r.robots,
+                          grouped(r.steps_per_second() / r.robots));
+    else if (r.runs > 0)
+      notes = fmt::format("{:.2f} ms per run of {} steps", 1e3 * r.seconds / r.runs,
+                          r.robot_steps / r.runs);
+    fmt::print("{:<34} {:>15} {:>15} {:>10.0f}  {}\n", r.name, grouped(r.steps_per_second()),
+               grouped(r.steps_per_second() * r.rays_per_step), r.ns_per_step(), notes);
+  }
+  return 0;
+}
+
+}  // namespace floornav

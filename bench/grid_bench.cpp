@@ -1,0 +1,106 @@
+// Ray casting and clearance on a real occupancy map: the AWS RoboMaker small warehouse (ROS
+// map_server, 286 x 423 cells of 0.05 m). items_per_second is rays/s (queries/s). Skipped, with a
+// message, when ../shared/maps is not beside the repository.
+//
+//   floornav_bench --benchmark_filter='BM_Grid'
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench_cases.hpp"
+#include "floornav/common/rng.hpp"
+#include "floornav/geometry/angle.hpp"
+#include "floornav/geometry/world.hpp"
+#include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/io/ros_map.hpp"
+
+namespace floornav {
+namespace {
+
+constexpr std::size_t kSamples = 1024;
+
+struct WarehouseMap {
+  std::unique_ptr<OccupancyGrid> grid;  ///< null when the map is missing
+  std::unique_ptr<World> world;         ///< the grid as a World (what the simulation casts into)
+  std::vector<Vec2> origins;            ///< free points, >= 0.2 m from anything
+  std::vector<Vec2> dirs;
+  std::string path;
+};
+
+const WarehouseMap& warehouse() {
+  static const WarehouseMap map = [] {
+    WarehouseMap m;
+    m.path = aws_warehouse_map(FLOORNAV_SHARED_MAPS_DIR).string();
+    std::error_code ec;
+    if (!std::filesystem::exists(m.path, ec)) return m;
+    m.grid = std::make_unique<OccupancyGrid>(load_ros_map(m.path));
+    WorldDesc desc;
+    desc.grid = m.grid.get();
+    m.world = std::make_unique<World>(std::move(desc));
+    Vec2 lo, hi;
+    m.grid->world_extent(&lo, &hi);
+    Rng rng(11);
+    while (m.origins.size() < kSamples) {
+      const Vec2 p = lo + Vec2((hi - lo).x() * rng.uniform(), (hi - lo).y() * rng.uniform());
+      if (m.grid->clearance(p) < 0.2) continue;
+      const double a = 2.0 * kPi * rng.uniform();
+      m.origins.push_back(p);
+      m.dirs.emplace_back(std::cos(a), std::sin(a));
+    }
+    return m;
+  }();
+  return map;
+}
+
+bool skip_if_missing(benchmark::State& state, const WarehouseMap& m) {
+  if (m.grid) return false;
+  state.SkipWithError(("skipped: map not found at " + m.path).c_str());
+  return true;
+}
+
+/// Argument: the ray's maximum range in centimetres (350: TurtleBot3 LDS-01, 3000: Jackal).
+void BM_GridCastRay(benchmark::State& state) {
+  const WarehouseMap& m = warehouse();
+  if (skip_if_missing(state, m)) return;
+  const double range = static_cast<double>(state.range(0)) / 100.0;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(m.grid->cast_ray(m.origins[i], m.dirs[i], range));
+    i = (i + 1) & (kSamples - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_GridCastRay)->Arg(350)->Arg(3000);
+
+/// The same rays through World::cast_ray (the path the simulation takes).
+void BM_GridWorldCastRay(benchmark::State& state) {
+  const WarehouseMap& m = warehouse();
+  if (skip_if_missing(state, m)) return;
+  const double range = static_cast<double>(state.range(0)) / 100.0;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(m.world->cast_ray(m.origins[i], m.dirs[i], range));
+    i = (i + 1) & (kSamples - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_GridWorldCastRay)->Arg(350)->Arg(3000);
+
+void BM_GridClearance(benchmark::State& state) {
+  const WarehouseMap& m = warehouse();
+  if (skip_if_missing(state, m)) return;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(m.grid->clearance(m.origins[i]));
+    i = (i + 1) & (kSamples - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_GridClearance);
+
+}  // namespace
+}  // namespace floornav

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Fuzzes every parser of user input (fuzz/): configures a clang build with libFuzzer, ASan and
+# UBSan in build-fuzz/, builds the targets, runs each for SECONDS (default 30) from its seed
+# corpus in fuzz/corpus/<target>/, and prints the executions and findings per target.
+#
+#   scripts/fuzz.sh [SECONDS] [TARGET ...]     targets: scenario ros_map movingai_map
+#                                              movingai_scen sdf_world course_world
+#
+# New inputs that reach new code collect in build-fuzz/fuzz-corpus/<target>/ (the next run starts
+# from them); findings (crash-*, leak-*, timeout-*, oom-*) in build-fuzz/fuzz-findings/<target>/,
+# each reproduced by `build-fuzz/fuzz/fuzz_<target> FILE`. Exit status 1 when anything was found.
+# Environment: FLOORNAV_FUZZ_BUILD (build folder), FLOORNAV_FUZZ_JOBS (build jobs, default 2).
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+seconds="${1:-30}"
+[ $# -gt 0 ] && shift
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] ||
+  targets=(scenario ros_map movingai_map movingai_scen sdf_world course_world)
+build="${FLOORNAV_FUZZ_BUILD:-$root/build-fuzz}"
+jobs="${FLOORNAV_FUZZ_JOBS:-2}"
+
+if ! command -v clang++ > /dev/null; then
+  echo "fuzz.sh: needs clang++ with libFuzzer: apt-get install -y clang libclang-rt-14-dev" >&2
+  exit 2
+fi
+if ! grep -q 'add_subdirectory(fuzz)' "$root/CMakeLists.txt"; then
+  echo "fuzz.sh: the top-level CMakeLists.txt does not add fuzz/ when FLOORNAV_FUZZ is ON" >&2
+  exit 2
+fi
+
+mkdir -p "$build"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_COMPILER=clang++ -DFLOORNAV_FUZZ=ON -DFLOORNAV_BUILD_TESTS=OFF \
+  -DFLOORNAV_BUILD_BENCH=OFF > "$build/configure.log" 2>&1 ||
+  { cat "$build/configure.log" >&2; exit 2; }
+cmake --build "$build" -j "$jobs" --target "${targets[@]/#/fuzz_}"
+
+dict_of() {
+  case "$1" in
+    scenario | ros_map) echo "$root/fuzz/dict/$1.dict" ;;
+    movingai_*) echo "$root/fuzz/dict/movingai.dict" ;;
+    *) echo "$root/fuzz/dict/xml.dict" ;;
+  esac
+}
+
+status=0
+summary=()
+for t in "${targets[@]}"; do
+  work="$build/fuzz-corpus/$t"
+  findings="$build/fuzz-findings/$t"
+  log="$build/fuzz-$t.log"
+  mkdir -p "$work" "$findings"
+  touch "$build/fuzz-$t.start"
+  echo "== fuzz_$t for ${seconds} s (log: $log)"
+  # -timeout: an input that takes 10 s is a hang, a finding like a crash. libFuzzer stops at the
+  # first finding; its exit status is not ours to judge, the findings folder is.
+  "$build/fuzz/fuzz_$t" "$work" "$root/fuzz/corpus/$t" -dict="$(dict_of "$t")" \
+    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$findings/" > "$log" 2>&1 || true
+  execs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)"
+  [ -n "$execs" ] || execs="$(grep -o '^#[0-9]*' "$log" | tail -n 1 | tr -d '#')"
+  found="$(find "$findings" -type f -newer "$build/fuzz-$t.start" | wc -l)"
+  corpus="$(find "$work" -type f | wc -l)"
+  summary+=("$(printf '%-14s %12s %9s %8s' "$t" "${execs:-0}" "$corpus" "$found")")
+  if [ "$found" -gt 0 ]; then
+    status=1
+    find "$findings" -type f -newer "$build/fuzz-$t.start" | sed "s|^|   finding: |"
+  fi
+done
+
+printf '\n%-14s %12s %9s %8s\n' target executions corpus findings
+printf '%s\n' "${summary[@]}"
+exit "$status"
