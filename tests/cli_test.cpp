@@ -124,7 +124,8 @@ TEST(Cli, ShardsMergeToTheSameResultsAsOneRun) {
   ASSERT_EQ(floornav("batch " + files + " --no-timing --shard 2/2 --out " + s2.string()).status, 0);
   const std::string shard1 = read(s1 / "results.jsonl");
   EXPECT_EQ(std::count(shard1.begin(), shard1.end(), '\n'), 2);
-  const Output o = floornav("merge " + s1.string() + " " + s2.string() + " --out " + merged.string());
+  const Output o =
+      floornav("merge " + s1.string() + " " + s2.string() + " --out " + merged.string());
   ASSERT_EQ(o.status, 0) << o.text;
   EXPECT_EQ(read(merged / "results.jsonl"), read(all / "results.jsonl"));
   EXPECT_EQ(read(merged / "aggregate.json"), read(all / "aggregate.json"));

@@ -19,10 +19,13 @@ Thermostat make_thermostat(double dwell = 0.0) {
   Thermostat::Builder b;
   const int off = b.add_mode("off", [](const Temp&, const Count&) { return -1.0; });
   const int on = b.add_mode("on", [](const Temp&, const Count&) { return +1.0; });
-  const int stop = b.add_mode("stop", [](const Temp&, const Count&) { return 0.0; }, true);
-  b.add_edge_from_every_mode(stop, "too_hot", [](const Temp& t, const Count&) { return t.value > 30; });
-  b.add_edge(off, on, "cold", [](const Temp& t, const Count&) { return t.value < 18; },
-             [](const Temp&, Count& c) { ++c.heats; }, dwell);
+  const int stop = b.add_mode(
+      "stop", [](const Temp&, const Count&) { return 0.0; }, true);
+  b.add_edge_from_every_mode(stop, "too_hot",
+                             [](const Temp& t, const Count&) { return t.value > 30; });
+  b.add_edge(
+      off, on, "cold", [](const Temp& t, const Count&) { return t.value < 18; },
+      [](const Temp&, Count& c) { ++c.heats; }, dwell);
   b.add_edge(on, off, "warm", [](const Temp& t, const Count&) { return t.value > 22; });
   b.set_initial(off);
   b.set_chatter_rule(4, 1.0);

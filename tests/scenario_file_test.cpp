@@ -74,7 +74,9 @@ TEST(ScenarioFile, SetOverridesAnyKey) {
 }
 
 TEST(ScenarioFile, PresetValuesCanBeOverridden) {
-  const Scenario s = load(replace(kGood, "preset: quickbot", "preset: khepera3\n  radius: 0.06\n  sensors: {max_range: 0.25, noise: 0.01}"));
+  const Scenario s =
+      load(replace(kGood, "preset: quickbot",
+                   "preset: khepera3\n  radius: 0.06\n  sensors: {max_range: 0.25, noise: 0.01}"));
   EXPECT_DOUBLE_EQ(s.robot.body_radius, 0.06);
   EXPECT_EQ(s.robot.sensors.size(), 9u);
   EXPECT_DOUBLE_EQ(s.robot.sensors[3].max_range, 0.25);
@@ -91,7 +93,8 @@ TEST(ScenarioFile, UnknownKeysAreErrorsWithASuggestion) {
 TEST(ScenarioFile, WrongValuesAreErrors) {
   expect_error(replace(kGood, "kind: hybrid", "kind: bug2"),
                {"line 15", "controller.kind", "unknown controller 'bug2'"});
-  expect_error(replace(kGood, "preset: quickbot", "preset: r2d2"), {"robot.preset", "unknown preset"});
+  expect_error(replace(kGood, "preset: quickbot", "preset: r2d2"),
+               {"robot.preset", "unknown preset"});
   expect_error(replace(kGood, "dt: 0.01", "dt: -0.01"), {"sim.dt", "positive"});
   expect_error(replace(kGood, "dt: 0.01", "dt: 0.5"), {"sim.dt", "too large"});
   expect_error(replace(kGood, "dt: 0.01", "dt: .nan"), {"sim.dt", "not a finite number"});
@@ -102,8 +105,9 @@ TEST(ScenarioFile, WrongValuesAreErrors) {
                {"robot.start", "expected 3 numbers, got 2"});
   expect_error(replace(kGood, "radius: 0.1}", "radius: -0.1}"),
                {"world.obstacles[0].circle.radius", "positive"});
-  expect_error(replace(kGood, "[[1.5, -0.5], [1.8, -0.5], [1.8, -0.2]]", "[[1.5, -0.5], [1.8, -0.5]]"),
-               {"world.obstacles[1].polygon", "at least 3 points"});
+  expect_error(
+      replace(kGood, "[[1.5, -0.5], [1.8, -0.5], [1.8, -0.2]]", "[[1.5, -0.5], [1.8, -0.5]]"),
+      {"world.obstacles[1].polygon", "at least 3 points"});
   expect_error(replace(kGood, "[[1.5, -0.5], [1.8, -0.5], [1.8, -0.2]]",
                        "[[0, 0.5], [0.4, 0.9], [0.4, 0.5], [0, 0.9]]"),
                {"crosses itself"});
@@ -125,7 +129,8 @@ TEST(ScenarioFile, StructuralErrors) {
   expect_error(replace(kGood, "goal: [2.5, 0]", "goal: [2.5, 0]\ngoals: [[1, 1]]"),
                {"either goal or goals"});
   expect_error("a: [1, 2\nb: {", {"test.yaml", "not valid YAML"});
-  expect_error(replace(kGood, "    - point: [0.5, -0.6]", "    - point: [0.5, -0.6]\n      circle: {center: [0, 0], radius: 1}"),
+  expect_error(replace(kGood, "    - point: [0.5, -0.6]",
+                       "    - point: [0.5, -0.6]\n      circle: {center: [0, 0], radius: 1}"),
                {"exactly one of"});
   expect_error(kGood, {"--set", "KEY=VALUE"}, {"controller.kind"});
 }
