@@ -45,6 +45,10 @@ class AllocationWindow {
 
 }  // namespace
 
+// These replace the global allocation functions with malloc/free on purpose; GCC's inliner then
+// sees a new paired with free and warns, which is exactly what a replacement does.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
 void* operator new(std::size_t size) {
   if (void* p = allocate(size)) return p;
   throw std::bad_alloc();

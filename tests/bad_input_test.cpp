@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -175,10 +176,37 @@ std::vector<BadCase> generated_cases() {
     for (int i = 0; i < 3000; ++i) s += std::string(static_cast<std::size_t>(i), ' ') + "a:\n";
     return s;
   });
-  add("scenario/polygon_of_10001_points.yaml", Via::Cli, "a polygon has at most 10000 points", [] {
+  add("scenario/polygon_of_1001_points.yaml", Via::Cli, "a polygon has at most 1000 points", [] {
     std::string s = "world:\n  bounds: [-1, -1, 5, 3]\n  obstacles:\n    - polygon: [";
-    for (int i = 0; i < 10001; ++i) s += "[0, 0], ";
+    for (int i = 0; i < 1000; ++i) s += "[0, 0], ";
     return s + "[0, 0]]\nrobot: {start: [0, 0, 0]}\ngoal: [4, 1]\n";
+  });
+  // YAML aliases repeat one node without repeating its text: a 1000-point polygon 200 times,
+  // 10001 goals, 100001 sensors, in files of a few hundred kilobytes.
+  auto aliases = [](const std::string& anchor, const std::string& value, int copies) {
+    std::string s = "[&" + anchor + " " + value;
+    for (int i = 0; i < copies; ++i) s += ", *" + anchor;
+    return s + "]";
+  };
+  add("scenario/alias_amplified_polygons.yaml", Via::Cli,
+      "the polygons have more than 100000 points in all", [aliases] {
+        std::string ring = "{polygon: [";
+        for (int i = 0; i < 1000; ++i) {
+          const double a = 2.0 * 3.14159265358979 * i / 1000.0;
+          ring += (i ? ", [" : "[") + std::to_string(3.0 + 0.3 * std::cos(a)) + ", " +
+                  std::to_string(1.5 + 0.3 * std::sin(a)) + "]";
+        }
+        ring += "]}";
+        return "world:\n  bounds: [-1, -1, 5, 3]\n  obstacles: " + aliases("p", ring, 200) +
+               "\nrobot: {start: [0, 0, 0]}\ngoal: [4, 1]\n";
+      });
+  add("scenario/alias_amplified_goals.yaml", Via::Cli, "at most 10000 goals", [aliases] {
+    return "world: {bounds: [-1, -1, 5, 3]}\nrobot: {start: [0, 0, 0]}\ngoals: " +
+           aliases("g", "[4, 1]", 10000) + "\n";
+  });
+  add("scenario/alias_amplified_sensors.yaml", Via::Cli, "at most 100000 sensors", [aliases] {
+    return "world: {bounds: [-1, -1, 5, 3]}\nrobot:\n  start: [0, 0, 0]\n  sensors: {mounts: " +
+           aliases("m", "[0, 0, 0]", 100000) + "}\ngoal: [4, 1]\n";
   });
   add("scenario/larger_than_16_mib.yaml", Via::Cli, "is too large for a scenario",
       [ok_scenario] { return ok_scenario + "# " + std::string(17u << 20, 'x') + "\n"; });
@@ -210,9 +238,9 @@ std::vector<BadCase> generated_cases() {
   });
   add("course_xml/binary.xml", Via::Loader, "malformed XML",
       [] { return random_bytes(2048, 10, true); });
-  add("course_xml/obstacle_of_10001_points.xml", Via::Loader, "at most 10000 <point>s", [] {
+  add("course_xml/obstacle_of_1001_points.xml", Via::Loader, "at most 1000 <point>s", [] {
     std::string s = "<simulation><obstacle><pose x='0' y='0' theta='0'/><geometry>";
-    for (int i = 0; i < 10001; ++i) s += "<point x='" + std::to_string(i) + "' y='0'/>";
+    for (int i = 0; i < 1001; ++i) s += "<point x='" + std::to_string(i) + "' y='0'/>";
     return s + "</geometry></obstacle></simulation>";
   });
   return out;

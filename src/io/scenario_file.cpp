@@ -29,8 +29,13 @@ namespace {
 constexpr std::size_t kMaxScenarioBytes = 16u << 20;  // a scenario is text, not data
 constexpr std::size_t kMaxObstacles = 1000000;
 constexpr double kPointPostRadius = 0.03;  // m, the radius given to `point:` obstacles
-// The simplicity check is quadratic in the points: bound it so that no file can make it hang.
-constexpr std::size_t kMaxPolygonPoints = 10000;
+// The simplicity check is quadratic in a polygon's points: bound them, per polygon and in all
+// (YAML aliases can repeat one polygon a million times in a small file), so that no file can
+// make it hang. The same goes for goals and sensor mounts, each checked or simulated in turn.
+constexpr std::size_t kMaxPolygonPoints = 1000;
+constexpr std::size_t kMaxPolygonPointsInAll = 100000;
+constexpr std::size_t kMaxGoals = 10000;
+constexpr std::size_t kMaxMounts = 100000;
 
 /// YAML text -> tree; errors name `file` (or the --set value when `file` is empty).
 YAML::Node parse_yaml(const std::string& text, const std::string& file, const std::string& where) {
@@ -105,7 +110,7 @@ double read_positive(const std::string& file, const YAML::Node& n, const std::st
 }
 
 void read_obstacle(const std::string& file, const YAML::Node& item, const std::string& key,
-                   WorldDesc& desc) {
+                   WorldDesc& desc, std::size_t& polygon_points) {
   MapReader r(file, item, key);
   int kinds = 0;
   if (r.has("circle")) {
@@ -129,6 +134,9 @@ void read_obstacle(const std::string& file, const YAML::Node& item, const std::s
     if (n.IsSequence() && n.size() > kMaxPolygonPoints)
       fail(file, n, r.path_of("polygon"),
            fmt::format("a polygon has at most {} points, got {}", kMaxPolygonPoints, n.size()));
+    if (n.IsSequence() && (polygon_points += n.size()) > kMaxPolygonPointsInAll)
+      fail(file, n, r.path_of("polygon"),
+           fmt::format("the polygons have more than {} points in all", kMaxPolygonPointsInAll));
     auto pts = read_points(file, n, r.path_of("polygon"));
     if (pts.size() < 3)
       fail(file, n, r.path_of("polygon"),
@@ -176,6 +184,9 @@ void read_sensors(const std::string& file, MapReader& r, RobotSpec& robot) {
     const YAML::Node n = r.get("mounts");
     if (!n.IsSequence() || n.size() == 0)
       fail(file, n, r.path_of("mounts"), "expected a list of [x, y, theta] sensor poses");
+    if (n.size() > kMaxMounts)
+      fail(file, n, r.path_of("mounts"),
+           fmt::format("at most {} sensors, got {}", kMaxMounts, n.size()));
     const RangeSensorSpec base = robot.sensors.empty() ? RangeSensorSpec{} : robot.sensors[0];
     robot.sensors.clear();
     for (std::size_t i = 0; i < n.size(); ++i) {
@@ -308,6 +319,8 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
     s.goals.push_back(read_point(file, top.get("goal"), "goal"));
   else {
     const YAML::Node n = top.get("goals");
+    if (n.IsSequence() && n.size() > kMaxGoals)
+      fail(file, n, "goals", fmt::format("at most {} goals, got {}", kMaxGoals, n.size()));
     s.goals = read_points(file, n, "goals");
     if (s.goals.empty()) fail(file, n, "goals", "needs at least one goal");
   }
@@ -328,8 +341,9 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
       const YAML::Node n = w.get("obstacles");
       if (!n.IsSequence()) fail(file, n, "world.obstacles", "expected a list of obstacles");
       if (n.size() > kMaxObstacles) fail(file, n, "world.obstacles", "too many obstacles");
+      std::size_t polygon_points = 0;
       for (std::size_t i = 0; i < n.size(); ++i)
-        read_obstacle(file, n[i], fmt::format("world.obstacles[{}]", i), desc);
+        read_obstacle(file, n[i], fmt::format("world.obstacles[{}]", i), desc, polygon_points);
     }
     io_detail::MapOptions options;
     if (w.has("cell_size"))

@@ -14,8 +14,8 @@ namespace {
 
 using tinyxml2::XMLElement;
 
-// The simplicity check is quadratic in the points: bound it so that no file can make it hang.
-constexpr std::size_t kMaxPolygonPoints = 10000;
+// The simplicity check is quadratic in the points: bound them so that no file can make it hang.
+constexpr std::size_t kMaxPolygonPoints = 1000;
 
 /// The `<pose x y theta>` child of `parent`, required.
 Pose2 read_pose(const XMLElement* parent, const std::string& file) {
