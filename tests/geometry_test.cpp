@@ -209,3 +209,17 @@ TEST(World, EmptyWorldSeesNothing) {
   EXPECT_DOUBLE_EQ(w.cast_ray(Vec2(0, 0), Vec2(1, 0), 3.0), 3.0);
   EXPECT_TRUE(std::isinf(w.clearance(Vec2(0, 0))));
 }
+
+// Many large overlapping obstacles coarsen the index instead of filling it with billions of
+// entries (a hang found by the reliability work); queries stay exact.
+TEST(World, ManyLargeOverlappingObstaclesStayExact) {
+  WorldDesc d;
+  d.bounds = Box2{Vec2(0, 0), Vec2(1000, 1000)};
+  for (int i = 0; i < 20000; ++i) d.circles.push_back({Vec2(500 + i % 7, 500), 400.0});
+  const World w(d);
+  for (const Vec2& p : {Vec2(1, 1), Vec2(50, 900), Vec2(500, 500), Vec2(999, 2)}) {
+    EXPECT_DOUBLE_EQ(w.clearance(p), w.clearance_brute_force(p));
+    EXPECT_DOUBLE_EQ(w.cast_ray(p, Vec2(1, 0), 2000.0),
+                     w.cast_ray_brute_force(p, Vec2(1, 0), 2000.0));
+  }
+}

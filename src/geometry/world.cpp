@@ -71,6 +71,24 @@ void World::build_index() {
   double cell = std::sqrt(area / std::max<double>(1.0, 0.5 * static_cast<double>(items)));
   cell = std::max(cell, std::sqrt(area / 1.0e6));
   cell = std::max(cell, 0.05);
+  // Large obstacles are registered in every cell their box covers, so many big overlapping ones
+  // could need far more entries than cells. Coarsen the grid until the entries fit a budget, so
+  // that no input can make building the index take unbounded time or memory.
+  constexpr double kMaxEntries = 2.0e7;
+  auto entries = [&](double c) {
+    auto span = [c](double lo, double hi) { return std::floor(hi / c) - std::floor(lo / c) + 2.0; };
+    double total = 0.0;
+    for (const Segment& sg : segments_)
+      total += span(std::min(sg.a.x(), sg.b.x()), std::max(sg.a.x(), sg.b.x())) *
+               span(std::min(sg.a.y(), sg.b.y()), std::max(sg.a.y(), sg.b.y()));
+    for (const Circle& ci : circles_)
+      total += span(ci.center.x() - ci.radius, ci.center.x() + ci.radius) *
+               span(ci.center.y() - ci.radius, ci.center.y() + ci.radius);
+    for (const Box2& b : polygon_boxes_)
+      total += span(b.min.x(), b.max.x()) * span(b.min.y(), b.max.y());
+    return total;
+  };
+  while (entries(cell) > kMaxEntries && cell < 1e12) cell *= 2.0;
   ix.cell = cell;
   ix.inv_cell = 1.0 / cell;
   ix.origin = extent_.min - Vec2(1e-9, 1e-9);
