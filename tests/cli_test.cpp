@@ -147,3 +147,25 @@ TEST(Cli, ResumeCompletesAPartialRunIdentically) {
   ASSERT_EQ(o.status, 0) << o.text;
   EXPECT_EQ(read(part / "results.jsonl"), read(full / "results.jsonl"));
 }
+
+// Disk full: a 16 KiB tmpfs (needs root; skipped elsewhere). The run fails with exit 2 and one
+// clear message, and results already in the folder stay intact.
+TEST(Cli, DiskFullIsAClearErrorAndKeepsEarlierResults) {
+  const fs::path mnt = temp_dir("tinyfs");
+  fs::create_directories(mnt);
+  if (std::system(("mount -t tmpfs -o size=16k tmpfs " + mnt.string() + " 2>/dev/null").c_str()) !=
+      0)
+    GTEST_SKIP() << "cannot mount a tmpfs here";
+  {
+    std::ofstream earlier(mnt / "results.jsonl");
+    earlier << "{\"case\": 0}\n";
+  }
+  const Output o =
+      floornav("run " + scenario("factory_delivery.yaml") + " --out " + (mnt / "run").string());
+  const std::string kept = read(mnt / "results.jsonl");
+  std::system(("umount " + mnt.string()).c_str());
+  EXPECT_EQ(o.status, 2) << o.text;
+  EXPECT_NE(o.text.find("No space left on device"), std::string::npos) << o.text;
+  EXPECT_EQ(std::count(o.text.begin(), o.text.end(), '\n'), 1) << o.text;
+  EXPECT_EQ(kept, "{\"case\": 0}\n");
+}
