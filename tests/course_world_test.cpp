@@ -8,42 +8,16 @@
 #include <string>
 
 #include "floornav/io/input_error.hpp"
+#include "loader_test_support.hpp"
 
 namespace floornav {
 namespace {
 
 namespace fs = std::filesystem;
 
-class CourseWorldTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("floornav_course_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+class CourseWorldTest : public test::TempDirTest {};
 
-  fs::path write(const std::string& name, const std::string& text) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-  }
-
-  fs::path dir_;
-};
-
-template <class F>
-void expect_input_error(F load, const std::string& needle) {
-  try {
-    load();
-    ADD_FAILURE() << "no InputError; expected one containing '" << needle << "'";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos)
-        << "message: " << e.what() << "\nexpected to contain: " << needle;
-  }
-}
+using test::expect_input_error;
 
 // Shaped like pySimiam's worlds/week7.xml.
 const std::string kWeek7Like = R"(<?xml version="1.0" ?>

@@ -13,30 +13,16 @@
 #include <vector>
 
 #include "floornav/io/input_error.hpp"
+#include "loader_test_support.hpp"
 
 namespace floornav {
 namespace {
 
 namespace fs = std::filesystem;
 
-/// A fresh directory for one test's files, removed afterwards.
-class RosMapTest : public ::testing::Test {
+/// A fresh folder per test (test::TempDirTest), plus map-file writers.
+class RosMapTest : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("floornav_ros_map_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path write(const std::string& name, const std::string& bytes) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << bytes;
-    return p;
-  }
-
   /// A map yaml pointing at `image`, with the given extra/overriding lines.
   fs::path write_yaml(const std::string& name, const std::string& body) {
     return write(name, body);
@@ -63,21 +49,9 @@ class RosMapTest : public ::testing::Test {
     std::fclose(f);
     return p;
   }
-
-  fs::path dir_;
 };
 
-/// The substring `needle` appears in the InputError `load` throws.
-template <class F>
-void expect_input_error(F load, const std::string& needle) {
-  try {
-    load();
-    ADD_FAILURE() << "no InputError; expected one containing '" << needle << "'";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos)
-        << "message: " << e.what() << "\nexpected to contain: " << needle;
-  }
-}
+using test::expect_input_error;
 
 const std::string kYamlTail =
     "resolution: 0.5\norigin: [1.5, -2.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\n"
