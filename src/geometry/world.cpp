@@ -342,22 +342,6 @@ double World::clearance(const Vec2& p) const {
   return best;
 }
 
-std::optional<Vec2> World::nearest_obstacle_point(const Vec2& p) const {
-  std::optional<Vec2> out;
-  double best = kInf;
-  for (const Segment& s : segments_) {
-    const Vec2 q = nearest_point(s, p);
-    if (const double d = (q - p).norm(); d < best) best = d, out = q;
-  }
-  for (const Circle& c : circles_) {
-    const Vec2 q = nearest_point(c, p);
-    if (const double d = (q - p).norm(); d < best) best = d, out = q;
-  }
-  Vec2 q;
-  if (grid_ && grid_->nearest_occupied_point(p, &q) && (q - p).norm() < best) out = q;
-  return out;
-}
-
 double World::cast_ray_brute_force(const Vec2& origin, const Vec2& dir, double max_range) const {
   double best = max_range;
   if (grid_) best = std::min(best, grid_->cast_ray(origin, dir, max_range));

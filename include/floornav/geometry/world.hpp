@@ -61,9 +61,6 @@ class World {
   /// circumscribed disc.
   double polygon_clearance(std::span<const Vec2> poly, double reach) const;
 
-  /// The obstacle surface point nearest to `p`, if there is any obstacle.
-  std::optional<Vec2> nearest_obstacle_point(const Vec2& p) const;
-
   /// True when `p` is inside an obstacle (or outside the bounds).
   bool is_inside_obstacle(const Vec2& p) const;
 
