@@ -21,14 +21,24 @@ SensorBeam beam_of(const Pose2& robot, double c, double s, const RangeSensorSpec
 // A margin against rounding: the disc's radius is a lower bound computed in floating point.
 constexpr double kFreeMargin = 1e-9;  // m
 
+// The nearest of `others` along the ray, or `best` when none is nearer.
+double nearest_disc(std::span<const Circle> others, const Vec2& origin, const Vec2& dir,
+                    double best) {
+  for (const Circle& c : others)
+    if (auto t = intersect_ray(c, origin, dir); t && *t < best) best = *t;
+  return best;
+}
+
 double sense_one(const World& world, const SensorBeam& b, const RangeSensorSpec& s,
-                 double noise_stddev, Rng& rng, const FreeDisc& free) {
+                 double noise_stddev, Rng& rng, const FreeDisc& free,
+                 std::span<const Circle> others) {
   const double free_radius = free.radius - kFreeMargin;
   const bool known_free =
       free_radius > 0.0 && (b.origin - free.centre).squaredNorm() < free_radius * free_radius;
   const auto cast = [&](const Vec2& dir) {
-    return known_free ? world.cast_ray_from_free(b.origin, dir, s.max_range)
-                      : world.cast_ray(b.origin, dir, s.max_range);
+    const double r = known_free ? world.cast_ray_from_free(b.origin, dir, s.max_range)
+                                : world.cast_ray(b.origin, dir, s.max_range);
+    return others.empty() ? r : nearest_disc(others, b.origin, dir, r);
   };
   double r = s.max_range;
   if (s.cone_rays <= 1 || s.cone_angle <= 0.0) {
@@ -54,9 +64,9 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
 
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
-                  std::span<double> ranges, const FreeDisc& free) {
+                  std::span<double> ranges, const FreeDisc& free, std::span<const Circle> others) {
   for (std::size_t i = 0; i < sensors.size(); ++i)
-    ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free);
+    ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free, others);
 }
 
 std::size_t ranges_to_points(std::span<const SensorBeam> beams,
@@ -75,7 +85,7 @@ void sense_ranges(const World& world, const Pose2& robot, std::span<const RangeS
   const double c = std::cos(robot.theta), s = std::sin(robot.theta);
   for (std::size_t i = 0; i < sensors.size(); ++i)
     ranges[i] = sense_one(world, beam_of(robot, c, s, sensors[i]), sensors[i], noise_stddev, rng,
-                          FreeDisc{});
+                          FreeDisc{}, {});
 }
 
 std::size_t ranges_to_points(const Pose2& robot, std::span<const RangeSensorSpec> sensors,

@@ -1,181 +1,32 @@
 #include "floornav/sim/simulation.hpp"
 
-#include <algorithm>
-#include <cmath>
-
-#include "floornav/control/heading_tracker.hpp"
-#include "floornav/kinematics/unicycle.hpp"
-#include "floornav/sensing/range_sensor.hpp"
-#include "floornav/sim/body_clearance.hpp"
-
 namespace floornav {
 
 namespace {
-// Robots with more sensors than this see enough at once; remembering points would only cost time.
-constexpr std::size_t kMaxSensorsForMemory = 32;
-// The transition log is reserved for this many switches, so that logging one allocates nothing
-// in the step loop; a run that chatters beyond it grows the log (amortised, rare).
-constexpr std::size_t kReservedTransitions = 1024;
-// Slack subtracted per step from the clearance lower bound, far above the rounding of a
-// clearance (~1e-15 m) or a step length, so the bound stays a true lower bound.
-constexpr double kClearanceBoundSlack = 1e-9;  // m
+AgentSetup agent_setup(const Scenario& s, const NavigationAutomaton& automaton) {
+  AgentSetup a;
+  a.world = s.world.get();
+  a.robot = &s.robot;
+  a.start = s.start;
+  a.goals = s.goals;
+  a.automaton = &automaton;
+  a.navigation = &s.navigation;
+  a.sim = &s.sim;
+  a.seed = s.sim.seed;
+  a.name = s.name;
+  return a;
+}
 }  // namespace
 
 Simulation::Simulation(const Scenario& scenario)
-    : scenario_(scenario),
-      automaton_(make_navigation_automaton(scenario.controller, scenario.navigation)),
-      state_(automaton_.initial_state()),
-      rng_(scenario.sim.seed),
-      pose_(scenario.start) {
-  const std::size_t n_sensors = scenario.robot.sensors.size();
-  use_memory_ = scenario.navigation.obstacle_memory > 0.0 && n_sensors <= kMaxSensorsForMemory;
-  ranges_.assign(n_sensors, 0.0);
-  beams_.assign(n_sensors, SensorBeam{});
-  sensed_.assign(n_sensors, Vec2::Zero());
-  points_.assign(n_sensors + ObstacleMemory::kCapacity, Vec2::Zero());
-  stuck_radius_ =
-      scenario.sim.stuck_radius > 0.0 ? scenario.sim.stuck_radius : scenario.robot.body_radius;
-  stuck_anchor_ = pose_.position;
-
-  RunResult& r = result_;
-  r.scenario = scenario.name;
-  r.goal_count = static_cast<int>(scenario.goals.size());
-  for (const auto& m : automaton_.modes()) r.mode_names.push_back(m.name);
-  for (const auto& e : automaton_.edges()) r.guard_names.push_back(e.guard_name);
-  r.mode_time.assign(r.mode_names.size(), 0.0);
-  r.transitions.reserve(kReservedTransitions);
-  r.transition_x.reserve(kReservedTransitions);
-  r.transition_y.reserve(kReservedTransitions);
-  r.min_clearance = body_clearance(*scenario.world, scenario.robot, pose_);
-  disc_body_ = scenario.robot.footprint.empty();
-  clearance_bound_ = r.min_clearance;
-  r.final_x = pose_.position.x();
-  r.final_y = pose_.position.y();
-  r.final_theta = pose_.theta;
-  if (scenario.sim.record_trajectory) {
-    const double steps = std::ceil(scenario.sim.t_max / scenario.sim.dt) + 2.0;
-    r.trajectory.reserve(static_cast<std::size_t>(std::min(steps, 2.0e6)));
-    r.trajectory.push_back({0.0, pose_.position.x(), pose_.position.y(), pose_.theta, 0.0, 0.0, 0.0,
-                            0.0, state_.mode});
-  }
-  if (scenario.goals.empty())
-    finish(RunStatus::Reached);
-  else if (r.min_clearance <= 0.0) {  // touching is a collision, as in step()
-    r.collided = true;
-    finish(RunStatus::Collision);
-  }
-}
-
-void Simulation::finish(RunStatus status) {
-  finished_ = true;
-  result_.status = status;
-  result_.reached_goal = status == RunStatus::Reached;
-  result_.sim_time = t_;
-  result_.final_x = pose_.position.x();
-  result_.final_y = pose_.position.y();
-  result_.final_theta = pose_.theta;
-  result_.chatter_episodes = state_.chatter.episodes;
-  result_.first_chatter_time = state_.chatter.first_time;
-}
-
-bool Simulation::step() {
-  if (finished_) return false;
-  const Scenario& sc = scenario_;
-  const RobotSpec& robot = sc.robot;
-  const double dt = sc.sim.dt;
-  RunResult& r = result_;
-
-  // 1. sense
-  // The body disc is clear of every obstacle by at least clearance_bound_, so sensors mounted
-  // within it start outside the obstacles: the world need not test that per ray.
-  compute_sensor_beams(pose_, robot.sensors, beams_);
-  const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
-  sense_ranges(*sc.world, beams_, robot.sensors, robot.sensor_noise, rng_, ranges_, free);
-  std::size_t n = ranges_to_points(beams_, robot.sensors, ranges_, sensed_);
-  std::span<const Vec2> points(sensed_.data(), n);
-  if (use_memory_) {
-    n = memory_.update(points, t_, sc.navigation.obstacle_memory, 0.25 * robot.body_radius,
-                       points_);
-    points = std::span<const Vec2>(points_.data(), n);
-  }
-
-  // 2. supervise
-  const Vec2 goal = sc.goals[goal_index_];
-  const NavigationInput in =
-      make_navigation_input(pose_.position, goal, points, robot.body_radius, sc.navigation);
-  if (auto tr = automaton_.step(in, state_, t_ + dt, dt)) {
-    r.transitions.push_back(*tr);
-    r.transition_x.push_back(pose_.position.x());
-    r.transition_y.push_back(pose_.position.y());
-    ++r.mode_switches;
-  }
-  if (automaton_.is_terminal(state_)) {
-    // STOP: this goal is reached; go on to the next one, or end the run.
-    ++r.goals_reached;
-    if (++goal_index_ >= sc.goals.size()) {
-      finish(RunStatus::Reached);
-      return false;
-    }
-    state_ = automaton_.initial_state();
-    pid_ = {};
-    memory_.clear();
-    return true;
-  }
-
-  // 3. control (Fig 5.12), 4. saturate
-  const Vec2 u = automaton_.flow(in, state_);
-  const UnicycleCommand wanted =
-      track_velocity(u, pose_.theta, sc.navigation.v0, sc.navigation.heading_pid, pid_, dt,
-                     sc.navigation.slow_when_turning);
-  const WheelSpeeds wheels = saturate_wheels(robot.drive, wanted);
-  const UnicycleCommand driven = wheels_to_unicycle(robot.drive, wheels);
-
-  // 5. integrate
-  const Pose2 next = integrate_unicycle(pose_, driven, dt);
-  const double moved = (next.position - pose_.position).norm();
-  r.path_length += moved;
-  pose_ = next;
-  t_ += dt;
-  ++r.steps;
-  r.mode_time[static_cast<std::size_t>(state_.mode)] += dt;
-
-  // 7. record (before the checks, so the final row is the state the run ended in)
-  if (sc.sim.record_trajectory)
-    r.trajectory.push_back({t_, pose_.position.x(), pose_.position.y(), pose_.theta, driven.v,
-                            driven.omega, wheels.left, wheels.right, state_.mode});
-
-  // 6. check. A disc body's clearance changes by at most the distance moved, so while that
-  // lower bound stays above min_clearance the exact value could change neither min_clearance
-  // nor the collision test (min_clearance >= 0 while running): it is computed only when it might.
-  clearance_bound_ -= moved + kClearanceBoundSlack;
-  if (!disc_body_ || clearance_bound_ <= r.min_clearance) {
-    const double clearance = body_clearance(*sc.world, robot, pose_);
-    clearance_bound_ = clearance;
-    r.min_clearance = std::min(r.min_clearance, clearance);
-    if (clearance <= 0.0) {
-      r.collided = true;
-      finish(RunStatus::Collision);
-      return false;
-    }
-  }
-  if ((pose_.position - stuck_anchor_).norm() > stuck_radius_) {
-    stuck_anchor_ = pose_.position;
-    stuck_anchor_time_ = t_;
-  } else if (t_ - stuck_anchor_time_ >= sc.sim.stuck_window) {
-    finish(RunStatus::Stuck);
-    return false;
-  }
-  if (t_ >= sc.sim.t_max - 1e-9) {
-    finish(RunStatus::Timeout);
-    return false;
-  }
-  return true;
-}
+    : automaton_(make_navigation_automaton(scenario.controller, scenario.navigation)),
+      scratch_(scenario.robot.sensors.size()),
+      agent_(agent_setup(scenario, automaton_)) {}
 
 const RunResult& Simulation::run() {
   while (step()) {
   }
-  return result_;
+  return result();
 }
 
 RunResult simulate(const Scenario& scenario) {

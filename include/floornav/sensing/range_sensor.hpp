@@ -5,6 +5,7 @@
 #include <span>
 
 #include "floornav/common/rng.hpp"
+#include "floornav/geometry/circle.hpp"
 #include "floornav/geometry/pose2.hpp"
 #include "floornav/geometry/world.hpp"
 
@@ -43,9 +44,11 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
 
 /// `sense_ranges` below, from beams already computed (`beams[i]` belongs to `sensors[i]`).
 /// Beams starting inside `free` skip the inside-obstacle test; the ranges are the same.
+/// `others` are further solid discs the rays hit besides the world: the bodies of other robots.
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
-                  std::span<double> ranges, const FreeDisc& free = {});
+                  std::span<double> ranges, const FreeDisc& free = {},
+                  std::span<const Circle> others = {});
 
 /// `ranges_to_points` below, from beams already computed.
 std::size_t ranges_to_points(std::span<const SensorBeam> beams,

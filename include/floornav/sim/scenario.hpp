@@ -36,6 +36,16 @@ struct SimConfig {
   }
 };
 
+/// One robot of a fleet: its own body, start, delivery route and controller.
+struct RobotTask {
+  std::string name;
+  RobotSpec robot{};
+  Pose2 start{};
+  std::vector<Vec2> goals;  ///< visited in order
+  ControllerKind controller{ControllerKind::Hybrid};
+  NavigationParams navigation{};
+};
+
 struct Scenario {
   std::string name{"scenario"};
   std::shared_ptr<const OccupancyGrid> grid;  ///< keeps the world's map alive, if it has one
@@ -46,6 +56,10 @@ struct Scenario {
   ControllerKind controller{ControllerKind::Hybrid};
   NavigationParams navigation{};
   SimConfig sim{};
+  /// A fleet sharing the world (FleetSimulation). Empty: the one robot above. When it is set,
+  /// robot, start, goals, controller and navigation repeat robots[0], so that code asking
+  /// about "the robot" (validation, pictures) gets a sensible answer.
+  std::vector<RobotTask> robots;
 };
 
 }  // namespace floornav

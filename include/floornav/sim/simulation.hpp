@@ -14,60 +14,35 @@
 /// grows only beyond that; tests/allocation_test.cpp checks). Same scenario and seed: the same
 /// trajectory, bit for bit.
 
-#include <vector>
-
-#include "floornav/common/rng.hpp"
 #include "floornav/control/navigation_automaton.hpp"
-#include "floornav/control/pid.hpp"
-#include "floornav/sensing/obstacle_memory.hpp"
-#include "floornav/sensing/range_sensor.hpp"
+#include "floornav/sim/robot_agent.hpp"
 #include "floornav/sim/run_result.hpp"
 #include "floornav/sim/scenario.hpp"
 
 namespace floornav {
 
+/// One robot alone in its world: the scenario's robot, start, goals and controller. (A
+/// scenario's `robots` fleet, if any, is FleetSimulation's.)
 class Simulation {
  public:
   /// The scenario must outlive the simulation.
   explicit Simulation(const Scenario& scenario);
 
   /// Advances one step; returns false once the run has ended (then it does nothing).
-  bool step();
+  bool step() { return agent_.step(scratch_); }
   /// Steps until the run ends; returns the result.
   const RunResult& run();
 
-  bool finished() const { return finished_; }
-  const Pose2& pose() const { return pose_; }
-  double time() const { return t_; }
-  const RunResult& result() const { return result_; }
+  bool finished() const { return agent_.finished(); }
+  const Pose2& pose() const { return agent_.pose(); }
+  double time() const { return agent_.time(); }
+  const RunResult& result() const { return agent_.result(); }
   const NavigationAutomaton& automaton() const { return automaton_; }
 
  private:
-  void finish(RunStatus status);
-
-  const Scenario& scenario_;
   NavigationAutomaton automaton_;
-  NavigationAutomaton::State state_;
-  PidState pid_{};
-  Rng rng_;
-  ObstacleMemory memory_{};
-  Pose2 pose_{};
-  double t_{0.0};
-  std::size_t goal_index_{0};
-  bool finished_{false};
-  bool use_memory_{false};
-  Vec2 stuck_anchor_{Vec2::Zero()};
-  double stuck_anchor_time_{0.0};
-  double stuck_radius_{0.0};
-  /// m: a lower bound on the body's clearance at pose_ (exact right after it is computed).
-  /// Disc bodies only; it lets a step skip the clearance query and the per-ray inside test.
-  double clearance_bound_{0.0};
-  bool disc_body_{true};  ///< no footprint polygon: the body is the disc
-  std::vector<SensorBeam> beams_;
-  std::vector<double> ranges_;
-  std::vector<Vec2> sensed_;
-  std::vector<Vec2> points_;
-  RunResult result_{};
+  SensingScratch scratch_;
+  RobotAgent agent_;
 };
 
 /// Runs `scenario` to the end.

@@ -1,0 +1,104 @@
+#pragma once
+/// @file
+/// One robot's run: its state, its supervisor, its metrics, and the step of simulation.hpp
+/// (sense, supervise, control, saturate, integrate, check, record). A Simulation drives one
+/// agent; a FleetSimulation drives many over one world, passing each the other robots it may
+/// see. The agent allocates nothing per step (trajectory recording and a transition log past
+/// its reserve aside); its scratch buffers belong to the caller, so that a fleet needs one set
+/// per thread rather than one per robot.
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "floornav/common/rng.hpp"
+#include "floornav/control/navigation_automaton.hpp"
+#include "floornav/control/pid.hpp"
+#include "floornav/geometry/circle.hpp"
+#include "floornav/sensing/obstacle_memory.hpp"
+#include "floornav/sensing/range_sensor.hpp"
+#include "floornav/sim/run_result.hpp"
+#include "floornav/sim/scenario.hpp"
+
+namespace floornav {
+
+/// Per-step working memory of the sensing stage, sized once for the most sensors any robot has.
+struct SensingScratch {
+  std::vector<SensorBeam> beams;
+  std::vector<double> ranges;
+  std::vector<Vec2> sensed;
+  std::vector<Vec2> points;
+
+  explicit SensingScratch(std::size_t sensors = 0) { fit(sensors); }
+  /// Makes room for robots with up to `sensors` sensors (allocates only when growing).
+  void fit(std::size_t sensors);
+};
+
+/// What an agent needs to know; every reference must outlive it.
+struct AgentSetup {
+  const World* world{nullptr};
+  const RobotSpec* robot{nullptr};
+  Pose2 start{};
+  std::span<const Vec2> goals;  ///< visited in order
+  const NavigationAutomaton* automaton{nullptr};
+  const NavigationParams* navigation{nullptr};
+  const SimConfig* sim{nullptr};
+  std::uint64_t seed{1};       ///< this robot's sensor noise
+  std::string name;            ///< RunResult::scenario
+  bool log_transitions{true};  ///< keep the transition log (fleets keep counts only)
+  bool names{true};            ///< copy mode and guard names into the result (fleets keep one)
+};
+
+class RobotAgent {
+ public:
+  explicit RobotAgent(const AgentSetup& setup);
+
+  /// One step at time `time()`, sensing the world and `others` (the bodies of nearby robots,
+  /// as discs). Returns false once the run has ended (then it does nothing).
+  bool step(SensingScratch& scratch, std::span<const Circle> others = {});
+
+  /// Ends the run as a collision with another robot at gap `gap` (<= 0).
+  void collide_with_robot(double gap);
+  /// Takes the gap (m) to the nearest other robot into min_clearance.
+  void note_robot_gap(double gap) { result_.min_clearance = std::min(result_.min_clearance, gap); }
+
+  bool finished() const { return finished_; }
+  const Pose2& pose() const { return pose_; }
+  double time() const { return t_; }
+  double body_radius() const { return robot_->body_radius; }
+  const RobotSpec& robot() const { return *robot_; }
+  const RunResult& result() const { return result_; }
+  RunResult& result() { return result_; }
+
+ private:
+  void finish(RunStatus status);
+
+  const World* world_;
+  const RobotSpec* robot_;
+  std::span<const Vec2> goals_;
+  const NavigationAutomaton* automaton_;
+  const NavigationParams* nav_;
+  const SimConfig* sim_;
+  NavigationAutomaton::State state_;
+  PidState pid_{};
+  Rng rng_;
+  ObstacleMemory memory_{};
+  Pose2 pose_{};
+  double t_{0.0};
+  std::size_t goal_index_{0};
+  bool finished_{false};
+  bool use_memory_{false};
+  bool log_transitions_{true};
+  bool disc_body_{true};  ///< no footprint polygon: the body is the disc
+  Vec2 stuck_anchor_{Vec2::Zero()};
+  double stuck_anchor_time_{0.0};
+  double stuck_radius_{0.0};
+  /// m: a lower bound on the body's clearance to the world at pose_ (exact right after it is
+  /// computed). Disc bodies only; it lets a step skip the clearance query and the inside test.
+  double clearance_bound_{0.0};
+  RunResult result_{};
+};
+
+}  // namespace floornav

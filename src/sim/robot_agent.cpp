@@ -1,0 +1,196 @@
+#include "floornav/sim/robot_agent.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "floornav/control/heading_tracker.hpp"
+#include "floornav/kinematics/unicycle.hpp"
+#include "floornav/sim/body_clearance.hpp"
+
+namespace floornav {
+
+namespace {
+// Robots with more sensors than this see enough at once; remembering points would only cost time.
+constexpr std::size_t kMaxSensorsForMemory = 32;
+// The transition log is reserved for this many switches, so that logging one allocates nothing
+// in the step loop; a run that chatters beyond it grows the log (amortised, rare).
+constexpr std::size_t kReservedTransitions = 1024;
+// Slack subtracted per step from the clearance lower bound, far above the rounding of a
+// clearance (~1e-15 m) or a step length, so the bound stays a true lower bound.
+constexpr double kClearanceBoundSlack = 1e-9;  // m
+}  // namespace
+
+void SensingScratch::fit(std::size_t sensors) {
+  if (beams.size() >= sensors) return;
+  beams.assign(sensors, SensorBeam{});
+  ranges.assign(sensors, 0.0);
+  sensed.assign(sensors, Vec2::Zero());
+  points.assign(sensors + ObstacleMemory::kCapacity, Vec2::Zero());
+}
+
+RobotAgent::RobotAgent(const AgentSetup& setup)
+    : world_(setup.world),
+      robot_(setup.robot),
+      goals_(setup.goals),
+      automaton_(setup.automaton),
+      nav_(setup.navigation),
+      sim_(setup.sim),
+      state_(setup.automaton->initial_state()),
+      rng_(setup.seed),
+      pose_(setup.start),
+      log_transitions_(setup.log_transitions) {
+  const std::size_t n_sensors = robot_->sensors.size();
+  use_memory_ = nav_->obstacle_memory > 0.0 && n_sensors <= kMaxSensorsForMemory;
+  stuck_radius_ = sim_->stuck_radius > 0.0 ? sim_->stuck_radius : robot_->body_radius;
+  stuck_anchor_ = pose_.position;
+
+  RunResult& r = result_;
+  r.scenario = setup.name;
+  r.goal_count = static_cast<int>(goals_.size());
+  if (setup.names) {
+    for (const auto& m : automaton_->modes()) r.mode_names.push_back(m.name);
+    for (const auto& e : automaton_->edges()) r.guard_names.push_back(e.guard_name);
+  }
+  r.mode_time.assign(automaton_->modes().size(), 0.0);
+  if (log_transitions_) {
+    r.transitions.reserve(kReservedTransitions);
+    r.transition_x.reserve(kReservedTransitions);
+    r.transition_y.reserve(kReservedTransitions);
+  }
+  r.min_clearance = body_clearance(*world_, *robot_, pose_);
+  disc_body_ = robot_->footprint.empty();
+  clearance_bound_ = r.min_clearance;
+  r.final_x = pose_.position.x();
+  r.final_y = pose_.position.y();
+  r.final_theta = pose_.theta;
+  if (sim_->record_trajectory) {
+    const double steps = std::ceil(sim_->t_max / sim_->dt) + 2.0;
+    r.trajectory.reserve(static_cast<std::size_t>(std::min(steps, 2.0e6)));
+    r.trajectory.push_back({0.0, pose_.position.x(), pose_.position.y(), pose_.theta, 0.0, 0.0, 0.0,
+                            0.0, state_.mode});
+  }
+  if (goals_.empty())
+    finish(RunStatus::Reached);
+  else if (r.min_clearance <= 0.0) {  // touching is a collision, as in step()
+    r.collided = true;
+    finish(RunStatus::Collision);
+  }
+}
+
+void RobotAgent::finish(RunStatus status) {
+  finished_ = true;
+  result_.status = status;
+  result_.reached_goal = status == RunStatus::Reached;
+  result_.sim_time = t_;
+  result_.final_x = pose_.position.x();
+  result_.final_y = pose_.position.y();
+  result_.final_theta = pose_.theta;
+  result_.chatter_episodes = state_.chatter.episodes;
+  result_.first_chatter_time = state_.chatter.first_time;
+}
+
+void RobotAgent::collide_with_robot(double gap) {
+  if (finished_) return;
+  note_robot_gap(gap);
+  result_.collided = true;
+  finish(RunStatus::Collision);
+}
+
+bool RobotAgent::step(SensingScratch& scratch, std::span<const Circle> others) {
+  if (finished_) return false;
+  const RobotSpec& robot = *robot_;
+  const NavigationParams& nav = *nav_;
+  const double dt = sim_->dt;
+  RunResult& r = result_;
+
+  // 1. sense
+  // The body disc is clear of every obstacle by at least clearance_bound_, so sensors mounted
+  // within it start outside the obstacles: the world need not test that per ray.
+  const std::size_t n_sensors = robot.sensors.size();
+  const std::span<SensorBeam> beams(scratch.beams.data(), n_sensors);
+  const std::span<double> ranges(scratch.ranges.data(), n_sensors);
+  compute_sensor_beams(pose_, robot.sensors, beams);
+  const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
+  sense_ranges(*world_, beams, robot.sensors, robot.sensor_noise, rng_, ranges, free, others);
+  std::size_t n = ranges_to_points(beams, robot.sensors, ranges, scratch.sensed);
+  std::span<const Vec2> points(scratch.sensed.data(), n);
+  if (use_memory_) {
+    n = memory_.update(points, t_, nav.obstacle_memory, 0.25 * robot.body_radius, scratch.points);
+    points = std::span<const Vec2>(scratch.points.data(), n);
+  }
+
+  // 2. supervise
+  const Vec2 goal = goals_[goal_index_];
+  const NavigationInput in =
+      make_navigation_input(pose_.position, goal, points, robot.body_radius, nav);
+  if (auto tr = automaton_->step(in, state_, t_ + dt, dt)) {
+    if (log_transitions_) {
+      r.transitions.push_back(*tr);
+      r.transition_x.push_back(pose_.position.x());
+      r.transition_y.push_back(pose_.position.y());
+    }
+    ++r.mode_switches;
+  }
+  if (automaton_->is_terminal(state_)) {
+    // STOP: this goal is reached; go on to the next one, or end the run.
+    ++r.goals_reached;
+    if (++goal_index_ >= goals_.size()) {
+      finish(RunStatus::Reached);
+      return false;
+    }
+    state_ = automaton_->initial_state();
+    pid_ = {};
+    memory_.clear();
+    return true;
+  }
+
+  // 3. control (Fig 5.12), 4. saturate
+  const Vec2 u = automaton_->flow(in, state_);
+  const UnicycleCommand wanted =
+      track_velocity(u, pose_.theta, nav.v0, nav.heading_pid, pid_, dt, nav.slow_when_turning);
+  const WheelSpeeds wheels = saturate_wheels(robot.drive, wanted);
+  const UnicycleCommand driven = wheels_to_unicycle(robot.drive, wheels);
+
+  // 5. integrate
+  const Pose2 next = integrate_unicycle(pose_, driven, dt);
+  const double moved = (next.position - pose_.position).norm();
+  r.path_length += moved;
+  pose_ = next;
+  t_ += dt;
+  ++r.steps;
+  r.mode_time[static_cast<std::size_t>(state_.mode)] += dt;
+
+  // 7. record (before the checks, so the final row is the state the run ended in)
+  if (sim_->record_trajectory)
+    r.trajectory.push_back({t_, pose_.position.x(), pose_.position.y(), pose_.theta, driven.v,
+                            driven.omega, wheels.left, wheels.right, state_.mode});
+
+  // 6. check. A disc body's clearance changes by at most the distance moved, so while that
+  // lower bound stays above min_clearance the exact value could change neither min_clearance
+  // nor the collision test (min_clearance >= 0 while running): it is computed only when it might.
+  clearance_bound_ -= moved + kClearanceBoundSlack;
+  if (!disc_body_ || clearance_bound_ <= r.min_clearance) {
+    const double clearance = body_clearance(*world_, robot, pose_);
+    clearance_bound_ = clearance;
+    r.min_clearance = std::min(r.min_clearance, clearance);
+    if (clearance <= 0.0) {
+      r.collided = true;
+      finish(RunStatus::Collision);
+      return false;
+    }
+  }
+  if ((pose_.position - stuck_anchor_).norm() > stuck_radius_) {
+    stuck_anchor_ = pose_.position;
+    stuck_anchor_time_ = t_;
+  } else if (t_ - stuck_anchor_time_ >= sim_->stuck_window) {
+    finish(RunStatus::Stuck);
+    return false;
+  }
+  if (t_ >= sim_->t_max - 1e-9) {
+    finish(RunStatus::Timeout);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace floornav
