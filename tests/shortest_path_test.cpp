@@ -6,12 +6,14 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <initializer_list>
 #include <numbers>
 #include <vector>
 
 #include "floornav/geometry/world.hpp"
 #include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/io/movingai_map.hpp"
 
 namespace floornav {
 namespace {
@@ -106,6 +108,47 @@ TEST(OctileAstar, MatchesTheOctileDistanceInOpenSpaceAndIsDeterministic) {
   ASSERT_TRUE(a && b);
   EXPECT_NEAR(a->length, 27.0 + 7.0 * kSqrt2, 1e-9);
   EXPECT_EQ(a->cells, b->cells);
+}
+
+// The MovingAI benchmark's own optima (octile, no corner cutting), row by row: octile_astar on the
+// map's cells, and scenario_optimum's octile length on the map as a world (1 m cells, r = 0.1 m, so
+// every free cell's centre is free: its clearance is at least half a cell).
+TEST(OctileAstar, MatchesEveryMovingAiScenOptimum) {
+  const std::filesystem::path dir =
+      std::filesystem::path(FLOORNAV_SHARED_MAPS_DIR) / "movingai-mapf";
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no " << dir.string();
+  for (const char* name : {"room-32-32-4", "den312d"}) {
+    SCOPED_TRACE(name);
+    const OccupancyGrid g = load_movingai_map(dir / (std::string(name) + ".map"), 1.0);
+    FreeRaster r;
+    r.width = g.width();
+    r.height = g.height();
+    for (int y = 0; y < g.height(); ++y)
+      for (int x = 0; x < g.width(); ++x) r.free.push_back(g.occupied(x, y) ? 0 : 1);
+    WorldDesc d;
+    d.grid = &g;
+    const World w(d);
+    const auto rows = load_movingai_scen(dir / (std::string(name) + "-random-1.scen"));
+    ASSERT_GT(rows.size(), 100u);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const MovingAiCase& c = rows[i];
+      const GridCell s{c.start_x, c.height - 1 - c.start_y}, t{c.goal_x, c.height - 1 - c.goal_y};
+      const auto p = octile_astar(r, s, t);
+      ASSERT_TRUE(p) << "row " << i;
+      EXPECT_NEAR(p->length, c.optimal_length, 1e-6) << "row " << i;
+      if (i % 10 == 0) {  // the whole pipeline, on a sample of rows
+        const std::array<Vec2, 1> goal{movingai_cell_center(c.goal_x, c.goal_y, c.height, 1.0)};
+        const Optimum o = scenario_optimum(
+            w, 0.1, movingai_cell_center(c.start_x, c.start_y, c.height, 1.0), goal);
+        ASSERT_EQ(o.status, OptimumStatus::Found) << "row " << i;
+        EXPECT_NEAR(o.octile_length, c.optimal_length, 1e-6) << "row " << i;
+        EXPECT_LE(o.length, o.octile_length + 1e-9);
+        EXPECT_GE(
+            o.length,
+            (goal[0] - movingai_cell_center(c.start_x, c.start_y, c.height, 1.0)).norm() - 1e-9);
+      }
+    }
+  }
 }
 
 TEST(LineOfSight, ThroughACornerNeedsBothNeighbours) {
