@@ -249,6 +249,11 @@ TEST(ScenarioOptimum, GoesThroughEveryGoalInOrder) {
   const Optimum o = scenario_optimum(w, 0.1, {1.0, 1.0}, goals);
   ASSERT_EQ(o.status, OptimumStatus::Found);
   EXPECT_NEAR(o.length, 8.0, 1e-9);
+  // The route in the world: start, the first goal (a corner), the second goal.
+  ASSERT_EQ(o.path.size(), 3u);
+  EXPECT_NEAR((o.path[0] - Vec2(1.0, 1.0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((o.path[1] - goals[0]).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((o.path[2] - goals[1]).norm(), 0.0, 1e-12);
   // Without string pulling, an oblique leg keeps its octile length.
   const std::array<Vec2, 1> far{Vec2(8.0, 4.0)};
   OptimumOptions octile_only;

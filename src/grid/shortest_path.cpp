@@ -6,6 +6,7 @@
 #include <limits>
 #include <queue>
 #include <tuple>
+#include <utility>
 
 #include "floornav/geometry/world.hpp"
 #include "floornav/grid/occupancy_grid.hpp"
@@ -257,6 +258,7 @@ Optimum scenario_optimum(const World& world, double body_radius, const Vec2& sta
   const FreeRaster raster = rasterise(world, body_radius, *frame);
 
   double length = 0.0, octile = 0.0;
+  std::vector<Vec2> route;
   Vec2 from = frame->to_cells(start);
   auto from_cell = snap(raster, from, options.snap_radius);
   for (const Vec2& goal_world : goals) {
@@ -279,13 +281,17 @@ Optimum scenario_optimum(const World& world, double body_radius, const Vec2& sta
     points.push_back(to);
     const double leg_octile = polyline_length(points);
     octile += leg_octile;
-    length += options.smooth ? polyline_length(pull_string(raster, points)) : leg_octile;
+    if (options.smooth) points = pull_string(raster, points);
+    length += options.smooth ? polyline_length(points) : leg_octile;
+    for (std::size_t i = route.empty() ? 0 : 1; i < points.size(); ++i)
+      route.push_back(frame->to_world(points[i]));
     from = to;
     from_cell = to_cell;
   }
   out.status = OptimumStatus::Found;
   out.length = length * frame->cell;
   out.octile_length = octile * frame->cell;
+  out.path = std::move(route);
   return out;
 }
 

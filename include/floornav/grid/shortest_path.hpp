@@ -90,6 +90,8 @@ struct Optimum {
   double cell_size{0.0};      ///< m, of the raster used
   int width{0};               ///< raster size in cells
   int height{0};
+  std::vector<Vec2>
+      path;  ///< world frame: start, the kept vertices, every goal; empty unless Found
 };
 
 /// The shortest collision-free path length for a disc robot of radius `body_radius` from `start`
