@@ -217,6 +217,45 @@ World gap_world(double gap) {
   return World(d);
 }
 
+// free_cells skips queries by the 1-Lipschitz bound; it must give the raster of one query per cell.
+TEST(FreeCells, EqualsOneClearanceQueryPerCell) {
+  WorldDesc d;
+  d.bounds = Box2{{-1.0, -1.0}, {6.0, 4.0}};
+  d.circles = {Circle{{1.0, 1.0}, 0.4}, Circle{{4.0, 2.5}, 0.05}, Circle{{2.5, 0.2}, 0.0}};
+  d.polygons = {{{2.0, 2.0}, {3.0, 2.2}, {2.6, 3.1}}, {{4.5, -0.5}, {5.5, -0.5}, {5.5, 1.5}}};
+  const World w(d);
+  for (const double r : {0.0, 0.05, 0.1, 0.37}) {
+    for (const Pose2& origin : {Pose2{{-1.3, -1.2}, 0.0}, Pose2{{0.7, -2.0}, 0.6}}) {
+      const FreeRaster f = free_cells(w, r, origin, 0.05, 150, 110);
+      ASSERT_EQ(f.free.size(), 150u * 110u);
+      std::size_t mismatches = 0, free = 0;
+      for (int iy = 0; iy < 110; ++iy)
+        for (int ix = 0; ix < 150; ++ix) {
+          const Vec2 c = origin.transform_point(Vec2((ix + 0.5) * 0.05, (iy + 0.5) * 0.05));
+          const bool expect = w.clearance(c) > r;
+          mismatches += f.is_free(ix, iy) != expect;
+          free += expect;
+        }
+      EXPECT_EQ(mismatches, 0u) << "r " << r;
+      EXPECT_GT(free, 1000u);
+    }
+  }
+  // An occupancy map with a wall, at its own cells.
+  std::vector<std::uint8_t> occ(40 * 30, 0);
+  for (int y = 3; y < 27; ++y) occ[static_cast<std::size_t>(y) * 40 + 17] = 1;
+  const OccupancyGrid g(40, 30, 0.1, Pose2{{2.0, 1.0}, 0.3}, std::move(occ));
+  WorldDesc gd;
+  gd.grid = &g;
+  const World gw(gd);
+  const FreeRaster f = free_cells(gw, 0.25, g.origin(), 0.1, 40, 30);
+  for (int iy = 0; iy < 30; ++iy)
+    for (int ix = 0; ix < 40; ++ix) {
+      const Vec2 c = g.origin().transform_point(Vec2((ix + 0.5) * 0.1, (iy + 0.5) * 0.1));
+      ASSERT_EQ(f.is_free(ix, iy), gw.clearance(c) > 0.25) << ix << ", " << iy;
+    }
+  EXPECT_TRUE(free_cells(gw, 0.25, g.origin(), 0.1, 0, 30).free.empty());
+}
+
 TEST(ScenarioOptimum, StraightThroughAGapWiderThanTheRobot) {
   // Gap 0.3 m, r = 0.1 m: cell centres on the line y = 1 +- 0.025 have clearance 0.125 > r.
   const World w = gap_world(0.3);

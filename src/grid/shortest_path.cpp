@@ -154,6 +154,12 @@ std::optional<GridCell> snap(const FreeRaster& raster, const Vec2& p, double rad
 
 }  // namespace
 
+FreeRaster free_cells(const World& world, double body_radius, const Pose2& origin, double cell,
+                      int width, int height) {
+  if (width <= 0 || height <= 0 || !(cell > 0.0)) return {};
+  return rasterise(world, body_radius, RasterFrame{origin, cell, width, height});
+}
+
 std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, GridCell goal) {
   if (!raster.is_free(start.x, start.y) || !raster.is_free(goal.x, goal.y)) return std::nullopt;
   const std::size_t w = static_cast<std::size_t>(raster.width);

@@ -65,6 +65,12 @@ bool line_of_sight(const FreeRaster& raster, const Vec2& a, const Vec2& b);
 /// segments cross only free cells when the input's do.
 std::vector<Vec2> pull_string(const FreeRaster& raster, std::span<const Vec2> points);
 
+/// The configuration space of a disc robot on a raster: cell (ix, iy), covering
+/// [ix, ix + 1) x [iy, iy + 1) times `cell` in the frame `origin`, is free when
+/// `world.clearance` at its centre exceeds `body_radius`. Empty for a non-positive size.
+FreeRaster free_cells(const World& world, double body_radius, const Pose2& origin, double cell,
+                      int width, int height);
+
 /// How the optimum of a scenario is computed.
 struct OptimumOptions {
   double cell_size{0.05};  ///< m, worlds without an occupancy grid (made finer for small robots)
