@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
   int batch_jobs = 0;
   double batch_cell = 0.0;
   long batch_limit = -1;
-  bool batch_no_timing = false, batch_resume = false;
+  bool batch_no_timing = false, batch_resume = false, batch_no_optimum = false;
   std::string batch_worlds, batch_barn_paths, batch_shard;
   auto* batch = app.add_subcommand("batch",
                                    "Run many scenarios in parallel; writes "
@@ -89,6 +89,9 @@ int main(int argc, char** argv) {
   batch->add_flag("--no-timing", batch_no_timing,
                   "write wall_time as 0 so that repeated runs give identical files");
   batch->add_flag("--resume", batch_resume, "keep the cases already in results.jsonl");
+  batch->add_flag("--no-optimum", batch_no_optimum,
+                  "skip the grid A* optimal path length (and path_efficiency) where no .scen "
+                  "file gives the optimum");
   batch->add_option("--worlds", batch_worlds,
                     "folder of Gazebo .world/.sdf files: one case per world, on the template");
   batch->add_option("--barn-paths", batch_barn_paths,
@@ -182,6 +185,7 @@ int main(int argc, char** argv) {
       opt.progress = isatty(STDERR_FILENO) != 0;
       opt.timing = !batch_no_timing;
       opt.resume = batch_resume;
+      opt.optimum = !batch_no_optimum;
       opt.stop = &g_stop;
       const BatchOutcome o = run_batch(cases, opt);
       const auto& a = o.aggregate;

@@ -106,6 +106,36 @@ TEST(Cli, BatchWritesOrderedResultsIdenticalForAnyJobCount) {
   EXPECT_DOUBLE_EQ(agg["success_rate"].get<double>(), 1.0);
 }
 
+TEST(Cli, BatchWritesTheGridOptimumAndPathEfficiency) {
+  const std::string files = scenario("rectangle.yaml") + " " + scenario("circle_obstacle.yaml");
+  const fs::path on = temp_dir("optimum_on"), off = temp_dir("optimum_off");
+  ASSERT_EQ(floornav("batch " + files + " --no-timing --out " + on.string()).status, 0);
+  const std::string text = read(on / "results.jsonl");
+  std::istringstream lines(text);
+  std::string l;
+  double efficiency_sum = 0.0;
+  while (std::getline(lines, l)) {
+    const auto j = nlohmann::json::parse(l);
+    ASSERT_EQ(j["status"], "reached");
+    EXPECT_EQ(j["optimal_source"], "grid_astar");
+    const double opt = j["optimal_length"].get<double>(), driven = j["path_length"].get<double>();
+    // Reaching the goal needs at least the straight line; octile is never shorter than pulled.
+    EXPECT_GT(opt, 2.0);
+    EXPECT_GE(j["optimal_octile_length"].get<double>(), opt);
+    EXPECT_DOUBLE_EQ(j["path_efficiency"].get<double>(), opt / driven);
+    efficiency_sum += opt / driven;
+  }
+  const auto agg = nlohmann::json::parse(read(on / "aggregate.json"));
+  EXPECT_NEAR(agg["mean_path_efficiency_reached"].get<double>(), efficiency_sum / 2.0, 1e-12);
+  EXPECT_EQ(agg["runs_with_optimum"], 2);
+  EXPECT_EQ(agg["optimal_sources"]["grid_astar"], 2);
+  // --no-optimum: no optimum keys at all.
+  ASSERT_EQ(floornav("batch " + files + " --no-timing --no-optimum --out " + off.string()).status,
+            0);
+  EXPECT_EQ(read(off / "results.jsonl").find("optimal"), std::string::npos);
+  EXPECT_FALSE(nlohmann::json::parse(read(off / "aggregate.json")).contains("mean_optimal_length"));
+}
+
 TEST(Cli, DemoRunsWithNoFiles) {
   const fs::path out = temp_dir("demo");
   const Output o = floornav("demo --out " + out.string());

@@ -13,6 +13,7 @@
 #include <optional>
 #include <thread>
 
+#include "floornav/grid/shortest_path.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/input_error.hpp"
 #include "floornav/io/run_outputs.hpp"
@@ -22,7 +23,14 @@ namespace floornav {
 
 namespace {
 
-nlohmann::ordered_json result_line(const BatchCase& c, const RunResult& r, bool timing) {
+/// The grid optimum of a case's scenario: a length in metres, or the reason there is none.
+Optimum case_optimum(const Scenario& s) {
+  if (!s.world) return {};
+  return scenario_optimum(*s.world, s.robot.body_radius, s.start.position, s.goals);
+}
+
+nlohmann::ordered_json result_line(const BatchCase& c, const RunResult& r, bool timing,
+                                   const std::optional<Optimum>& optimum) {
   nlohmann::ordered_json line;
   line["case"] = c.id;
   line["source"] = c.source;
@@ -33,11 +41,21 @@ nlohmann::ordered_json result_line(const BatchCase& c, const RunResult& r, bool 
   if (!timing) line["wall_time"] = 0.0;
   line.erase("transitions");  // the per-case detail stays out of a batch's lines
   line.erase("transitions_truncated");
-  if (c.optimal_length) {
-    line["optimal_length"] = *c.optimal_length;
-    line["path_efficiency"] = r.reached_goal && r.path_length > 0
-                                  ? nlohmann::ordered_json(*c.optimal_length / r.path_length)
+  std::optional<double> optimal = c.optimal_length;
+  if (optimum && optimum->status == OptimumStatus::Found) optimal = optimum->length;
+  if (c.optimal_length || optimum) {
+    line["optimal_length"] = optimal ? nlohmann::ordered_json(*optimal) : nullptr;
+    line["path_efficiency"] = optimal && r.reached_goal && r.path_length > 0
+                                  ? nlohmann::ordered_json(*optimal / r.path_length)
                                   : nlohmann::ordered_json(nullptr);
+    line["optimal_source"] = c.optimal_length ? "scen" : "grid_astar";
+  }
+  if (optimum) {
+    if (optimum->status == OptimumStatus::Found)
+      line["optimal_octile_length"] = optimum->octile_length;
+    else
+      line["optimal_status"] = std::string(to_string(optimum->status));
+    line["optimal_cell_size"] = optimum->cell_size;
   }
   if (c.optimal_time) {
     line["optimal_time"] = *c.optimal_time;
@@ -81,8 +99,9 @@ nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_jso
   struct Totals {
     std::size_t n = 0, reached = 0, collision = 0, timeout = 0, stuck = 0;
     double time_sum = 0, path_sum = 0, clearance_min = 1e300;
-    std::size_t efficiency_n = 0, score_n = 0;
-    double efficiency_sum = 0, score_sum = 0;
+    std::size_t efficiency_n = 0, score_n = 0, optimum_n = 0;
+    double efficiency_sum = 0, score_sum = 0, optimum_sum = 0;
+    std::map<std::string, std::size_t> optimum_sources;
   };
   auto add = [](Totals& t, const nlohmann::ordered_json& l) {
     ++t.n;
@@ -97,6 +116,10 @@ nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_jso
     t.stuck += s == "stuck";
     if (l.contains("path_efficiency") && l["path_efficiency"].is_number())
       ++t.efficiency_n, t.efficiency_sum += l["path_efficiency"].get<double>();
+    if (l.contains("optimal_length") && l["optimal_length"].is_number()) {
+      ++t.optimum_n, t.optimum_sum += l["optimal_length"].get<double>();
+      ++t.optimum_sources[l.value("optimal_source", "unknown")];
+    }
     if (l.contains("score") && l["score"].is_number())
       ++t.score_n, t.score_sum += l["score"].get<double>();
     if (l.contains("min_clearance") && l["min_clearance"].is_number())
@@ -118,6 +141,11 @@ nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_jso
     j["min_clearance"] = t.n ? nlohmann::ordered_json(t.clearance_min) : nullptr;
     if (t.efficiency_n)
       j["mean_path_efficiency_reached"] = t.efficiency_sum / static_cast<double>(t.efficiency_n);
+    if (t.optimum_n) {
+      j["runs_with_optimum"] = t.optimum_n;
+      j["mean_optimal_length"] = t.optimum_sum / static_cast<double>(t.optimum_n);
+      j["optimal_sources"] = t.optimum_sources;
+    }
     if (t.score_n) j["mean_score"] = t.score_sum / static_cast<double>(t.score_n);
     return j;
   };
@@ -173,8 +201,10 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
       }
       Scenario sc = cases[i].scenario;  // shares the world; copies only small data
       sc.sim.record_trajectory = false;
+      std::optional<Optimum> optimum;
+      if (options.optimum && !cases[i].optimal_length) optimum = case_optimum(sc);
       RunResult r = run_timed(sc);
-      auto line = result_line(cases[i], r, options.timing);
+      auto line = result_line(cases[i], r, options.timing, optimum);
       {
         std::lock_guard lock(mutex);
         lines[i] = std::move(line);

@@ -22,6 +22,9 @@ struct BatchOptions {
   bool progress{false};           ///< a progress bar on stderr
   bool timing{true};              ///< false: wall_time is written as 0, so files compare equal
   bool resume{false};             ///< skip cases already in results.jsonl
+  /// Cases without a given `optimal_length` get the grid optimum (scenario_optimum: octile A*
+  /// on a raster of the world, string-pulled) as `optimal_length`, source "grid_astar".
+  bool optimum{true};
   const std::atomic<bool>* stop{nullptr};  ///< set (e.g. by SIGINT) to stop taking new cases
 };
 
@@ -29,8 +32,10 @@ struct BatchCase {
   Scenario scenario;
   std::string source;  ///< the file (and row) it came from, for the results line
   std::size_t id{0};   ///< the case number in the whole sweep (kept across --shard)
-  std::optional<double> optimal_length;  ///< m, for path_efficiency = optimal / driven
-  std::optional<double> optimal_time;    ///< s, for the BARN score
+  /// m, from a benchmark file (a .scen row; source "scen"), for path_efficiency = optimal /
+  /// driven. Without it, run_batch computes the grid optimum unless options.optimum is off.
+  std::optional<double> optimal_length;
+  std::optional<double> optimal_time;  ///< s, for the BARN score
 };
 
 /// The BARN challenge's score: success * t_opt / clip(t, 2 t_opt, 8 t_opt).

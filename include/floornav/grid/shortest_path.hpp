@@ -1,0 +1,112 @@
+#pragma once
+/// @file
+/// Shortest paths on a raster of free cells: octile A* (8-connected, no corner cutting), raster
+/// line of sight and string pulling, and the optimum of a scenario (start through every goal in
+/// order, for a disc robot of radius r) on a raster of the world. The batch runner uses it for
+/// `path_efficiency` where no benchmark file gives the optimum.
+///
+/// What the optimum means: a cell is free when the world's clearance at its centre exceeds r
+/// (the configuration space, sampled at cell centres). The octile length is therefore an upper
+/// bound on the shortest path through free cell centres, up to ~8 % longer than any-angle
+/// (cos 22.5 deg); string pulling then shortens it with straight segments that cross only free
+/// cells. Both are approximations of the true Euclidean optimum at the raster's resolution, not
+/// exact values: see docs/BENCHMARKS.md.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "floornav/geometry/pose2.hpp"
+#include "floornav/geometry/vec2.hpp"
+
+namespace floornav {
+
+class World;
+
+/// A grid of free (nonzero) and blocked (zero) cells, row-major from row iy = 0. In cell units,
+/// cell (ix, iy) covers [ix, ix + 1) x [iy, iy + 1) and its centre is (ix + 0.5, iy + 0.5).
+struct FreeRaster {
+  int width{0};
+  int height{0};
+  std::vector<std::uint8_t> free;  ///< width * height bytes
+
+  bool is_free(int ix, int iy) const {
+    return ix >= 0 && iy >= 0 && ix < width && iy < height &&
+           free[static_cast<std::size_t>(iy) * static_cast<std::size_t>(width) +
+                static_cast<std::size_t>(ix)] != 0;
+  }
+};
+
+struct GridCell {
+  int x{0};
+  int y{0};
+  bool operator==(const GridCell&) const = default;
+};
+
+struct GridPath {
+  double length{0.0};           ///< in cells: 1 per straight step, sqrt(2) per diagonal step
+  std::vector<GridCell> cells;  ///< start to goal, both included
+};
+
+/// Octile A* from `start` to `goal`: moves to the 8 neighbours, a diagonal move only when both
+/// cells it passes between are free (no corner cutting). Empty when either cell is blocked or
+/// outside the raster, or the goal is unreachable. Deterministic; iterative; O(n log n).
+std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, GridCell goal);
+
+/// True when every cell whose closed square the segment a-b (cell units) touches is free: a
+/// segment along a cell border needs the cells on both sides, one through a corner all four.
+bool line_of_sight(const FreeRaster& raster, const Vec2& a, const Vec2& b);
+
+/// Greedy string pulling: drops every vertex of the polyline `points` (cell units) that the
+/// previous kept vertex can see past. The result is never longer than the input, and its
+/// segments cross only free cells when the input's do.
+std::vector<Vec2> pull_string(const FreeRaster& raster, std::span<const Vec2> points);
+
+/// The configuration space of a disc robot on a raster: cell (ix, iy), covering
+/// [ix, ix + 1) x [iy, iy + 1) times `cell` in the frame `origin`, is free when
+/// `world.clearance` at its centre exceeds `body_radius`. Empty for a non-positive size.
+FreeRaster free_cells(const World& world, double body_radius, const Pose2& origin, double cell,
+                      int width, int height);
+
+/// How the optimum of a scenario is computed.
+struct OptimumOptions {
+  double cell_size{0.05};  ///< m, worlds without an occupancy grid (made finer for small robots)
+  std::size_t max_cells{4'000'000};  ///< larger rasters are not built: no optimum
+  double snap_radius{3.0};           ///< cells: how far a blocked start/goal looks for a free cell
+  bool smooth{true};                 ///< string-pull the octile path
+};
+
+enum class OptimumStatus {
+  Found,
+  Unreachable,     ///< a goal cannot be reached from the previous one on the raster
+  NoFreeCell,      ///< no free cell within the snap radius of the start or a goal
+  RasterTooLarge,  ///< the world needs more than max_cells cells (or cells coarser than r)
+  InvalidInput,    ///< non-finite point or radius, or no goals
+};
+
+std::string_view to_string(OptimumStatus s);
+
+struct Optimum {
+  OptimumStatus status{OptimumStatus::InvalidInput};
+  double length{0.0};         ///< m: string-pulled (or octile when smooth is off); 0 unless Found
+  double octile_length{0.0};  ///< m: the octile paths themselves
+  double cell_size{0.0};      ///< m, of the raster used
+  int width{0};               ///< raster size in cells
+  int height{0};
+  std::vector<Vec2>
+      path;  ///< world frame: start, the kept vertices, every goal; empty unless Found
+};
+
+/// The shortest collision-free path length for a disc robot of radius `body_radius` from `start`
+/// through every goal in order, on a raster of `world`: the occupancy grid's own cells when the
+/// world has one (in its frame and resolution), else square cells of `options.cell_size` (or
+/// body_radius / 2 if smaller) over the bounds, or over the obstacles, start and goals with a
+/// margin. A cell is free when `world.clearance` at its centre exceeds `body_radius`. Each leg runs
+/// from the exact point to the nearest free cell centre, along the octile path, to the exact goal.
+Optimum scenario_optimum(const World& world, double body_radius, const Vec2& start,
+                         std::span<const Vec2> goals, const OptimumOptions& options = {});
+
+}  // namespace floornav
