@@ -36,9 +36,15 @@ std::string default_out_dir(const std::string& name) {
   return (fs::path("out") / name).string();
 }
 
-int run_one(const Scenario& scenario, const std::string& out, bool quiet) {
-  const RunResult r = run_timed(scenario);
+int run_one(const Scenario& scenario, const std::string& out, bool quiet, int threads) {
   const fs::path dir = out.empty() ? fs::path(default_out_dir(scenario.name)) : fs::path(out);
+  if (!scenario.robots.empty()) {
+    const FleetResult f = run_fleet_timed(scenario, threads);
+    write_fleet_outputs(dir, scenario, f);
+    if (!quiet) fmt::print("{} -> {}\n", describe_fleet(f), dir.string());
+    return 0;
+  }
+  const RunResult r = run_timed(scenario);
   write_run_outputs(dir, scenario, r);
   if (!quiet) fmt::print("{} -> {}\n", describe_run(r), dir.string());
   return 0;
@@ -63,6 +69,10 @@ int main(int argc, char** argv) {
   run->add_option("--set", run_sets, "override a scenario key: --set controller.kind=blended")
       ->take_all();
   run->add_flag("-q,--quiet", run_quiet, "print nothing on success");
+  int run_threads = 0;
+  run->add_option("--threads", run_threads,
+                  "threads stepping a fleet's robots (default: all cores; same result for any)")
+      ->check(CLI::Range(1, 1024));
 
   // batch
   std::vector<std::string> batch_files, batch_sets;
@@ -132,11 +142,11 @@ int main(int argc, char** argv) {
   try {
     if (*run) {
       const Scenario s = load_scenario_file(run_file, run_sets);
-      return run_one(s, run_out, run_quiet);
+      return run_one(s, run_out, run_quiet, run_threads);
     }
     if (*demo) {
       const Scenario s = load_scenario_text(app::kDemoScenarioYaml, "factory-delivery.yaml");
-      return run_one(s, demo_out, false);
+      return run_one(s, demo_out, false, 0);
     }
     if (*bench) return run_bench(bench_opt);
     if (*presets) {

@@ -64,6 +64,20 @@ nlohmann::ordered_json result_line(const BatchCase& c, const RunResult& r, bool 
   return line;
 }
 
+// A fleet case's line: the fleet's summary without each robot's (which can be thousands).
+nlohmann::ordered_json fleet_result_line(const BatchCase& c, const FleetResult& f, bool timing) {
+  nlohmann::ordered_json line;
+  line["case"] = c.id;
+  line["source"] = c.source;
+  line["controller"] = std::string(to_string(c.scenario.controller));
+  line["robot"] = c.scenario.robot.preset;
+  nlohmann::ordered_json summary = fleet_summary_to_json(f);
+  summary.erase("robots");
+  for (auto& [k, v] : summary.items()) line[k] = std::move(v);
+  if (!timing) line["wall_time"] = 0.0;
+  return line;
+}
+
 // Reads a results.jsonl left by an earlier (interrupted) run: case index -> line.
 std::map<std::size_t, nlohmann::ordered_json> read_existing(const std::filesystem::path& path) {
   std::map<std::size_t, nlohmann::ordered_json> out;
@@ -201,10 +215,15 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
       }
       Scenario sc = cases[i].scenario;  // shares the world; copies only small data
       sc.sim.record_trajectory = false;
-      std::optional<Optimum> optimum;
-      if (options.optimum && !cases[i].optimal_length) optimum = case_optimum(sc);
-      RunResult r = run_timed(sc);
-      auto line = result_line(cases[i], r, options.timing, optimum);
+      nlohmann::ordered_json line;
+      if (!sc.robots.empty()) {
+        // A fleet: one thread per case, like every case (the batch is parallel across cases).
+        line = fleet_result_line(cases[i], run_fleet_timed(sc, 1), options.timing);
+      } else {
+        std::optional<Optimum> optimum;
+        if (options.optimum && !cases[i].optimal_length) optimum = case_optimum(sc);
+        line = result_line(cases[i], run_timed(sc), options.timing, optimum);
+      }
       {
         std::lock_guard lock(mutex);
         lines[i] = std::move(line);

@@ -41,4 +41,29 @@ RunResult run_timed(const Scenario& scenario) {
   return r;
 }
 
+void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scenario,
+                         const FleetResult& result, const OutputSelection& which) {
+  ensure_directory(dir);
+  if (which.summary)
+    write_file_atomically(dir / "summary.json", fleet_summary_to_json(result).dump(2) + "\n");
+  if (which.csv) write_file_atomically(dir / "trajectory.csv", trajectory_to_csv(result));
+  if (which.svg) write_file_atomically(dir / "trajectory.svg", render_fleet_svg(scenario, result));
+}
+
+std::string describe_fleet(const FleetResult& f) {
+  std::string out = fmt::format(
+      "{}: {} robots, {} reached, {} collided, {}/{} deliveries in {:.1f} s, min clearance "
+      "{:.3f} m",
+      f.scenario, f.robots.size(), f.reached, f.collided, f.deliveries, f.delivery_count,
+      f.sim_time, f.min_clearance);
+  return out;
+}
+
+FleetResult run_fleet_timed(const Scenario& scenario, int threads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FleetResult r = simulate_fleet(scenario, threads);
+  r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
 }  // namespace floornav

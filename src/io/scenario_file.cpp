@@ -8,11 +8,13 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <unordered_set>
 
 #include "floornav/automaton/hybrid_automaton.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
 #include "floornav/sim/body_clearance.hpp"
+#include "floornav/sim/robot_neighbour_grid.hpp"
 #include "world_map.hpp"
 #include "yaml_reader.hpp"
 
@@ -35,6 +37,8 @@ constexpr double kPointPostRadius = 0.03;  // m, the radius given to `point:` ob
 constexpr std::size_t kMaxPolygonPoints = 1000;
 constexpr std::size_t kMaxPolygonPointsInAll = 100000;
 constexpr std::size_t kMaxGoals = 10000;
+// A fleet scenario lists at most this many robots (each has its own goals and sensors).
+constexpr std::size_t kMaxRobots = 100000;
 constexpr std::size_t kMaxMounts = 100000;
 
 /// YAML text -> tree; errors name `file` (or the --set value when `file` is empty).
@@ -285,6 +289,74 @@ void read_controller(const std::string& file, MapReader& r, Scenario& s) {
   r.finish();
 }
 
+// `goal: [x, y]` or `goals: [[x, y], ...]` in the map `m` (the top level or one robot).
+std::vector<Vec2> read_goals(const std::string& file, MapReader& m) {
+  const bool has_goal = m.has("goal"), has_goals = m.has("goals");
+  if (has_goal == has_goals)
+    fail(file, m.node(), m.path_of(has_goal ? "goals" : "goal"),
+         has_goal ? "give either goal or goals, not both" : "missing (goal: [x, y])");
+  if (has_goal) return {read_point(file, m.get("goal"), m.path_of("goal"))};
+  const YAML::Node n = m.get("goals");
+  if (n.IsSequence() && n.size() > kMaxGoals)
+    fail(file, n, m.path_of("goals"), fmt::format("at most {} goals, got {}", kMaxGoals, n.size()));
+  std::vector<Vec2> goals = read_points(file, n, m.path_of("goals"));
+  if (goals.empty()) fail(file, n, m.path_of("goals"), "needs at least one goal");
+  return goals;
+}
+
+// `robots:`, a list of robot sections, each with its own goal(s), an optional name and an
+// optional controller section on top of the shared one. Scenario::robot and friends repeat the
+// first robot.
+void read_fleet(const std::string& file, const YAML::Node& root, MapReader& top, Scenario& s) {
+  for (const char* key : {"robot", "goal", "goals"})
+    if (top.has(key))
+      fail(file, root, key,
+           fmt::format("with robots, each robot has its own {}; remove the top-level one",
+                       std::string_view(key) == "robot" ? "section" : "goal or goals"));
+  const YAML::Node list = top.get("robots");
+  if (!list.IsSequence() || list.size() == 0)
+    fail(file, list, "robots", "expected a list of robots (robots: [{start: [x, y, theta], ...}])");
+  if (list.size() > kMaxRobots)
+    fail(file, list, "robots", fmt::format("at most {} robots, got {}", kMaxRobots, list.size()));
+  std::optional<YAML::Node> shared_controller;
+  if (top.has("controller")) shared_controller = top.get("controller");
+  s.robots.reserve(list.size());
+  std::unordered_set<std::string> names;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string path = fmt::format("robots[{}]", i);
+    if (!list[i].IsMap())
+      fail(file, list[i], path, "expected a robot section ({start: [x, y, theta], goal: [x, y]})");
+    MapReader r(file, list[i], path);
+    RobotTask task;
+    task.name = r.has("name") ? io_detail::read_string(file, r.get("name"), r.path_of("name"))
+                              : fmt::format("robot{}", i);
+    if (!names.insert(task.name).second)
+      fail(file, list[i], r.path_of("name"), fmt::format("'{}' names two robots", task.name));
+    task.goals = read_goals(file, r);
+    std::optional<YAML::Node> own_controller;
+    if (r.has("controller")) own_controller = r.get("controller");
+    Scenario one;
+    read_robot(file, r, one);  // the preset, then this robot's values
+    for (const auto& [node, key] : {std::pair{shared_controller, std::string("controller")},
+                                    std::pair{own_controller, r.path_of("controller")}}) {
+      if (!node) continue;
+      MapReader c(file, *node, key);
+      read_controller(file, c, one);
+    }
+    task.robot = std::move(one.robot);
+    task.start = one.start;
+    task.controller = one.controller;
+    task.navigation = one.navigation;
+    s.robots.push_back(std::move(task));
+  }
+  const RobotTask& first = s.robots.front();
+  s.robot = first.robot;
+  s.start = first.start;
+  s.goals = first.goals;
+  s.controller = first.controller;
+  s.navigation = first.navigation;
+}
+
 Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& origin) {
   const std::string file = origin.string();
   if (!root.IsDefined() || root.IsNull())
@@ -295,13 +367,16 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
   if (top.has("name")) s.name = io_detail::read_string(file, top.get("name"), "name");
 
   // robot first: its preset supplies the controller defaults.
-  if (!top.has("robot"))
-    fail(file, root, "robot", "missing section (robot: {start: [x, y, theta]})");
-  {
+  const bool fleet = top.has("robots");
+  if (fleet) {
+    read_fleet(file, root, top, s);
+  } else {
+    if (!top.has("robot"))
+      fail(file, root, "robot", "missing section (robot: {start: [x, y, theta]})");
     MapReader r(file, top.get("robot"), "robot");
     read_robot(file, r, s);
   }
-  if (top.has("controller")) {
+  if (top.has("controller") && !fleet) {
     MapReader r(file, top.get("controller"), "controller");
     read_controller(file, r, s);
   }
@@ -311,19 +386,7 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
     r.finish();
   }
 
-  const bool has_goal = top.has("goal"), has_goals = top.has("goals");
-  if (has_goal == has_goals)
-    fail(file, root, has_goal ? "goals" : "goal",
-         has_goal ? "give either goal or goals, not both" : "missing (goal: [x, y])");
-  if (has_goal)
-    s.goals.push_back(read_point(file, top.get("goal"), "goal"));
-  else {
-    const YAML::Node n = top.get("goals");
-    if (n.IsSequence() && n.size() > kMaxGoals)
-      fail(file, n, "goals", fmt::format("at most {} goals, got {}", kMaxGoals, n.size()));
-    s.goals = read_points(file, n, "goals");
-    if (s.goals.empty()) fail(file, n, "goals", "needs at least one goal");
-  }
+  if (!fleet) s.goals = read_goals(file, top);
 
   WorldDesc desc;
   if (!top.has("world")) fail(file, root, "world", "missing section (world: {bounds: [...]})");
@@ -373,7 +436,62 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
 
 }  // namespace
 
+namespace {
+
+// Each robot of a fleet is checked as a lone robot would be, its errors naming it
+// (robots[3].start); then no two robots may start touching.
+void validate_fleet(const Scenario& s, const std::string& file) {
+  Scenario one;
+  one.world = s.world;
+  one.grid = s.grid;
+  one.sim = s.sim;
+  for (std::size_t i = 0; i < s.robots.size(); ++i) {
+    const RobotTask& t = s.robots[i];
+    one.robot = t.robot;
+    one.start = t.start;
+    one.goals = t.goals;
+    one.controller = t.controller;
+    one.navigation = t.navigation;
+    try {
+      validate_scenario(one, file);
+    } catch (const InputError& e) {
+      const std::string path = fmt::format("robots[{}]", i);
+      std::string where = e.where;
+      if (where.rfind("robot.", 0) == 0)
+        where = path + where.substr(5);
+      else if (where.rfind("goal", 0) == 0)
+        where = path + "." + where;
+      else
+        where = fmt::format("{} ({})", where, path);
+      throw InputError(file, where, e.detail);
+    }
+  }
+  RobotNeighbourGrid grid;
+  std::vector<Vec2> starts;
+  double max_radius = 0.0;
+  Box2 box{s.robots[0].start.position, s.robots[0].start.position};
+  for (const RobotTask& t : s.robots) {
+    starts.push_back(t.start.position);
+    max_radius = std::max(max_radius, t.robot.body_radius);
+    box.min = box.min.cwiseMin(t.start.position);
+    box.max = box.max.cwiseMax(t.start.position);
+  }
+  grid.reset(box, 2.0 * max_radius, starts.size());
+  grid.build(starts, std::vector<std::uint8_t>(starts.size(), 1));
+  for (std::size_t i = 0; i < starts.size(); ++i)
+    grid.for_each_near(starts[i], 2.0 * max_radius, [&](std::size_t j) {
+      const double touch = s.robots[i].robot.body_radius + s.robots[j].robot.body_radius;
+      if (j > i && (starts[j] - starts[i]).norm() <= touch)
+        throw InputError(file, fmt::format("robots[{}].start", j),
+                         fmt::format("touches robot {} ('{}') at ({}, {}): the bodies overlap", i,
+                                     s.robots[i].name, starts[i].x(), starts[i].y()));
+    });
+}
+
+}  // namespace
+
 void validate_scenario(const Scenario& s, const std::string& file) {
+  if (!s.robots.empty()) return validate_fleet(s, file);
   auto bad = [&](const std::string& key, const std::string& what) {
     throw InputError(file, key, what);
   };

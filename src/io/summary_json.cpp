@@ -1,5 +1,7 @@
 #include "floornav/io/summary_json.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <string>
 
@@ -73,6 +75,85 @@ nlohmann::ordered_json summary_to_json(const RunResult& r) {
   }
   j["transitions"] = std::move(transitions);
   if (shown < r.transitions.size()) j["transitions_truncated"] = true;
+  return j;
+}
+
+nlohmann::ordered_json fleet_summary_to_json(const FleetResult& f) {
+  Json j = Json::object();
+  j["scenario"] = f.scenario;
+  j["status"] = std::string(to_string(f.status));
+  j["reached_goal"] = f.reached == static_cast<int>(f.robots.size());
+  j["collided"] = f.collided > 0;
+  j["sim_time"] = number(f.sim_time);
+  double path = 0.0;
+  long long switches = 0;
+  // Mode time summed by name: robots may run different controllers.
+  std::vector<std::pair<std::string, double>> modes;
+  for (const RunResult& r : f.robots) {
+    path += r.path_length;
+    switches += r.mode_switches;
+    for (std::size_t m = 0; m < r.mode_time.size(); ++m) {
+      if (!(r.mode_time[m] > 0.0)) continue;
+      const std::string name = mode_name(r, static_cast<int>(m));
+      auto it = std::find_if(modes.begin(), modes.end(), [&](auto& e) { return e.first == name; });
+      if (it == modes.end())
+        modes.emplace_back(name, r.mode_time[m]);
+      else
+        it->second += r.mode_time[m];
+    }
+  }
+  j["path_length"] = number(path);
+  j["min_clearance"] = number(f.min_clearance);
+  j["mode_switches"] = switches;
+  Json mode_time = Json::object();
+  for (const auto& [name, t] : modes) mode_time[name] = number(t);
+  j["mode_time"] = std::move(mode_time);
+  j["steps"] = f.steps;
+  j["wall_time"] = number(f.wall_time);
+
+  int timeouts = 0, stuck = 0, robot_collisions = 0, world_collisions = 0;
+  for (const RunResult& r : f.robots) {
+    timeouts += r.status == RunStatus::Timeout;
+    stuck += r.status == RunStatus::Stuck;
+  }
+  for (const FleetCollision& c : f.collisions)
+    (c.other < 0 ? world_collisions : robot_collisions)++;
+  Json fleet = Json::object();
+  fleet["robots"] = f.robots.size();
+  fleet["reached"] = f.reached;
+  fleet["collided"] = f.collided;
+  fleet["timeout"] = timeouts;
+  fleet["stuck"] = stuck;
+  fleet["deliveries"] = f.deliveries;
+  fleet["delivery_count"] = f.delivery_count;
+  fleet["deliveries_per_minute"] =
+      f.sim_time > 0.0 ? number(60.0 * f.deliveries / f.sim_time) : Json(nullptr);
+  fleet["robot_steps"] = f.robot_steps;
+  fleet["robot_collisions"] = robot_collisions;
+  fleet["world_collisions"] = world_collisions;
+  j["fleet"] = std::move(fleet);
+
+  auto robot_name = [&](int i) {
+    return i >= 0 && static_cast<std::size_t>(i) < f.robots.size()
+               ? Json(f.robots[static_cast<std::size_t>(i)].scenario)
+               : Json(nullptr);
+  };
+  Json collisions = Json::array();
+  const std::size_t shown = std::min(f.collisions.size(), kSummaryMaxCollisions);
+  for (std::size_t k = 0; k < shown; ++k) {
+    const FleetCollision& c = f.collisions[k];
+    Json e = Json::object();
+    e["t"] = number(c.time);
+    e["robot"] = robot_name(c.robot);
+    e["other"] = robot_name(c.other);
+    collisions.push_back(std::move(e));
+  }
+  j["collisions"] = std::move(collisions);
+  if (shown < f.collisions.size()) j["collisions_truncated"] = true;
+
+  Json robots = Json::array();
+  for (const RunResult& r : f.robots) robots.push_back(summary_to_json(r));
+  j["robots"] = std::move(robots);
   return j;
 }
 

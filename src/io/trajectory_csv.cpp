@@ -22,24 +22,43 @@ std::string csv_field(std::string_view text) {
   return out;
 }
 
-}  // namespace
-
-std::string trajectory_to_csv(const RunResult& r) {
+// The rows of `r`, each ending with `suffix` (",name" for a fleet, "" for one robot).
+void append_rows(fmt::memory_buffer& out, const RunResult& r, std::string_view suffix) {
   std::vector<std::string> names;
   names.reserve(r.mode_names.size());
   for (const std::string& n : r.mode_names) names.push_back(csv_field(n));
-
-  fmt::memory_buffer out;
-  out.reserve(64 + r.trajectory.size() * 128);
   auto it = std::back_inserter(out);
-  fmt::format_to(it, "t,x,y,theta,v,omega,w_left,w_right,mode\n");
   for (const TrajectorySample& s : r.trajectory) {
     it = fmt::format_to(it, "{},{},{},{},{},{},{},{},", s.t, s.x, s.y, s.theta, s.v, s.omega,
                         s.w_left, s.w_right);
     if (s.mode >= 0 && static_cast<std::size_t>(s.mode) < names.size())
-      it = fmt::format_to(it, "{}\n", names[static_cast<std::size_t>(s.mode)]);
+      it = fmt::format_to(it, "{}{}\n", names[static_cast<std::size_t>(s.mode)], suffix);
     else
-      it = fmt::format_to(it, "mode_{}\n", s.mode);
+      it = fmt::format_to(it, "mode_{}{}\n", s.mode, suffix);
+  }
+}
+
+}  // namespace
+
+std::string trajectory_to_csv(const RunResult& r) {
+  fmt::memory_buffer out;
+  out.reserve(64 + r.trajectory.size() * 128);
+  fmt::format_to(std::back_inserter(out), "t,x,y,theta,v,omega,w_left,w_right,mode\n");
+  append_rows(out, r, "");
+  return fmt::to_string(out);
+}
+
+std::string trajectory_to_csv(const FleetResult& f) {
+  std::size_t rows = 0;
+  for (const RunResult& r : f.robots) rows += r.trajectory.size();
+  fmt::memory_buffer out;
+  out.reserve(64 + rows * 136);
+  fmt::format_to(std::back_inserter(out), "t,x,y,theta,v,omega,w_left,w_right,mode,robot\n");
+  std::string suffix;
+  for (const RunResult& r : f.robots) {
+    suffix.assign(1, ',');
+    suffix += csv_field(r.scenario);
+    append_rows(out, r, suffix);
   }
   return fmt::to_string(out);
 }

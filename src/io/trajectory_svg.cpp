@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <iterator>
 #include <limits>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -94,6 +95,8 @@ constexpr double kPad = 20.0;             ///< px around everything
 constexpr double kTitleHeight = 58.0;     ///< px for the title and the subtitle
 constexpr double kMinCanvasWidth = 640.0;
 constexpr std::size_t kMaxPathPoints = 5000;
+/// Fleets up to this size have each robot named beside its start.
+constexpr std::size_t kMaxNamedRobots = 40;
 constexpr std::size_t kMaxSwitchMarkers = 2000;
 constexpr double kSwitchSpacing = 8.0;   ///< px between two switch markers, at least
 constexpr double kMinRobotRadius = 6.0;  ///< px: a tiny robot is still drawn visibly
@@ -170,19 +173,32 @@ void add_grid_extent(Extent& e, const OccupancyGrid& g) {
 }
 
 /// Everything that must be in the picture: the world, the start, the goals, the path.
-Extent picture_extent(const Scenario& s, const RunResult& r) {
+/// One robot's run as the picture draws it: the scenario as that robot sees it (its body,
+/// start, goals and epsilon) and its result.
+struct Track {
+  const Scenario* s;
+  const RunResult* r;
+};
+
+Extent picture_extent(const Scenario& world_s, std::span<const Track> tracks) {
   Extent e;
-  if (s.world && world_has_content(*s.world)) {
-    const Box2& box = s.world->extent();
+  if (world_s.world && world_has_content(*world_s.world)) {
+    const Box2& box = world_s.world->extent();
     e.add(box.min.x(), box.min.y());
     e.add(box.max.x(), box.max.y());
   }
-  if (const OccupancyGrid* g = grid_of(s)) add_grid_extent(e, *g);
-  const double body = std::max(0.0, s.robot.body_radius);
-  e.add(s.start.position.x(), s.start.position.y(), body);
-  for (const Vec2& goal : s.goals) e.add(goal.x(), goal.y(), std::max(0.0, s.navigation.epsilon));
-  for (const TrajectorySample& p : r.trajectory) e.add(p.x, p.y, body);
-  e.add(r.final_x, r.final_y, body);
+  if (const OccupancyGrid* g = grid_of(world_s)) add_grid_extent(e, *g);
+  double body = 0.0;
+  for (const Track& t : tracks) {
+    const Scenario& s = *t.s;
+    const RunResult& r = *t.r;
+    body = std::max(body, std::max(0.0, s.robot.body_radius));
+    const double b = std::max(0.0, s.robot.body_radius);
+    e.add(s.start.position.x(), s.start.position.y(), b);
+    for (const Vec2& goal : s.goals) e.add(goal.x(), goal.y(), std::max(0.0, s.navigation.epsilon));
+    for (const TrajectorySample& p : r.trajectory) e.add(p.x, p.y, b);
+    e.add(r.final_x, r.final_y, b);
+  }
   if (!e.valid()) e = Extent{-1.0, -1.0, 1.0, 1.0};
   // A straight run in an empty world would give a sliver: keep both sides in proportion.
   const double span = std::max({e.xmax - e.xmin, e.ymax - e.ymin, 4.0 * body, 0.2});
@@ -331,7 +347,7 @@ struct PathRun {
 /// The path split where the mode changes (each piece starting where the previous one ended, so
 /// the line is unbroken), with samples closer than kMinPointSpacing dropped and, past
 /// kMaxPathPoints, thinned evenly. The first and last sample of every piece are always kept.
-std::vector<PathRun> path_runs(const RunResult& r, const View& v) {
+std::vector<PathRun> path_runs(const RunResult& r, const View& v, std::size_t max_points) {
   std::vector<PathRun> runs;
   bool broken = true;  // true at the start and after a non-finite sample
   bool has_pending = false;
@@ -368,8 +384,8 @@ std::vector<PathRun> path_runs(const RunResult& r, const View& v) {
 
   std::size_t total = 0;
   for (const PathRun& run : runs) total += run.points.size();
-  if (total > kMaxPathPoints) {
-    const std::size_t stride = (total + kMaxPathPoints - 1) / kMaxPathPoints;
+  if (total > max_points) {
+    const std::size_t stride = (total + max_points - 1) / max_points;
     for (PathRun& run : runs) {
       auto& pts = run.points;
       if (pts.size() <= 2) continue;
@@ -383,8 +399,8 @@ std::vector<PathRun> path_runs(const RunResult& r, const View& v) {
   return runs;
 }
 
-void draw_path(Out out, const RunResult& r, const View& v) {
-  const std::vector<PathRun> runs = path_runs(r, v);
+void draw_path(Out out, const RunResult& r, const View& v, std::size_t max_points) {
+  const std::vector<PathRun> runs = path_runs(r, v, max_points);
   if (runs.empty()) return;
   fmt::format_to(out, R"(<g fill="none" stroke-width="2.5" stroke-linecap="round" )"
                       R"(stroke-linejoin="round">)"
@@ -531,29 +547,40 @@ struct LegendItem {
   std::string_view color;
 };
 
-std::vector<LegendItem> legend_items(const Scenario& s, const RunResult& r) {
-  const int n = static_cast<int>(std::max(r.mode_names.size(), r.mode_time.size()));
-  std::vector<bool> used(static_cast<std::size_t>(std::max(n, 0)), false);
-  std::vector<int> extra;  // modes in the trajectory beyond the named ones
-  for (const TrajectorySample& p : r.trajectory) {
-    if (p.mode >= 0 && p.mode < n)
-      used[static_cast<std::size_t>(p.mode)] = true;
-    else if (std::find(extra.begin(), extra.end(), p.mode) == extra.end())
-      extra.push_back(p.mode);
-  }
-  for (std::size_t m = 0; m < r.mode_time.size(); ++m)
-    if (r.mode_time[m] > 0.0) used[m] = true;
-
+std::vector<LegendItem> legend_items(std::span<const Track> tracks) {
   std::vector<LegendItem> items;
-  for (int m = 0; m < n; ++m)
-    if (used[static_cast<std::size_t>(m)])
-      items.push_back({LegendIcon::Mode, mode_label(r, m), color_for_mode(r, m)});
-  for (int m : extra) items.push_back({LegendIcon::Mode, mode_label(r, m), color_for_mode(r, m)});
+  auto add_mode = [&](const RunResult& r, int m) {
+    std::string label = mode_label(r, m);
+    for (const LegendItem& it : items)
+      if (it.label == label) return;
+    items.push_back({LegendIcon::Mode, std::move(label), color_for_mode(r, m)});
+  };
+  bool goals = false, many_goals = false, switches = false, collided = false;
+  for (const Track& t : tracks) {
+    const RunResult& r = *t.r;
+    const int n = static_cast<int>(std::max(r.mode_names.size(), r.mode_time.size()));
+    std::vector<bool> used(static_cast<std::size_t>(std::max(n, 0)), false);
+    std::vector<int> extra;  // modes in the trajectory beyond the named ones
+    for (const TrajectorySample& p : r.trajectory) {
+      if (p.mode >= 0 && p.mode < n)
+        used[static_cast<std::size_t>(p.mode)] = true;
+      else if (std::find(extra.begin(), extra.end(), p.mode) == extra.end())
+        extra.push_back(p.mode);
+    }
+    for (std::size_t m = 0; m < r.mode_time.size(); ++m)
+      if (r.mode_time[m] > 0.0) used[m] = true;
+    for (int m = 0; m < n; ++m)
+      if (used[static_cast<std::size_t>(m)]) add_mode(r, m);
+    for (int m : extra) add_mode(r, m);
+    goals = goals || !t.s->goals.empty();
+    many_goals = many_goals || t.s->goals.size() > 1 || (goals && tracks.size() > 1);
+    switches = switches || !r.transition_x.empty();
+    collided = collided || r.collided;
+  }
   items.push_back({LegendIcon::Start, "start", ""});
-  if (!s.goals.empty())
-    items.push_back({LegendIcon::Goal, s.goals.size() > 1 ? "goals" : "goal", ""});
-  if (!r.transition_x.empty()) items.push_back({LegendIcon::Switch, "mode switch", ""});
-  items.push_back({LegendIcon::End, r.collided ? "end (collision)" : "end", ""});
+  if (goals) items.push_back({LegendIcon::Goal, many_goals ? "goals" : "goal", ""});
+  if (switches) items.push_back({LegendIcon::Switch, "mode switch", ""});
+  items.push_back({LegendIcon::End, collided ? "end (collision)" : "end", ""});
   return items;
 }
 
@@ -635,8 +662,13 @@ std::string_view mode_color(std::string_view name, int fallback_index) {
   return kSpareColors[static_cast<std::size_t>(std::abs(fallback_index)) % kSpareColors.size()];
 }
 
-std::string render_trajectory_svg(const Scenario& s, const RunResult& r) {
-  const Extent e = picture_extent(s, r);
+namespace {
+
+/// The picture of one or more robots in one world: `world_s` gives the world, `tracks` the
+/// robots; `title` and `numbers` the two lines of text at the top.
+std::string render_tracks(const Scenario& world_s, std::span<const Track> tracks,
+                          const std::string& title, const std::string& numbers) {
+  const Extent e = picture_extent(world_s, tracks);
   const double w_m = e.xmax - e.xmin;
   const double h_m = e.ymax - e.ymin;
   View v;
@@ -650,11 +682,17 @@ std::string render_trajectory_svg(const Scenario& s, const RunResult& r) {
   v.left = 0.5 * (canvas_w - v.width);
   v.top = kTitleHeight + kMapMargin;
 
-  const std::vector<LegendItem> items = legend_items(s, r);
+  const std::vector<LegendItem> items = legend_items(tracks);
   const double scale_bar_room = 190.0;
   const auto rows = legend_rows(items, canvas_w - 2 * kPad - scale_bar_room);
   const double legend_top = v.top + v.height + kMapMargin + 12.0;
   const double canvas_h = legend_top + static_cast<double>(rows.size()) * kLegendRow + kPad;
+  bool any_collided = false;
+  for (const Track& t : tracks) any_collided = any_collided || t.r->collided;
+  // Path points are shared among the robots, so that a big fleet's picture stays small.
+  const std::size_t max_points =
+      std::max<std::size_t>(kMaxPathPoints / std::max<std::size_t>(tracks.size(), 1), 50);
+  const bool fleet = tracks.size() > 1;
 
   fmt::memory_buffer buf;
   buf.reserve(64 * 1024);
@@ -664,42 +702,48 @@ std::string render_trajectory_svg(const Scenario& s, const RunResult& r) {
                  R"(viewBox="0 0 {} {}">)"
                  "\n",
                  Px{canvas_w}, Px{canvas_h}, Px{canvas_w}, Px{canvas_h});
-  fmt::format_to(out, "<title>{}</title>\n", Xml{s.name});
+  fmt::format_to(out, "<title>{}</title>\n", Xml{world_s.name});
 
-  draw_background(out, s, v, canvas_w, canvas_h);
-  if (const OccupancyGrid* g = grid_of(s)) draw_grid(out, *g, v);
-  if (s.world) draw_obstacles(out, *s.world, v);
-  draw_walls(out, s, v);
-  draw_goal_areas(out, s, v);
-  draw_path(out, r, v);
-  draw_switches(out, r, v);
+  draw_background(out, world_s, v, canvas_w, canvas_h);
+  if (const OccupancyGrid* g = grid_of(world_s)) draw_grid(out, *g, v);
+  if (world_s.world) draw_obstacles(out, *world_s.world, v);
+  draw_walls(out, world_s, v);
+  for (const Track& t : tracks) draw_goal_areas(out, *t.s, v);
+  for (const Track& t : tracks) draw_path(out, *t.r, v, max_points);
+  for (const Track& t : tracks) draw_switches(out, *t.r, v);
 
-  const double body_px = std::max(s.robot.body_radius * v.scale, kMinRobotRadius);
-  draw_robot(out, v.x(s.start.position.x()), v.y(s.start.position.y()), body_px, s.start.theta,
-             "#ffffff", 0.85, "#333333");
-  if (r.collided)
-    draw_robot(out, v.x(r.final_x), v.y(r.final_y), body_px, r.final_theta, "#d62728", 0.85,
-               "#7f0000");
-  else
-    draw_robot(out, v.x(r.final_x), v.y(r.final_y), body_px, r.final_theta, "#90a4ae", 0.9,
-               "#263238");
-  draw_goal_flags(out, s, v);  // over the final body, which usually sits on the goal
+  for (const Track& t : tracks) {
+    const Scenario& s = *t.s;
+    const RunResult& r = *t.r;
+    const double body_px = std::max(s.robot.body_radius * v.scale, kMinRobotRadius);
+    draw_robot(out, v.x(s.start.position.x()), v.y(s.start.position.y()), body_px, s.start.theta,
+               "#ffffff", 0.85, "#333333");
+    if (r.collided)
+      draw_robot(out, v.x(r.final_x), v.y(r.final_y), body_px, r.final_theta, "#d62728", 0.85,
+                 "#7f0000");
+    else
+      draw_robot(out, v.x(r.final_x), v.y(r.final_y), body_px, r.final_theta, "#90a4ae", 0.9,
+                 "#263238");
+  }
+  for (const Track& t : tracks) draw_goal_flags(out, *t.s, v);  // over the final bodies
+  // A small fleet's robots are named at their start.
+  if (fleet && tracks.size() <= kMaxNamedRobots)
+    for (const Track& t : tracks) {
+      const Scenario& s = *t.s;
+      const double body_px = std::max(s.robot.body_radius * v.scale, kMinRobotRadius);
+      fmt::format_to(out,
+                     R"(<text x="{}" y="{}" font-family="{}" font-size="11" fill="#222222" )"
+                     R"(text-anchor="middle">{}</text>)"
+                     "\n",
+                     Px{v.x(s.start.position.x())}, Px{v.y(s.start.position.y()) - body_px - 4},
+                     kFont, Xml{t.r->scenario});
+    }
 
-  // Title and one line of numbers.
-  const std::string title = fmt::format("{} — {} — {} in {:.2f} s", s.name, to_string(s.controller),
-                                        to_string(r.status), r.sim_time);
   fmt::format_to(out,
                  R"(<text x="{}" y="28" font-family="{}" font-size="17" font-weight="bold" )"
                  R"(fill="#222222">{}</text>)"
                  "\n",
                  Px{kPad}, kFont, Xml{title});
-  // "+ 0.0" turns -0 into 0; a clearance that rounds to zero must not print as "-0.000".
-  const double clearance = std::round(r.min_clearance * 1000.0) / 1000.0 + 0.0;
-  std::string numbers =
-      fmt::format("path {:.2f} m · min clearance {:.3f} m · {} switch{} · {} steps", r.path_length,
-                  clearance, r.mode_switches, r.mode_switches == 1 ? "" : "es", r.steps);
-  if (r.goal_count > 1) numbers += fmt::format(" · goals {}/{}", r.goals_reached, r.goal_count);
-  if (r.chatter_episodes > 0) numbers += fmt::format(" · chatter ×{}", r.chatter_episodes);
   fmt::format_to(out,
                  R"(<text x="{}" y="47" font-family="{}" font-size="12" fill="#666666">{}</text>)"
                  "\n",
@@ -710,7 +754,7 @@ std::string render_trajectory_svg(const Scenario& s, const RunResult& r) {
     const double cy = legend_top + kLegendRow * (static_cast<double>(row) + 0.5);
     double x = kPad;
     for (const LegendItem* item : rows[row]) {
-      draw_legend_icon(out, *item, r.collided, x, cy);
+      draw_legend_icon(out, *item, any_collided, x, cy);
       fmt::format_to(out,
                      R"(<text x="{}" y="{}" font-family="{}" font-size="{}" fill="#333333">{})"
                      R"(</text>)"
@@ -723,6 +767,56 @@ std::string render_trajectory_svg(const Scenario& s, const RunResult& r) {
 
   fmt::format_to(out, "</svg>\n");
   return fmt::to_string(buf);
+}
+
+// "+ 0.0" turns -0 into 0; a clearance that rounds to zero must not print as "-0.000".
+double shown_clearance(double c) {
+  return std::round(c * 1000.0) / 1000.0 + 0.0;
+}
+
+}  // namespace
+
+std::string render_trajectory_svg(const Scenario& s, const RunResult& r) {
+  const std::string title = fmt::format("{} — {} — {} in {:.2f} s", s.name, to_string(s.controller),
+                                        to_string(r.status), r.sim_time);
+  std::string numbers = fmt::format(
+      "path {:.2f} m · min clearance {:.3f} m · {} switch{} · {} steps", r.path_length,
+      shown_clearance(r.min_clearance), r.mode_switches, r.mode_switches == 1 ? "" : "es", r.steps);
+  if (r.goal_count > 1) numbers += fmt::format(" · goals {}/{}", r.goals_reached, r.goal_count);
+  if (r.chatter_episodes > 0) numbers += fmt::format(" · chatter ×{}", r.chatter_episodes);
+  const Track track{&s, &r};
+  return render_tracks(s, std::span<const Track>(&track, 1), title, numbers);
+}
+
+std::string render_fleet_svg(const Scenario& s, const FleetResult& f) {
+  // Each robot's own view of the scenario (its body, start, goals), for the shared drawing code.
+  std::vector<Scenario> views;
+  views.reserve(f.robots.size());
+  for (std::size_t i = 0; i < f.robots.size(); ++i) {
+    Scenario v;
+    v.name = s.name;
+    if (i < s.robots.size()) {
+      const RobotTask& t = s.robots[i];
+      v.robot.body_radius = t.robot.body_radius;
+      v.start = t.start;
+      v.goals = t.goals;
+      v.navigation.epsilon = t.navigation.epsilon;
+    } else {
+      v.robot.body_radius = s.robot.body_radius;
+      v.start = s.start;
+      v.goals = s.goals;
+      v.navigation.epsilon = s.navigation.epsilon;
+    }
+    views.push_back(std::move(v));
+  }
+  std::vector<Track> tracks;
+  for (std::size_t i = 0; i < f.robots.size(); ++i) tracks.push_back({&views[i], &f.robots[i]});
+  const std::string title = fmt::format("{} — {} robots — {} in {:.2f} s", s.name, f.robots.size(),
+                                        to_string(f.status), f.sim_time);
+  const std::string numbers = fmt::format(
+      "{} reached · {} collided · deliveries {}/{} · min clearance {:.3f} m · {} steps", f.reached,
+      f.collided, f.deliveries, f.delivery_count, shown_clearance(f.min_clearance), f.steps);
+  return render_tracks(s, tracks, title, numbers);
 }
 
 }  // namespace floornav

@@ -90,8 +90,8 @@ void RobotAgent::finish(RunStatus status) {
 }
 
 void RobotAgent::collide_with_robot(double gap) {
-  if (finished_) return;
   note_robot_gap(gap);
+  if (finished_) return;  // already stopped: the other robot drove into it
   result_.collided = true;
   finish(RunStatus::Collision);
 }

@@ -41,6 +41,8 @@ struct NavigationParams {
   double chatter_window{2.0};    ///< ... within this many seconds is a chatter (Zeno) episode
   PidGains heading_pid{};        ///< eqs. 5.12-5.15
 
+  bool operator==(const NavigationParams&) const = default;
+
   template <class Archive>
   void serialize(Archive& a) {
     a("v0", v0, "cruise speed, m/s (cap on |u|)");

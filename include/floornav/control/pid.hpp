@@ -11,6 +11,8 @@ struct PidGains {
   double kd{0.0};              ///< dimensionless
   double integral_limit{1.0};  ///< rad s; |integral| is clamped to this (anti-windup)
 
+  bool operator==(const PidGains&) const = default;
+
   template <class Archive>
   void serialize(Archive& a) {
     a("kp", kp, "proportional gain, 1/s");

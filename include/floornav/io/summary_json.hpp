@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/run_result.hpp"
 
 namespace floornav {
@@ -19,5 +20,18 @@ inline constexpr std::size_t kSummaryMaxTransitions = 1000;
 /// `mode_time` lists only the modes that ran (time > 0), in mode order, seconds. A number that
 /// is NaN or infinite is written as null.
 nlohmann::ordered_json summary_to_json(const RunResult& result);
+
+/// Collisions listed in a fleet summary; the rest are counted only.
+inline constexpr std::size_t kSummaryMaxCollisions = 1000;
+
+/// A fleet run as JSON. The CONTRACT.md keys first, for the fleet as a whole: status (reached
+/// when every robot completed its route, else collision if any collided, else stuck if any
+/// was, else timeout), reached_goal (all), collided (any), sim_time (until the last robot
+/// finished), path_length and mode_switches (sums), min_clearance (smallest), mode_time (sums
+/// by mode name), steps (world steps), wall_time. Then `fleet` {robots, reached, collided,
+/// timeout, stuck, deliveries, delivery_count, deliveries_per_minute, robot_steps,
+/// robot_collisions, world_collisions}, `collisions` [{t, robot, other}] (names; other is null
+/// for the world; the first kSummaryMaxCollisions) and `robots`: each robot's own summary.
+nlohmann::ordered_json fleet_summary_to_json(const FleetResult& result);
 
 }  // namespace floornav

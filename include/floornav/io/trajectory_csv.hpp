@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/run_result.hpp"
 
 namespace floornav {
@@ -12,5 +13,9 @@ namespace floornav {
 /// (s, m, m, rad, m/s, rad/s, rad/s, rad/s, mode name). Numbers are the shortest text that reads
 /// back to the same double, so the file is exact and the same on every machine.
 std::string trajectory_to_csv(const RunResult& result);
+
+/// A fleet's trajectories in one file: the same columns and a last one, `robot` (its name),
+/// robot after robot, each in time order.
+std::string trajectory_to_csv(const FleetResult& result);
 
 }  // namespace floornav

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/run_result.hpp"
 #include "floornav/sim/scenario.hpp"
 
@@ -21,5 +22,10 @@ std::string_view mode_color(std::string_view name, int fallback_index = 0);
 /// The path is decimated to about 5000 points and an occupancy grid larger than 4 million cells
 /// is drawn downsampled, so the file stays small for long runs and big maps.
 std::string render_trajectory_svg(const Scenario& scenario, const RunResult& result);
+
+/// The same picture for a fleet: every robot's path (coloured by mode), starts, goals and final
+/// bodies, small fleets' robots named at their start. The path points are shared among the
+/// robots (about 5000 in all, at least 50 each), so a big fleet's file stays small.
+std::string render_fleet_svg(const Scenario& scenario, const FleetResult& result);
 
 }  // namespace floornav

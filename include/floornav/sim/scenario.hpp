@@ -24,6 +24,7 @@ struct SimConfig {
   double stuck_window{10.0};     ///< s: a robot that stays within stuck_radius this long is `stuck`
   double stuck_radius{0.0};      ///< m; 0 means the robot's body radius
   bool record_trajectory{true};  ///< keep every step (for CSV and SVG); off in big batches
+  bool park_finished{true};      ///< fleets: a robot that is done stays, an obstacle to others
 
   template <class Archive>
   void serialize(Archive& a) {
@@ -33,6 +34,8 @@ struct SimConfig {
     a("stuck_window", stuck_window, "a robot that stays within stuck_radius this long is stuck, s");
     a("stuck_radius", stuck_radius, "m; 0 means the body radius");
     a("record_trajectory", record_trajectory, "keep every step for the CSV and SVG outputs");
+    a("park_finished", park_finished,
+      "fleets: a robot that has finished stays where it stopped, an obstacle to the others");
   }
 };
 

@@ -1,0 +1,96 @@
+#pragma once
+/// @file
+/// Many robots in one world (a scenario's `robots` list). Every step, each robot senses the world
+/// and the bodies of the other robots (discs of their body radius) as they stood at the start of
+/// the step, then decides and moves exactly as a lone robot does (robot_agent.hpp). Then the
+/// robots are checked against each other: bodies that touch end both runs as collisions.
+/// A robot that has finished stays where it stopped, an obstacle to the others, unless
+/// `sim.park_finished` is off; a collided robot always stays.
+///
+/// Robots read only the positions of the previous step and write only their own state, so the
+/// robots of a step can be stepped on any number of threads with the same result, bit for bit.
+/// The per-step work allocates nothing; a neighbour grid (robot_neighbour_grid.hpp) finds who is
+/// near whom in O(robots).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "floornav/control/navigation_automaton.hpp"
+#include "floornav/sim/robot_agent.hpp"
+#include "floornav/sim/robot_neighbour_grid.hpp"
+#include "floornav/sim/run_result.hpp"
+#include "floornav/sim/scenario.hpp"
+
+namespace floornav {
+
+/// Two robots that touched, or a robot that hit the world (`other` = -1).
+struct FleetCollision {
+  double time{0.0};  ///< s
+  int robot{-1};
+  int other{-1};
+};
+
+struct FleetResult {
+  std::string scenario;
+  RunStatus status{RunStatus::Timeout};  ///< reached when all did; else collision if any; ...
+  std::vector<RunResult> robots;         ///< per robot; RunResult::scenario is the robot's name
+  std::vector<FleetCollision> collisions;
+  int reached{0};         ///< robots that completed their whole route
+  int collided{0};        ///< robots whose run ended in a collision
+  int deliveries{0};      ///< goals reached, over all robots
+  int delivery_count{0};  ///< goals given, over all robots
+  double sim_time{0.0};   ///< s until the last robot finished (or t_max)
+  long long steps{0};     ///< world steps
+  long long robot_steps{0};
+  double min_clearance{0.0};  ///< smallest over robots (world and each other)
+  double wall_time{0.0};      ///< s, set by the caller that timed the run
+};
+
+class FleetSimulation {
+ public:
+  /// `scenario.robots` (or, when empty, the scenario's one robot). The scenario must outlive
+  /// the simulation.
+  explicit FleetSimulation(const Scenario& scenario);
+
+  /// Advances every running robot one step on the calling thread; false once all have ended.
+  bool step();
+  /// Steps until every robot has ended, on `threads` threads (0: all cores).
+  void run(int threads = 1);
+
+  bool finished() const { return running_ == 0; }
+  std::size_t size() const { return agents_.size(); }
+  const RobotAgent& robot(std::size_t i) const { return agents_[i]; }
+  /// The result, with each robot's mode and guard names filled in.
+  FleetResult result() const;
+
+ private:
+  void step_robots(std::size_t begin, std::size_t end, std::size_t thread);
+  void after_step();
+  void update_snapshot();
+
+  const Scenario& scenario_;
+  std::vector<RobotTask> own_tasks_;  ///< the lone robot as a fleet of one
+  std::span<const RobotTask> tasks_;
+  std::vector<NavigationAutomaton> automata_;  ///< one per distinct controller set-up
+  std::vector<std::uint32_t> automaton_of_;
+  std::vector<RobotAgent> agents_;
+  // The fleet as the robots see it at the start of a step (contiguous, for the grid).
+  std::vector<Vec2> positions_;
+  std::vector<std::uint8_t> present_;  ///< still an obstacle to the others
+  std::vector<std::uint8_t> moving_;   ///< running at the start of the step
+  std::vector<double> radius_;
+  std::vector<double> reach_;  ///< m from the centre: the farthest a sensor of robot i sees
+  double max_radius_{0.0};
+  RobotNeighbourGrid grid_;
+  std::vector<SensingScratch> scratch_;      ///< per thread
+  std::vector<std::vector<Circle>> others_;  ///< per thread, reserved for every robot
+  std::vector<FleetCollision> collisions_;
+  std::size_t running_{0};
+  long long steps_{0};
+};
+
+/// Runs the scenario's fleet to the end on `threads` threads (0: all cores).
+FleetResult simulate_fleet(const Scenario& scenario, int threads = 1);
+
+}  // namespace floornav

@@ -1,0 +1,59 @@
+#pragma once
+/// @file
+/// Which robots are near a point: a uniform grid over robot positions, rebuilt every step by a
+/// counting sort into contiguous arrays (O(robots + cells), no allocation once sized). Robots
+/// outside the grid's box are kept in its border cells, so no robot is ever lost.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "floornav/geometry/vec2.hpp"
+#include "floornav/geometry/world.hpp"
+
+namespace floornav {
+
+class RobotNeighbourGrid {
+ public:
+  /// Sizes the grid over `box` with square cells of at least `cell` metres for up to `robots`
+  /// robots; cells grow as needed to keep their number near the robots' (memory stays O(robots)).
+  void reset(const Box2& box, double cell, std::size_t robots);
+
+  /// Files robot i at positions[i] when present[i] is non-zero. positions.size() <= robots.
+  void build(std::span<const Vec2> positions, std::span<const std::uint8_t> present);
+
+  /// Calls f(j) for every filed robot j whose cell overlaps the square of half-width `radius`
+  /// around `p` (a superset of those within `radius`; the caller measures the distance).
+  template <class F>
+  void for_each_near(const Vec2& p, double radius, F&& f) const {
+    const int x0 = cell_x(p.x() - radius), x1 = cell_x(p.x() + radius);
+    const int y0 = cell_y(p.y() - radius), y1 = cell_y(p.y() + radius);
+    for (int y = y0; y <= y1; ++y) {
+      const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(nx_);
+      const std::uint32_t begin = start_[row + static_cast<std::size_t>(x0)];
+      const std::uint32_t end = start_[row + static_cast<std::size_t>(x1) + 1];
+      for (std::uint32_t k = begin; k < end; ++k) f(static_cast<std::size_t>(items_[k]));
+    }
+  }
+
+  double cell_size() const { return cell_; }
+
+ private:
+  int cell_x(double x) const;
+  int cell_y(double y) const;
+  std::size_t cell_of(const Vec2& p) const {
+    return static_cast<std::size_t>(cell_y(p.y())) * static_cast<std::size_t>(nx_) +
+           static_cast<std::size_t>(cell_x(p.x()));
+  }
+
+  Vec2 origin_{Vec2::Zero()};
+  double cell_{1.0};
+  double inv_cell_{1.0};
+  int nx_{1};
+  int ny_{1};
+  std::vector<std::uint32_t> start_;  ///< robots of cell c: items_[start_[c] .. start_[c + 1])
+  std::vector<std::uint32_t> items_;
+  std::vector<std::uint32_t> cell_of_robot_;
+};
+
+}  // namespace floornav

@@ -1,0 +1,249 @@
+#include "floornav/sim/fleet_simulation.hpp"
+
+#include <algorithm>
+#include <barrier>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+namespace floornav {
+
+namespace {
+
+// Robot i's noise seed: the scenario's seed for the first robot (a fleet of one runs exactly as
+// Simulation does), then well-spread odd steps so that robots draw independent noise.
+std::uint64_t robot_seed(std::uint64_t seed, std::size_t i) {
+  return seed + 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(i);
+}
+
+// The farthest point a sensor of `robot` can report, from the robot's centre.
+double sensing_reach(const RobotSpec& robot) {
+  double reach = robot.body_radius;
+  for (const RangeSensorSpec& s : robot.sensors)
+    reach = std::max(reach, s.mount.position.norm() + s.max_range);
+  return reach;
+}
+
+RobotTask lone_robot(const Scenario& s) {
+  return RobotTask{s.name, s.robot, s.start, s.goals, s.controller, s.navigation};
+}
+
+}  // namespace
+
+FleetSimulation::FleetSimulation(const Scenario& scenario) : scenario_(scenario) {
+  if (scenario.robots.empty()) own_tasks_.push_back(lone_robot(scenario));
+  tasks_ = scenario.robots.empty() ? std::span<const RobotTask>(own_tasks_)
+                                   : std::span<const RobotTask>(scenario.robots);
+  const std::size_t n = tasks_.size();
+
+  // One automaton per distinct controller: 100,000 robots of one kind share one.
+  automaton_of_.assign(n, 0);
+  std::vector<std::size_t> first_of;  // automaton k was built for tasks_[first_of[k]]
+  for (std::size_t i = 0; i < n; ++i) {
+    const RobotTask& t = tasks_[i];
+    std::size_t k = 0;
+    while (k < first_of.size() && !(tasks_[first_of[k]].controller == t.controller &&
+                                    tasks_[first_of[k]].navigation == t.navigation))
+      ++k;
+    if (k == first_of.size()) {
+      first_of.push_back(i);
+      automata_.push_back(make_navigation_automaton(t.controller, t.navigation));
+    }
+    automaton_of_[i] = static_cast<std::uint32_t>(k);
+  }
+
+  std::size_t max_sensors = 0;
+  double max_reach = 0.0;
+  agents_.reserve(n);
+  radius_.resize(n);
+  reach_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const RobotTask& t = tasks_[i];
+    AgentSetup a;
+    a.world = scenario.world.get();
+    a.robot = &t.robot;
+    a.start = t.start;
+    a.goals = t.goals;
+    a.automaton = &automata_[automaton_of_[i]];
+    a.navigation = &t.navigation;
+    a.sim = &scenario.sim;
+    a.seed = robot_seed(scenario.sim.seed, i);
+    a.name = t.name;
+    a.log_transitions = n == 1 || scenario.sim.record_trajectory;
+    a.names = false;
+    agents_.emplace_back(a);
+    radius_[i] = t.robot.body_radius;
+    reach_[i] = sensing_reach(t.robot);
+    max_radius_ = std::max(max_radius_, radius_[i]);
+    max_reach = std::max(max_reach, reach_[i]);
+    max_sensors = std::max(max_sensors, t.robot.sensors.size());
+  }
+  scratch_.emplace_back(max_sensors);
+  others_.emplace_back();
+  others_.back().reserve(n);
+
+  // The grid covers the world (and the robots, for unbounded worlds); cells about one sensing
+  // reach wide, so a robot's query touches few cells.
+  Box2 box = scenario.world->extent();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 p = tasks_[i].start.position;
+    if (i == 0 && box.size().x() <= 0.0 && box.size().y() <= 0.0) box = Box2{p, p};
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  grid_.reset(box, std::max(max_reach + max_radius_, 2.0 * max_radius_), n);
+  positions_.resize(n);
+  present_.assign(n, 0);
+  moving_.assign(n, 0);
+  update_snapshot();
+
+  // Robots that start touching each other have collided before the first step.
+  after_step();
+  steps_ = 0;
+}
+
+void FleetSimulation::update_snapshot() {
+  running_ = 0;
+  const bool park = scenario_.sim.park_finished;
+  for (std::size_t i = 0; i < agents_.size(); ++i) {
+    const RobotAgent& a = agents_[i];
+    positions_[i] = a.pose().position;
+    moving_[i] = !a.finished();
+    present_[i] = !a.finished() || park || a.result().collided;
+    running_ += moving_[i];
+  }
+  grid_.build(positions_, present_);
+}
+
+void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_t thread) {
+  SensingScratch& scratch = scratch_[thread];
+  std::vector<Circle>& others = others_[thread];
+  for (std::size_t i = begin; i < end; ++i) {
+    if (!moving_[i]) continue;
+    // The bodies this robot's sensors could reach, as they stood at the start of the step.
+    others.clear();
+    const Vec2 p = positions_[i];
+    const double reach = reach_[i];
+    grid_.for_each_near(p, reach + max_radius_, [&](std::size_t j) {
+      if (j == i) return;
+      const double r = reach + radius_[j];
+      if ((positions_[j] - p).squaredNorm() < r * r) others.push_back({positions_[j], radius_[j]});
+    });
+    agents_[i].step(scratch, others);
+  }
+}
+
+void FleetSimulation::after_step() {
+  ++steps_;
+  // World collisions of this step (robot contacts are not applied yet).
+  for (std::size_t i = 0; i < agents_.size(); ++i)
+    if (moving_[i] && agents_[i].result().collided)
+      collisions_.push_back({agents_[i].time(), static_cast<int>(i), -1});
+
+  // Contacts between bodies, at the positions after the move. Robots that stopped or vanished
+  // this step still count: they were there while the others moved.
+  for (std::size_t i = 0; i < agents_.size(); ++i) positions_[i] = agents_[i].pose().position;
+  grid_.build(positions_, present_);
+  for (std::size_t i = 0; i < agents_.size(); ++i) {
+    if (!moving_[i]) continue;
+    RobotAgent& a = agents_[i];
+    const Vec2 p = positions_[i];
+    // Gaps beyond a grid cell (about one sensing reach) are not looked for: they could lower
+    // min_clearance only while the robot is far from everything else, too.
+    const double look = std::min(std::max(a.result().min_clearance, 0.0), grid_.cell_size());
+    double nearest = std::numeric_limits<double>::infinity();
+    grid_.for_each_near(p, radius_[i] + max_radius_ + look, [&](std::size_t j) {
+      if (j == i) return;
+      const double gap = (positions_[j] - p).norm() - radius_[i] - radius_[j];
+      nearest = std::min(nearest, gap);
+      // Each touching pair is logged once: by its lower index, unless that robot was not moving.
+      if (gap <= 0.0 && (!moving_[j] || i < j))
+        collisions_.push_back({a.time(), static_cast<int>(i), static_cast<int>(j)});
+    });
+    if (nearest <= 0.0)
+      a.collide_with_robot(nearest);
+    else if (nearest < std::numeric_limits<double>::infinity())
+      a.note_robot_gap(nearest);
+  }
+  update_snapshot();
+}
+
+bool FleetSimulation::step() {
+  if (running_ == 0) return false;
+  step_robots(0, agents_.size(), 0);
+  after_step();
+  return running_ > 0;
+}
+
+void FleetSimulation::run(int threads) {
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  std::size_t n_threads = threads > 0 ? static_cast<std::size_t>(threads) : hw;
+  n_threads = std::min(n_threads, std::max<std::size_t>(1, agents_.size() / 16));
+  if (n_threads <= 1) {
+    while (step()) {
+    }
+    return;
+  }
+  while (scratch_.size() < n_threads) {
+    scratch_.emplace_back(scratch_.front().beams.size());
+    others_.emplace_back();
+    others_.back().reserve(agents_.size());
+  }
+  // Each thread steps a fixed slice of the robots; the barrier's completion (one thread, once
+  // per step) does the serial part. A robot's result does not depend on the slicing.
+  bool done = running_ == 0;
+  auto completion = [&]() noexcept {
+    after_step();
+    done = running_ == 0;
+  };
+  std::barrier sync(static_cast<std::ptrdiff_t>(n_threads), completion);
+  auto work = [&](std::size_t t) {
+    const std::size_t n = agents_.size();
+    const std::size_t begin = n * t / n_threads, end = n * (t + 1) / n_threads;
+    while (!done) {
+      step_robots(begin, end, t);
+      sync.arrive_and_wait();
+    }
+  };
+  std::vector<std::jthread> workers;
+  for (std::size_t t = 1; t < n_threads; ++t) workers.emplace_back(work, t);
+  work(0);
+}
+
+FleetResult FleetSimulation::result() const {
+  FleetResult f;
+  f.scenario = scenario_.name;
+  f.collisions = collisions_;
+  f.steps = steps_;
+  f.min_clearance = std::numeric_limits<double>::infinity();
+  bool any_collision = false, any_stuck = false;
+  for (std::size_t i = 0; i < agents_.size(); ++i) {
+    RunResult r = agents_[i].result();
+    const NavigationAutomaton& a = automata_[automaton_of_[i]];
+    for (const auto& m : a.modes()) r.mode_names.push_back(m.name);
+    for (const auto& e : a.edges()) r.guard_names.push_back(e.guard_name);
+    f.reached += r.reached_goal;
+    f.collided += r.collided;
+    f.deliveries += r.goals_reached;
+    f.delivery_count += r.goal_count;
+    f.robot_steps += r.steps;
+    f.sim_time = std::max(f.sim_time, r.sim_time);
+    f.min_clearance = std::min(f.min_clearance, r.min_clearance);
+    any_collision = any_collision || r.collided;
+    any_stuck = any_stuck || r.status == RunStatus::Stuck;
+    f.robots.push_back(std::move(r));
+  }
+  f.status = f.reached == static_cast<int>(agents_.size()) ? RunStatus::Reached
+             : any_collision                               ? RunStatus::Collision
+             : any_stuck                                   ? RunStatus::Stuck
+                                                           : RunStatus::Timeout;
+  return f;
+}
+
+FleetResult simulate_fleet(const Scenario& scenario, int threads) {
+  FleetSimulation sim(scenario);
+  sim.run(threads);
+  return sim.result();
+}
+
+}  // namespace floornav
