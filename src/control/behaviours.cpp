@@ -41,8 +41,13 @@ Vec2 follow_boundary_tangent(const Vec2& u_ao, Turn turn) {
 }
 
 Turn choose_turn(const Vec2& u_gtg, const Vec2& u_ao) {
-  return u_gtg.dot(follow_boundary_tangent(u_ao, Turn::Clockwise)) > 0.0 ? Turn::Clockwise
-                                                                         : Turn::CounterClockwise;
+  // An obstacle dead ahead (the two dot products of 5.23/5.24 both zero) leaves the choice to
+  // rounding, which can differ between two mirror-image robots meeting head on: they would
+  // swerve the same way in the world and collide. A tie, to well above rounding, turns
+  // clockwise, so that robots meeting head on both keep to the same side.
+  constexpr double kTie = 1e-9;
+  const double dot = u_gtg.dot(follow_boundary_tangent(u_ao, Turn::Clockwise));
+  return dot > -kTie * u_gtg.norm() * u_ao.norm() ? Turn::Clockwise : Turn::CounterClockwise;
 }
 
 Vec2 follow_boundary_velocity(const Vec2& away, double clearance, Turn turn, double d_fb,

@@ -304,15 +304,35 @@ std::vector<Vec2> read_goals(const std::string& file, MapReader& m) {
   return goals;
 }
 
+// `entry` over `defaults`: keys of `entry` win; maps found in both (sensors, sensors.lidar) are
+// merged the same way. Nodes keep their marks, so errors still name the right line.
+YAML::Node with_defaults(const YAML::Node& entry, const YAML::Node& defaults) {
+  YAML::Node out(YAML::NodeType::Map);
+  for (const auto& kv : defaults) out[kv.first.as<std::string>()] = kv.second;
+  for (const auto& kv : entry) {
+    const std::string key = kv.first.as<std::string>();
+    const YAML::Node d = defaults[key];
+    out[key] = d && d.IsMap() && kv.second.IsMap() ? with_defaults(kv.second, d) : kv.second;
+  }
+  return out;
+}
+
 // `robots:`, a list of robot sections, each with its own goal(s), an optional name and an
 // optional controller section on top of the shared one. Scenario::robot and friends repeat the
 // first robot.
 void read_fleet(const std::string& file, const YAML::Node& root, MapReader& top, Scenario& s) {
-  for (const char* key : {"robot", "goal", "goals"})
-    if (top.has(key))
-      fail(file, root, key,
-           fmt::format("with robots, each robot has its own {}; remove the top-level one",
-                       std::string_view(key) == "robot" ? "section" : "goal or goals"));
+  for (const char* key : {"goal", "goals"})
+    if (top.has(key)) fail(file, root, key, "with robots, each robot has its own goal or goals");
+  // `robot:` beside `robots:` holds what the robots share; each entry overrides it.
+  std::optional<YAML::Node> shared_robot;
+  if (top.has("robot")) {
+    shared_robot = top.get("robot");
+    if (!shared_robot->IsMap()) fail(file, *shared_robot, "robot", "expected a mapping of keys");
+    for (const char* own : {"start", "goal", "goals", "name"})
+      if ((*shared_robot)[own])
+        fail(file, (*shared_robot)[own], fmt::format("robot.{}", own),
+             "with robots, each robot gives its own (robots[i].start, .goal, .name)");
+  }
   const YAML::Node list = top.get("robots");
   if (!list.IsSequence() || list.size() == 0)
     fail(file, list, "robots", "expected a list of robots (robots: [{start: [x, y, theta], ...}])");
@@ -326,7 +346,7 @@ void read_fleet(const std::string& file, const YAML::Node& root, MapReader& top,
     const std::string path = fmt::format("robots[{}]", i);
     if (!list[i].IsMap())
       fail(file, list[i], path, "expected a robot section ({start: [x, y, theta], goal: [x, y]})");
-    MapReader r(file, list[i], path);
+    MapReader r(file, shared_robot ? with_defaults(list[i], *shared_robot) : list[i], path);
     RobotTask task;
     task.name = r.has("name") ? io_detail::read_string(file, r.get("name"), r.path_of("name"))
                               : fmt::format("robot{}", i);

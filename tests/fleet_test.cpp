@@ -1,0 +1,309 @@
+// Fleets: robots that sense each other, robot-robot collisions, the fleet summary, and the
+// guarantees a fleet keeps (a fleet of one is a lone robot; any thread count gives the same
+// result; the neighbour grid finds exactly who is near).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "floornav/common/rng.hpp"
+#include "floornav/io/input_error.hpp"
+#include "floornav/io/scenario_file.hpp"
+#include "floornav/io/summary_json.hpp"
+#include "floornav/io/trajectory_csv.hpp"
+#include "floornav/sensing/range_sensor.hpp"
+#include "floornav/sim/fleet_simulation.hpp"
+#include "floornav/sim/robot_neighbour_grid.hpp"
+#include "floornav/sim/simulation.hpp"
+
+using namespace floornav;
+
+namespace {
+
+double uniform(Rng& rng, double lo, double hi) {
+  return lo + (hi - lo) * rng.uniform();
+}
+
+Scenario scenario_file(const std::string& name, std::vector<std::string> sets = {}) {
+  return load_scenario_file(std::string(FLOORNAV_SCENARIO_DIR) + "/" + name, sets);
+}
+
+double time_in(const RunResult& r, const std::string& mode) {
+  for (std::size_t i = 0; i < r.mode_names.size(); ++i)
+    if (r.mode_names[i] == mode) return r.mode_time[i];
+  return 0.0;
+}
+
+// Two robots facing each other along y = 0, `gap` metres apart between their bodies.
+std::string head_on_yaml(const std::string& kind, double gap) {
+  const double x = 0.075 + 0.5 * gap;  // QuickBot body radius 0.075 m
+  return "world: {bounds: [-2, -1, 2, 1]}\n"
+         "robots:\n"
+         "  - {name: a, start: [" +
+         std::to_string(-x) + ", 0, 0], goal: [1.5, 0]}\n" + "  - {name: b, start: [" +
+         std::to_string(x) + ", 0, 3.141592653589793], goal: [-1.5, 0]}\n" +
+         "controller: {kind: " + kind + "}\n";
+}
+
+// A ray meets another robot's body as it meets a circular obstacle: a beam along +x from the
+// origin hits a disc of radius 0.1 m centred at (1, 0) at 0.9 m (worked by hand).
+TEST(FleetSensing, ABeamStopsAtAnotherRobotsBody) {
+  const World empty(WorldDesc{});
+  RangeSensorSpec beam;
+  beam.max_range = 2.0;
+  const std::vector<RangeSensorSpec> sensors{beam};
+  std::vector<SensorBeam> beams(1);
+  compute_sensor_beams(Pose2{}, sensors, beams);
+  std::vector<double> ranges(1);
+  Rng rng(1);
+  const std::vector<Circle> others{{Vec2(1.0, 0.0), 0.1}, {Vec2(1.5, 0.0), 0.1}};
+  sense_ranges(empty, beams, sensors, 0.0, rng, ranges, {}, others);
+  EXPECT_DOUBLE_EQ(ranges[0], 0.9);
+  // Off the beam's line by more than the radius: nothing seen.
+  const std::vector<Circle> beside{{Vec2(1.0, 0.25), 0.1}};
+  sense_ranges(empty, beams, sensors, 0.0, rng, ranges, {}, beside);
+  EXPECT_DOUBLE_EQ(ranges[0], 2.0);
+}
+
+// A fleet of one is the lone robot, bit for bit.
+TEST(Fleet, AFleetOfOneRunsExactlyAsALoneRobot) {
+  const Scenario s = scenario_file("factory_delivery.yaml");
+  const RunResult lone = simulate(s);
+  const FleetResult fleet = simulate_fleet(s);
+  ASSERT_EQ(fleet.robots.size(), 1u);
+  const RunResult& r = fleet.robots[0];
+  EXPECT_EQ(r.status, lone.status);
+  EXPECT_EQ(r.steps, lone.steps);
+  EXPECT_EQ(r.path_length, lone.path_length);
+  EXPECT_EQ(r.min_clearance, lone.min_clearance);
+  ASSERT_EQ(r.trajectory.size(), lone.trajectory.size());
+  for (std::size_t k = 0; k < r.trajectory.size(); ++k) {
+    ASSERT_EQ(r.trajectory[k].x, lone.trajectory[k].x) << k;
+    ASSERT_EQ(r.trajectory[k].y, lone.trajectory[k].y) << k;
+    ASSERT_EQ(r.trajectory[k].theta, lone.trajectory[k].theta) << k;
+  }
+}
+
+// Four robots meet in the middle of a hall and go round each other (a roundabout emerges from
+// the clockwise boundary following); everyone arrives and nobody touches.
+TEST(Fleet, FourRobotsCrossingAHallGoRoundEachOther) {
+  const FleetResult f = simulate_fleet(scenario_file("fleet_crossing.yaml"));
+  ASSERT_EQ(f.robots.size(), 4u);
+  EXPECT_EQ(f.status, RunStatus::Reached);
+  EXPECT_EQ(f.reached, 4);
+  EXPECT_EQ(f.collided, 0);
+  EXPECT_TRUE(f.collisions.empty());
+  EXPECT_EQ(f.deliveries, 4);
+  EXPECT_GT(f.min_clearance, 0.0);
+  // The robots came within sensing range of each other: the clearance counts them.
+  EXPECT_LT(f.min_clearance, 0.12);
+  for (const RunResult& r : f.robots) {
+    EXPECT_GT(time_in(r, "follow_boundary_cw") + time_in(r, "follow_boundary_ccw"), 0.0)
+        << r.scenario << " never went round anyone";
+  }
+}
+
+// Six robots on three-stop routes through a store room, passing in aisles and round parked
+// robots: all 18 deliveries, no contact.
+TEST(Fleet, SixRobotsDeliverThroughTheAislesWithoutContact) {
+  const FleetResult f = simulate_fleet(scenario_file("fleet_aisles.yaml"));
+  EXPECT_EQ(f.status, RunStatus::Reached);
+  EXPECT_EQ(f.deliveries, 18);
+  EXPECT_EQ(f.delivery_count, 18);
+  EXPECT_EQ(f.collided, 0);
+  EXPECT_GT(f.min_clearance, 0.0);
+}
+
+// Go-to-goal ignores what it senses: two robots driving at each other touch, both runs end as
+// collisions, and the pair is logged once.
+TEST(Fleet, RobotsThatIgnoreEachOtherCollideAndThePairIsLoggedOnce) {
+  const Scenario s = load_scenario_text(head_on_yaml("go_to_goal", 0.5), "head_on.yaml");
+  const FleetResult f = simulate_fleet(s);
+  EXPECT_EQ(f.status, RunStatus::Collision);
+  EXPECT_EQ(f.collided, 2);
+  ASSERT_EQ(f.collisions.size(), 1u);
+  EXPECT_EQ(f.collisions[0].robot, 0);
+  EXPECT_EQ(f.collisions[0].other, 1);
+  EXPECT_LE(f.min_clearance, 0.0);
+  // They meet in the middle, each having driven about half the gap.
+  for (const RunResult& r : f.robots) {
+    EXPECT_TRUE(r.collided);
+    EXPECT_NEAR(r.path_length, 0.25, 0.02);
+  }
+  EXPECT_NEAR(f.robots[0].final_x, -f.robots[1].final_x, 1e-9);
+}
+
+// The hybrid automaton, head on, sees the other robot and gets out of its way.
+TEST(Fleet, HybridRobotsHeadOnPassEachOther) {
+  const Scenario s = load_scenario_text(head_on_yaml("hybrid", 0.5), "head_on.yaml");
+  const FleetResult f = simulate_fleet(s);
+  EXPECT_EQ(f.collided, 0);
+  EXPECT_EQ(f.reached, 2);
+}
+
+// A parked robot is an obstacle; with park_finished off it leaves the floor. Robot b's goal is
+// on robot a's straight line and b gets there first.
+TEST(Fleet, ParkedRobotsAreObstaclesUnlessTheyLeave) {
+  const std::string yaml =
+      "world: {bounds: [-1, -1, 3, 1]}\n"
+      "robots:\n"
+      "  - {name: a, start: [-0.8, 0, 0], goal: [2.5, 0]}\n"
+      "  - {name: b, start: [1.2, 0.5, -1.5707963], goal: [1.2, 0]}\n";
+  const FleetResult parked = simulate_fleet(load_scenario_text(yaml, "parked.yaml"));
+  const FleetResult gone = simulate_fleet(
+      load_scenario_text(yaml, "gone.yaml", std::vector<std::string>{"sim.park_finished=false"}));
+  ASSERT_EQ(parked.reached, 2);
+  ASSERT_EQ(gone.reached, 2);
+  EXPECT_GT(time_in(parked.robots[0], "follow_boundary_cw") +
+                time_in(parked.robots[0], "follow_boundary_ccw"),
+            0.0);
+  EXPECT_EQ(time_in(gone.robots[0], "follow_boundary_cw") +
+                time_in(gone.robots[0], "follow_boundary_ccw"),
+            0.0);
+  EXPECT_LT(gone.robots[0].path_length, parked.robots[0].path_length);
+}
+
+// A random fleet of 60 noisy robots: one thread and three threads give the same bits.
+TEST(Fleet, AnyNumberOfThreadsGivesTheSameResult) {
+  std::string yaml =
+      "world: {bounds: [0, 0, 8, 8], obstacles: [{circle: {center: [4, 4], radius: 0.5}}]}\n"
+      "robot: {preset: quickbot, sensors: {noise: 0.003}}\n"
+      "sim: {t_max: 20}\n"
+      "robots:\n";
+  Rng rng(7);
+  for (int i = 0; i < 60; ++i) {
+    const double x = 0.4 + (i % 8) * 1.0, y = 0.4 + (i / 8) * 1.0;
+    if (std::hypot(x - 4, y - 4) < 0.8) continue;
+    yaml += "  - {start: [" + std::to_string(x) + ", " + std::to_string(y) + ", " +
+            std::to_string(uniform(rng, -3.0, 3.0)) + "], goal: [" + std::to_string(8.0 - x) +
+            ", " + std::to_string(8.0 - y) + "]}\n";
+  }
+  const Scenario s = load_scenario_text(yaml, "random.yaml");
+  FleetSimulation one(s), three(s);
+  one.run(1);
+  three.run(3);
+  const FleetResult a = one.result(), b = three.result();
+  ASSERT_EQ(a.robots.size(), b.robots.size());
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_EQ(a.collisions.size(), b.collisions.size());
+  for (std::size_t i = 0; i < a.robots.size(); ++i) {
+    EXPECT_EQ(a.robots[i].status, b.robots[i].status) << i;
+    EXPECT_EQ(a.robots[i].steps, b.robots[i].steps) << i;
+    EXPECT_EQ(a.robots[i].final_x, b.robots[i].final_x) << i;
+    EXPECT_EQ(a.robots[i].final_y, b.robots[i].final_y) << i;
+    EXPECT_EQ(a.robots[i].min_clearance, b.robots[i].min_clearance) << i;
+  }
+  EXPECT_EQ(fleet_summary_to_json(a).dump(), fleet_summary_to_json(b).dump());
+}
+
+// The neighbour grid returns every robot within the radius (and maybe a few more), for robots
+// inside and outside its box.
+TEST(RobotNeighbourGrid, FindsEveryRobotWithinTheRadius) {
+  Rng rng(3);
+  std::vector<Vec2> pts(500);
+  std::vector<std::uint8_t> present(pts.size(), 1);
+  for (auto& p : pts) p = Vec2(uniform(rng, -2.0, 12.0), uniform(rng, -2.0, 12.0));
+  present[7] = 0;
+  RobotNeighbourGrid grid;
+  grid.reset(Box2{Vec2(0, 0), Vec2(10, 10)}, 0.7, pts.size());
+  grid.build(pts, present);
+  for (int q = 0; q < 200; ++q) {
+    const Vec2 c(uniform(rng, -3.0, 13.0), uniform(rng, -3.0, 13.0));
+    const double radius = uniform(rng, 0.1, 2.0);
+    std::set<std::size_t> found;
+    grid.for_each_near(c, radius, [&](std::size_t j) { EXPECT_TRUE(found.insert(j).second); });
+    for (std::size_t j = 0; j < pts.size(); ++j) {
+      const bool near = (pts[j] - c).norm() <= radius;
+      if (j == 7) {
+        EXPECT_FALSE(found.count(j)) << "an absent robot was returned";
+      } else if (near) {
+        EXPECT_TRUE(found.count(j)) << "robot " << j << " missed";
+      }
+    }
+  }
+}
+
+TEST(FleetSummary, ListsTheFleetTheCollisionsAndEachRobot) {
+  const Scenario s = load_scenario_text(head_on_yaml("go_to_goal", 0.5), "head_on.yaml");
+  const FleetResult f = simulate_fleet(s);
+  const auto j = fleet_summary_to_json(f);
+  EXPECT_EQ(j["status"], "collision");
+  EXPECT_EQ(j["collided"], true);
+  EXPECT_EQ(j["fleet"]["robots"], 2);
+  EXPECT_EQ(j["fleet"]["robot_collisions"], 1);
+  EXPECT_EQ(j["fleet"]["world_collisions"], 0);
+  EXPECT_EQ(j["collisions"][0]["robot"], "a");
+  EXPECT_EQ(j["collisions"][0]["other"], "b");
+  ASSERT_EQ(j["robots"].size(), 2u);
+  EXPECT_EQ(j["robots"][1]["scenario"], "b");
+  EXPECT_EQ(j["robots"][1]["status"], "collision");
+  const std::string csv = trajectory_to_csv(f);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "t,x,y,theta,v,omega,w_left,w_right,mode,robot");
+  EXPECT_NE(csv.find(",go_to_goal,b\n"), std::string::npos);
+}
+
+// Scenario errors name the robot: its index in the list and the key.
+TEST(FleetScenario, ErrorsNameTheRobotAndTheKey) {
+  const std::string base = "world: {bounds: [0, 0, 4, 4]}\n";
+  auto error_of = [&](const std::string& yaml) {
+    try {
+      load_scenario_text(base + yaml, "fleet.yaml");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of("robots: []\n").find("robots: expected a list of robots"), std::string::npos);
+  EXPECT_NE(error_of("robots:\n  - {start: [1, 1, 0], goal: [2, 2]}\n"
+                     "  - {start: [1.1, 1, 0], goal: [3, 3]}\n")
+                .find("robots[1].start: touches robot 0"),
+            std::string::npos);
+  EXPECT_NE(error_of("robots:\n  - {start: [1, 1, 0], goal: [2, 2]}\n"
+                     "  - {start: [5, 1, 0], goal: [3, 3]}\n")
+                .find("robots[1].start"),
+            std::string::npos);
+  EXPECT_NE(error_of("robots:\n  - {start: [1, 1, 0], goal: [2, 9]}\n").find("robots[0].goal"),
+            std::string::npos);
+  EXPECT_NE(error_of("robots:\n  - {name: x, start: [1, 1, 0], goal: [2, 2]}\n"
+                     "  - {name: x, start: [3, 1, 0], goal: [3, 3]}\n")
+                .find("'x' names two robots"),
+            std::string::npos);
+  EXPECT_NE(error_of("goal: [1, 1]\nrobots:\n  - {start: [1, 1, 0], goal: [2, 2]}\n")
+                .find("each robot has its own goal"),
+            std::string::npos);
+  EXPECT_NE(error_of("robot: {start: [1, 1, 0]}\nrobots:\n  - {start: [1, 1, 0], goal: [2, 2]}\n")
+                .find("robot.start"),
+            std::string::npos);
+  EXPECT_NE(error_of("robots:\n  - {start: [1, 1, 0], goal: [2, 2], colour: red}\n")
+                .find("robots[0].colour"),
+            std::string::npos);
+  EXPECT_NE(error_of("robots:\n  - {start: [1, 1, 0], goal: [2, 2], controller: {kind: fast}}\n")
+                .find("robots[0].controller.kind"),
+            std::string::npos);
+}
+
+// Shared robot defaults, per-robot controllers on top of the shared controller section.
+TEST(FleetScenario, SharedRobotAndControllerDefaultsAreOverriddenPerRobot) {
+  const Scenario s = load_scenario_text(
+      "world: {bounds: [0, 0, 4, 4]}\n"
+      "robot: {preset: khepera3, sensors: {noise: 0.01}}\n"
+      "controller: {kind: blended, v0: 0.05}\n"
+      "robots:\n"
+      "  - {start: [1, 1, 0], goal: [2, 2]}\n"
+      "  - {start: [3, 1, 0], goal: [3, 3], preset: quickbot, controller: {kind: hybrid}}\n",
+      "fleet.yaml");
+  ASSERT_EQ(s.robots.size(), 2u);
+  EXPECT_EQ(s.robots[0].name, "robot0");
+  EXPECT_EQ(s.robots[0].robot.preset, "khepera3");
+  EXPECT_EQ(s.robots[1].robot.preset, "quickbot");
+  EXPECT_EQ(s.robots[0].robot.sensor_noise, 0.01);
+  EXPECT_EQ(s.robots[1].robot.sensor_noise, 0.01);
+  EXPECT_EQ(s.robots[0].controller, ControllerKind::Blended);
+  EXPECT_EQ(s.robots[1].controller, ControllerKind::Hybrid);
+  EXPECT_EQ(s.robots[0].navigation.v0, 0.05);
+  EXPECT_EQ(s.robots[1].navigation.v0, 0.05);
+}
+
+}  // namespace
