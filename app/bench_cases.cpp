@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "floornav/common/rng.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/ros_map.hpp"
@@ -145,6 +147,59 @@ std::optional<Scenario> make_aws_scenario(const std::filesystem::path& maps_dir)
   s.sim.t_max = 1.0e5;
   s.sim.record_trajectory = false;
   validate_scenario(s, map.string());
+  return s;
+}
+
+WorldDesc make_fleet_warehouse(int robots) {
+  const double side = std::max(20.0, std::sqrt(4.0 * std::max(robots, 1)));
+  WorldDesc desc;
+  desc.bounds = Box2{Vec2(0.0, 0.0), Vec2(side, side)};
+  // Racks 8 m long every 10 m (2 m cross-aisles), rows every 3 m (1 m rack, 2 m aisle).
+  for (double y = 2.0; y + 1.0 <= side - 2.0; y += 3.0)
+    for (double x = 2.0; x + 8.0 <= side - 2.0; x += 10.0)
+      desc.polygons.push_back(
+          {Vec2(x, y), Vec2(x + 8.0, y), Vec2(x + 8.0, y + 1.0), Vec2(x, y + 1.0)});
+  return desc;
+}
+
+Scenario make_fleet_scenario(std::shared_ptr<const World> world, int robots, int beams) {
+  Scenario s;
+  s.world = world;
+  s.name = fmt::format("fleet-{}x-{}", robots, beams > 0 ? fmt::format("lidar{}", beams) : "ir");
+  s.sim.dt = 0.01;
+  s.sim.t_max = 1.0e5;
+  s.sim.record_trajectory = false;
+  const double side = world->extent().max.x();
+  // Free lattice points, shuffled with a fixed seed: distinct points 0.6 m apart never touch.
+  const Scenario model = make_floor_scenario(world, beams, 0);
+  const double margin = model.robot.body_radius + 0.1;
+  std::vector<Vec2> lattice;
+  for (double y = 0.3; y < side; y += 0.6)
+    for (double x = 0.3; x < side; x += 0.6)
+      if (world->clearance(Vec2(x, y)) >= margin) lattice.emplace_back(x, y);
+  if (lattice.size() < static_cast<std::size_t>(robots))
+    throw std::runtime_error("fleet bench: the hall is too small for the fleet");
+  Rng rng(4242);
+  for (std::size_t i = lattice.size() - 1; i > 0; --i)
+    std::swap(lattice[i], lattice[static_cast<std::size_t>(rng.uniform() * (i + 1)) % (i + 1)]);
+  s.robots.reserve(static_cast<std::size_t>(robots));
+  for (int i = 0; i < robots; ++i) {
+    RobotTask t{fmt::format("r{}", i), model.robot, {}, {}, model.controller, model.navigation};
+    t.start = {lattice[static_cast<std::size_t>(i)], uniform(rng, -kPi, kPi)};
+    Vec2 from = t.start.position;
+    while (t.goals.size() < 4) {
+      const Vec2 g = pick_free_point(*world, rng, side, margin);
+      if ((g - from).norm() < std::min(side / 3.0, 20.0)) continue;  // cross the hall
+      t.goals.push_back(g);
+      from = g;
+    }
+    s.robots.push_back(std::move(t));
+  }
+  const RobotTask& first = s.robots.front();
+  s.robot = first.robot;
+  s.start = first.start;
+  s.goals = first.goals;
+  s.navigation = first.navigation;
   return s;
 }
 

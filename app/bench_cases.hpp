@@ -46,4 +46,15 @@ std::filesystem::path aws_warehouse_map(const std::filesystem::path& maps_dir);
 /// west aisle, from (-5, -8.5) to (-5, 8.5). std::nullopt when the map file is missing.
 std::optional<Scenario> make_aws_scenario(const std::filesystem::path& maps_dir);
 
+/// A warehouse for a fleet of `robots`: a walled square hall with about 4 m^2 of floor per robot
+/// (20 m across at least), racks 8 x 1 m in rows 3 m apart (2 m aisles) and 2 m cross-aisles.
+WorldDesc make_fleet_warehouse(int robots);
+
+/// `robots` robots sharing `world` (a hall from make_fleet_warehouse or make_bench_floor): starts
+/// on a 0.6 m lattice of free points, drawn without repeats (so no two bodies touch), headings
+/// and tours of four goals across the floor drawn from a fixed seed. QuickBots with their 5 IR
+/// sensors when `beams` is 0, else the TurtleBot3 Burger base with a `beams`-beam 360-degree
+/// lidar (3.5 m). Trajectory recording is off; t_max is 1e5 s.
+Scenario make_fleet_scenario(std::shared_ptr<const World> world, int robots, int beams);
+
 }  // namespace floornav

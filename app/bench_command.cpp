@@ -19,6 +19,7 @@
 #include "bench_cases.hpp"
 #include "demo_scenario.hpp"
 #include "floornav/io/scenario_file.hpp"
+#include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/simulation.hpp"
 
 namespace fs = std::filesystem;
@@ -32,7 +33,7 @@ using Seconds = std::chrono::duration<double>;
 
 constexpr int kWarmUpSteps = 200;  // per robot, untimed: caches and branch predictors settle
 constexpr int kChunk = 256;        // steps timed between two clock reads
-constexpr int kFleetRobots = 100;
+constexpr int kFleetRobots = 100;  // the 100-lidar-robot case
 
 /// What one case measured.
 struct CaseResult {
@@ -92,42 +93,31 @@ void time_stepping(const Scenario& s, double budget, CaseResult& out) {
   out.rays_per_step = rays_per_step(s);
 }
 
-/// A fleet of independent simulations over one shared World, stepped in lockstep: each timed
-/// round advances every robot by one step.
-void time_fleet(const std::vector<Scenario>& fleet, double budget, CaseResult& out) {
-  std::vector<std::optional<Simulation>> sims(fleet.size());
-  for (std::size_t i = 0; i < fleet.size(); ++i) {
-    sims[i].emplace(fleet[i]);
-    require_running(*sims[i], out.name);
-  }
-  std::vector<std::size_t> ended;
-  ended.reserve(fleet.size());
-  const auto restart_ended = [&] {
-    for (const std::size_t i : ended) sims[i].emplace(fleet[i]);
-    const std::size_t n = ended.size();
-    ended.clear();
-    return n;
-  };
-  for (int k = 0; k < kWarmUpSteps / 10; ++k) {
-    for (std::size_t i = 0; i < sims.size(); ++i)
-      if (!sims[i]->step()) ended.push_back(i);
-    restart_ended();
-  }
+/// A fleet in one world (FleetSimulation: the robots sense each other, contacts are checked),
+/// on `threads` threads; timed in batches of about 10,000 robot-steps.
+void time_fleet(const Scenario& fleet, int threads, double budget, CaseResult& out) {
+  std::optional<FleetSimulation> sim(std::in_place, fleet);
+  const long long batch =
+      std::max<long long>(1, 10000 / static_cast<long long>(fleet.robots.size()));
+  sim->run_steps(kWarmUpSteps / 10, threads);
   Clock::duration timed{};
   std::uint64_t steps = 0, restarts = 0;
   while (Seconds(timed).count() < budget) {
+    const long long before = sim->robot_steps();
     const Clock::time_point t0 = Clock::now();
-    for (std::size_t i = 0; i < sims.size(); ++i)
-      if (!sims[i]->step()) ended.push_back(i);
+    const long long done = sim->run_steps(batch, threads);
     timed += Clock::now() - t0;
-    steps += sims.size();
-    restarts += restart_ended();
+    steps += static_cast<std::uint64_t>(sim->robot_steps() - before);
+    if (done == 0) {
+      sim.emplace(fleet);
+      ++restarts;
+    }
   }
-  out.robots = static_cast<int>(fleet.size());
+  out.robots = static_cast<int>(fleet.robots.size());
   out.robot_steps = steps;
   out.seconds = Seconds(timed).count();
   out.restarts = restarts;
-  out.rays_per_step = rays_per_step(fleet.front());
+  out.rays_per_step = rays_per_step(fleet);
 }
 
 /// Whole runs of `s`, as `floornav run` simulates them (output files aside).
@@ -276,11 +266,22 @@ int run_bench(const BenchOptions& options) {
        }},
       {"fleet_100x_lidar180_50_polygons",
        [&](CaseResult& r) {
-         r.what = "100 independent 180-beam lidar robots in lockstep on one shared floor";
-         std::vector<Scenario> fleet;
-         for (int i = 0; i < kFleetRobots; ++i)
-           fleet.push_back(make_floor_scenario(floor50(), 180, i));
-         time_fleet(fleet, budget, r);
+         r.what = "100 180-beam lidar robots sensing each other on the 50-polygon floor, all cores";
+         time_fleet(make_fleet_scenario(floor50(), kFleetRobots, 180), 0, budget, r);
+       }},
+      {"fleet_1000x_quickbot_warehouse",
+       [&](CaseResult& r) {
+         r.what = "1,000 QuickBots (5 IR) sensing each other, 63 x 63 m warehouse, all cores";
+         time_fleet(make_fleet_scenario(std::make_shared<const World>(make_fleet_warehouse(1000)),
+                                        1000, 0),
+                    0, budget, r);
+       }},
+      {"fleet_100000x_quickbot_warehouse",
+       [&](CaseResult& r) {
+         r.what = "100,000 QuickBots (5 IR) sensing each other, 632 x 632 m warehouse, all cores";
+         time_fleet(make_fleet_scenario(std::make_shared<const World>(make_fleet_warehouse(100000)),
+                                        100000, 0),
+                    0, budget, r);
        }},
       {"run_factory_delivery",
        [&](CaseResult& r) {

@@ -176,13 +176,24 @@ bool FleetSimulation::step() {
 }
 
 void FleetSimulation::run(int threads) {
+  run_steps(std::numeric_limits<long long>::max(), threads);
+}
+
+long long FleetSimulation::robot_steps() const {
+  long long n = 0;
+  for (const RobotAgent& a : agents_) n += a.result().steps;
+  return n;
+}
+
+long long FleetSimulation::run_steps(long long max_steps, int threads) {
+  const long long first = steps_;
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   std::size_t n_threads = threads > 0 ? static_cast<std::size_t>(threads) : hw;
   n_threads = std::min(n_threads, std::max<std::size_t>(1, agents_.size() / 16));
   if (n_threads <= 1) {
-    while (step()) {
+    while (steps_ - first < max_steps && step()) {
     }
-    return;
+    return steps_ - first;
   }
   while (scratch_.size() < n_threads) {
     scratch_.emplace_back(scratch_.front().beams.size());
@@ -191,10 +202,10 @@ void FleetSimulation::run(int threads) {
   }
   // Each thread steps a fixed slice of the robots; the barrier's completion (one thread, once
   // per step) does the serial part. A robot's result does not depend on the slicing.
-  bool done = running_ == 0;
+  bool done = running_ == 0 || max_steps <= 0;
   auto completion = [&]() noexcept {
     after_step();
-    done = running_ == 0;
+    done = running_ == 0 || steps_ - first >= max_steps;
   };
   std::barrier sync(static_cast<std::ptrdiff_t>(n_threads), completion);
   auto work = [&](std::size_t t) {
@@ -205,9 +216,12 @@ void FleetSimulation::run(int threads) {
       sync.arrive_and_wait();
     }
   };
-  std::vector<std::jthread> workers;
-  for (std::size_t t = 1; t < n_threads; ++t) workers.emplace_back(work, t);
-  work(0);
+  {
+    std::vector<std::jthread> workers;
+    for (std::size_t t = 1; t < n_threads; ++t) workers.emplace_back(work, t);
+    work(0);
+  }
+  return steps_ - first;
 }
 
 FleetResult FleetSimulation::result() const {

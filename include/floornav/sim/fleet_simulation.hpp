@@ -57,6 +57,11 @@ class FleetSimulation {
   bool step();
   /// Steps until every robot has ended, on `threads` threads (0: all cores).
   void run(int threads = 1);
+  /// At most `max_steps` world steps (fewer if every robot ends), on `threads` threads (0: all
+  /// cores); returns the steps taken. run() is run_steps(unlimited).
+  long long run_steps(long long max_steps, int threads = 1);
+  /// Robot-steps taken so far, over all robots.
+  long long robot_steps() const;
 
   bool finished() const { return running_ == 0; }
   std::size_t size() const { return agents_.size(); }

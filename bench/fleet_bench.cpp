@@ -1,0 +1,104 @@
+// Fleets: robot-steps/s of FleetSimulation, where every robot senses the others' bodies and
+// robot-robot contacts are checked each step, against the number of robots (1 to 100,000) and
+// threads; and one robot's steps/s against the number of lidar beams (5 to 720).
+//
+//   floornav_bench --benchmark_filter='BM_Fleet|BM_StepBeams'
+//
+// items_per_second is robot-steps/s. A fleet iteration is a batch of world steps (about 10,000
+// robot-steps); robots that finish park and no longer count.
+
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "bench_cases.hpp"
+#include "floornav/sim/fleet_simulation.hpp"
+#include "floornav/sim/simulation.hpp"
+
+namespace floornav {
+namespace {
+
+const Scenario& warehouse_fleet(int robots, int beams) {
+  static std::map<std::pair<int, int>, Scenario> cache;
+  auto it = cache.find({robots, beams});
+  if (it == cache.end()) {
+    auto world = std::make_shared<const World>(make_fleet_warehouse(robots));
+    it = cache.emplace(std::pair{robots, beams}, make_fleet_scenario(world, robots, beams)).first;
+  }
+  return it->second;
+}
+
+void step_fleet(benchmark::State& state, const Scenario& s, int threads) {
+  std::optional<FleetSimulation> sim(std::in_place, s);
+  const long long batch = std::max<long long>(1, 10000 / static_cast<long long>(s.robots.size()));
+  sim->run_steps(1, threads);  // warm-up: threads, caches
+  long long steps = 0;
+  for (auto _ : state) {
+    const long long before = sim->robot_steps();
+    if (sim->run_steps(batch, threads) == 0) {
+      state.PauseTiming();
+      sim.emplace(s);
+      state.ResumeTiming();
+      continue;
+    }
+    steps += sim->robot_steps() - before;
+  }
+  state.SetItemsProcessed(steps);
+  state.counters["robots"] = static_cast<double>(s.robots.size());
+  state.counters["threads"] = threads;
+}
+
+/// QuickBots (5 IR) in a warehouse with ~4 m^2 per robot; args: robots, threads.
+void BM_Fleet_QuickBotWarehouse(benchmark::State& state) {
+  const auto robots = static_cast<int>(state.range(0));
+  step_fleet(state, warehouse_fleet(robots, 0), static_cast<int>(state.range(1)));
+}
+BENCHMARK(BM_Fleet_QuickBotWarehouse)
+    ->ArgsProduct({{1, 10, 100, 1000, 10000, 100000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// 100 TurtleBot3 bases with 180-beam lidars sensing each other on the 50-polygon floor.
+void BM_Fleet_100xLidar180_50Polygons(benchmark::State& state) {
+  static const Scenario s =
+      make_fleet_scenario(std::make_shared<const World>(make_bench_floor({})), 100, 180);
+  step_fleet(state, s, static_cast<int>(state.range(0)));
+}
+BENCHMARK(BM_Fleet_100xLidar180_50Polygons)->Arg(1)->Arg(2)->UseRealTime();
+
+/// One robot, `beams`-beam 360-degree lidar, on the 50-polygon floor.
+void BM_StepBeams_Lidar(benchmark::State& state) {
+  static std::map<int, Scenario> cache;
+  const auto beams = static_cast<int>(state.range(0));
+  auto it = cache.find(beams);
+  if (it == cache.end())
+    it = cache
+             .emplace(beams, make_floor_scenario(
+                                 std::make_shared<const World>(make_bench_floor({})), beams))
+             .first;
+  std::optional<Simulation> sim(std::in_place, it->second);
+  for (auto _ : state) {
+    if (!sim->step()) {
+      state.PauseTiming();
+      sim.emplace(it->second);
+      state.ResumeTiming();
+    }
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["rays"] = benchmark::Counter(static_cast<double>(beams) * state.iterations(),
+                                              benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_StepBeams_Lidar)
+    ->Arg(5)
+    ->Arg(10)
+    ->Arg(20)
+    ->Arg(45)
+    ->Arg(90)
+    ->Arg(180)
+    ->Arg(360)
+    ->Arg(720);
+
+}  // namespace
+}  // namespace floornav
