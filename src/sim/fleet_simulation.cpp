@@ -95,6 +95,7 @@ FleetSimulation::FleetSimulation(const Scenario& scenario) : scenario_(scenario)
   positions_.resize(n);
   present_.assign(n, 0);
   moving_.assign(n, 0);
+  gap_.assign(n, 0.0);
   update_snapshot();
 
   // Robots that start touching each other have collided before the first step.
@@ -105,14 +106,18 @@ FleetSimulation::FleetSimulation(const Scenario& scenario) : scenario_(scenario)
 void FleetSimulation::update_snapshot() {
   running_ = 0;
   const bool park = scenario_.sim.park_finished;
+  bool presence_changed = false;
   for (std::size_t i = 0; i < agents_.size(); ++i) {
     const RobotAgent& a = agents_[i];
     positions_[i] = a.pose().position;
     moving_[i] = !a.finished();
-    present_[i] = !a.finished() || park || a.result().collided;
+    const std::uint8_t present = !a.finished() || park || a.result().collided;
+    presence_changed = presence_changed || present != present_[i];
+    present_[i] = present;
     running_ += moving_[i];
   }
-  grid_.build(positions_, present_);
+  // prepare_contacts() filed these positions already; only robots that left need a rebuild.
+  if (presence_changed || steps_ == 0) grid_.build(positions_, present_);
 }
 
 void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_t thread) {
@@ -133,39 +138,61 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
   }
 }
 
-void FleetSimulation::after_step() {
+void FleetSimulation::prepare_contacts() {
   ++steps_;
+  for (std::size_t i = 0; i < agents_.size(); ++i) positions_[i] = agents_[i].pose().position;
+  grid_.build(positions_, present_);
+}
+
+double FleetSimulation::nearest_gap(std::size_t i) const {
+  const Vec2 p = positions_[i];
+  // Gaps beyond a grid cell (about one sensing reach) are not looked for: they could lower
+  // min_clearance only while the robot is far from everything else, too.
+  const double look = std::min(std::max(agents_[i].result().min_clearance, 0.0), grid_.cell_size());
+  double nearest = std::numeric_limits<double>::infinity();
+  grid_.for_each_near(p, radius_[i] + max_radius_ + look, [&](std::size_t j) {
+    if (j != i) nearest = std::min(nearest, (positions_[j] - p).norm() - radius_[i] - radius_[j]);
+  });
+  return nearest;
+}
+
+void FleetSimulation::measure_gaps(std::size_t begin, std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i)
+    if (moving_[i]) gap_[i] = nearest_gap(i);
+}
+
+void FleetSimulation::apply_gaps() {
   // World collisions of this step (robot contacts are not applied yet).
   for (std::size_t i = 0; i < agents_.size(); ++i)
     if (moving_[i] && agents_[i].result().collided)
       collisions_.push_back({agents_[i].time(), static_cast<int>(i), -1});
-
-  // Contacts between bodies, at the positions after the move. Robots that stopped or vanished
-  // this step still count: they were there while the others moved.
-  for (std::size_t i = 0; i < agents_.size(); ++i) positions_[i] = agents_[i].pose().position;
-  grid_.build(positions_, present_);
+  // Contacts between bodies at the positions after the move. Robots that stopped or left this
+  // step still count: they were there while the others moved.
   for (std::size_t i = 0; i < agents_.size(); ++i) {
     if (!moving_[i]) continue;
     RobotAgent& a = agents_[i];
+    const double gap = gap_[i];
+    if (gap > 0.0) {
+      if (gap < std::numeric_limits<double>::infinity()) a.note_robot_gap(gap);
+      continue;
+    }
+    // Touching (rare): each touching pair is logged once, by its lower index unless that robot
+    // was not moving.
     const Vec2 p = positions_[i];
-    // Gaps beyond a grid cell (about one sensing reach) are not looked for: they could lower
-    // min_clearance only while the robot is far from everything else, too.
-    const double look = std::min(std::max(a.result().min_clearance, 0.0), grid_.cell_size());
-    double nearest = std::numeric_limits<double>::infinity();
-    grid_.for_each_near(p, radius_[i] + max_radius_ + look, [&](std::size_t j) {
-      if (j == i) return;
-      const double gap = (positions_[j] - p).norm() - radius_[i] - radius_[j];
-      nearest = std::min(nearest, gap);
-      // Each touching pair is logged once: by its lower index, unless that robot was not moving.
-      if (gap <= 0.0 && (!moving_[j] || i < j))
+    grid_.for_each_near(p, radius_[i] + max_radius_, [&](std::size_t j) {
+      if (j == i || (moving_[j] && j < i)) return;
+      if ((positions_[j] - p).norm() - radius_[i] - radius_[j] <= 0.0)
         collisions_.push_back({a.time(), static_cast<int>(i), static_cast<int>(j)});
     });
-    if (nearest <= 0.0)
-      a.collide_with_robot(nearest);
-    else if (nearest < std::numeric_limits<double>::infinity())
-      a.note_robot_gap(nearest);
+    a.collide_with_robot(gap);
   }
   update_snapshot();
+}
+
+void FleetSimulation::after_step() {
+  prepare_contacts();
+  measure_gaps(0, agents_.size());
+  apply_gaps();
 }
 
 bool FleetSimulation::step() {
@@ -202,10 +229,18 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
   }
   // Each thread steps a fixed slice of the robots; the barrier's completion (one thread, once
   // per step) does the serial part. A robot's result does not depend on the slicing.
+  // Two phases per step: move, then measure the gaps between bodies; the serial parts (filing
+  // positions, applying contacts) run as the barrier's completion between them.
   bool done = running_ == 0 || max_steps <= 0;
+  bool moved = true;  // which phase the barrier is completing
   auto completion = [&]() noexcept {
-    after_step();
-    done = running_ == 0 || steps_ - first >= max_steps;
+    if (moved) {
+      prepare_contacts();
+    } else {
+      apply_gaps();
+      done = running_ == 0 || steps_ - first >= max_steps;
+    }
+    moved = !moved;
   };
   std::barrier sync(static_cast<std::ptrdiff_t>(n_threads), completion);
   auto work = [&](std::size_t t) {
@@ -213,6 +248,8 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     const std::size_t begin = n * t / n_threads, end = n * (t + 1) / n_threads;
     while (!done) {
       step_robots(begin, end, t);
+      sync.arrive_and_wait();
+      measure_gaps(begin, end);
       sync.arrive_and_wait();
     }
   };

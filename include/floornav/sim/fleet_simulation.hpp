@@ -71,6 +71,12 @@ class FleetSimulation {
 
  private:
   void step_robots(std::size_t begin, std::size_t end, std::size_t thread);
+  // The serial and parallel parts of a step after the robots moved: file the new positions,
+  // measure each robot's gap to the nearest other body (parallel), apply contacts and gaps.
+  void prepare_contacts();
+  double nearest_gap(std::size_t i) const;
+  void measure_gaps(std::size_t begin, std::size_t end);
+  void apply_gaps();
   void after_step();
   void update_snapshot();
 
@@ -85,6 +91,7 @@ class FleetSimulation {
   std::vector<std::uint8_t> present_;  ///< still an obstacle to the others
   std::vector<std::uint8_t> moving_;   ///< running at the start of the step
   std::vector<double> radius_;
+  std::vector<double> gap_;    ///< m to the nearest other body after the move (moving robots)
   std::vector<double> reach_;  ///< m from the centre: the farthest a sensor of robot i sees
   double max_radius_{0.0};
   RobotNeighbourGrid grid_;
