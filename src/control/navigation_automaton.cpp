@@ -13,9 +13,28 @@ constexpr std::array<std::pair<ControllerKind, std::string_view>, 4> kKindNames{
     {ControllerKind::Hybrid, "hybrid"},
 }};
 
-bool clear_shot(const NavigationInput& in) {
-  return in.u_ao.dot(in.u_gtg) > 0.0;
-}  // eq. 5.27
+// Eq. 5.27, <u_AO, u_GTG> > 0; or, with the corridor extension on, a free corridor.
+bool clear_shot(const NavigationInput& in, bool corridor) {
+  return corridor ? !in.corridor_blocked : in.u_ao.dot(in.u_gtg) > 0.0;
+}
+
+// No sensed point in the rectangle of half-width `half_width` from x towards the goal, `length`
+// long: the robot's body could drive straight at the goal that far.
+bool corridor_clear(const Vec2& x, const Vec2& goal, std::span<const Vec2> points, double length,
+                    double half_width) {
+  const Vec2 d = goal - x;
+  const double dist = d.norm();
+  if (dist <= 0.0) return true;
+  const Vec2 dir = d / dist;
+  const double reach = std::min(length, dist);
+  for (const Vec2& q : points) {
+    const Vec2 r = q - x;
+    const double along = r.dot(dir);
+    if (along <= 0.0 || along >= reach) continue;
+    if (std::abs(r.x() * dir.y() - r.y() * dir.x()) < half_width) return false;
+  }
+  return true;
+}
 }  // namespace
 
 std::optional<ControllerKind> parse_controller_kind(std::string_view name) {
@@ -53,6 +72,10 @@ NavigationInput make_navigation_input(const Vec2& x, const Vec2& goal,
   in.goal = goal;
   in.goal_distance = (goal - x).norm();
   in.u_gtg = go_to_goal_velocity(x, goal, p.v0, p.gtg_a);
+  // The corridor looks at every sensed point, however far: it asks about the way ahead.
+  if (p.clear_shot_corridor > 0.0)
+    in.corridor_blocked =
+        !corridor_clear(x, goal, obstacle_points, p.clear_shot_corridor, body_radius + p.d_unsafe);
   if (p.obstacle_range > 0.0) {
     // A long-range lidar sees the whole room; only the obstacles near the robot should push it.
     // The filtered points go to a fixed buffer (no allocation); overflow keeps the nearest ones.
@@ -129,8 +152,10 @@ NavigationAutomaton make_navigation_automaton(ControllerKind kind, const Navigat
         return in.clearance >= d;
       };
       // GTG -> FB: met an obstacle that is in the way, direction by eqs. 5.23/5.24.
-      const auto meets = [d_o = p.d_o](const In& in, Turn turn) {
-        return in.clearance < d_o && !clear_shot(in) && choose_turn(in.u_gtg, in.u_ao) == turn;
+      const bool corridor = p.clear_shot_corridor > 0.0;
+      const auto meets = [d_o = p.d_o, corridor](const In& in, Turn turn) {
+        return in.clearance < d_o && !clear_shot(in, corridor) &&
+               choose_turn(in.u_gtg, in.u_ao) == turn;
       };
       const auto start_following = [](Turn turn) {
         return [turn](const In& in, Mem& m) {
@@ -151,8 +176,9 @@ NavigationAutomaton make_navigation_automaton(ControllerKind kind, const Navigat
           gtg, fb_ccw, "obstacle_ahead_ccw",
           [meets](const In& in, const Mem&) { return meets(in, Turn::CounterClockwise); },
           start_following(Turn::CounterClockwise));
-      const auto progress_and_clear_shot = [delta = p.progress_margin](const In& in, const Mem& m) {
-        return in.goal_distance < m.d_tau - delta && clear_shot(in);  // eqs. 5.26, 5.27
+      const auto progress_and_clear_shot = [delta = p.progress_margin, corridor](const In& in,
+                                                                                 const Mem& m) {
+        return in.goal_distance < m.d_tau - delta && clear_shot(in, corridor);  // 5.26, 5.27
       };
       const auto boundary_lost = [](const In& in, const Mem&) { return !in.obstacle_sensed; };
       for (const int fb : {fb_cw, fb_ccw}) {
@@ -162,11 +188,11 @@ NavigationAutomaton make_navigation_automaton(ControllerKind kind, const Navigat
       }
       // AO -> FB: back in the direction the episode took; a fresh episode picks its direction
       // and stores d_tau like GTG -> FB does.
-      const auto resumes = [safe_again](Turn turn) {
-        return [safe_again, turn](const In& in, const Mem& m) {
+      const auto resumes = [safe_again, corridor](Turn turn) {
+        return [safe_again, turn, corridor](const In& in, const Mem& m) {
           if (!safe_again(in)) return false;
           if (m.following) return m.turn == turn;
-          return !clear_shot(in) && choose_turn(in.u_gtg, in.u_ao) == turn;
+          return !clear_shot(in, corridor) && choose_turn(in.u_gtg, in.u_ao) == turn;
         };
       };
       const auto resume_reset = [](Turn turn) {

@@ -551,6 +551,8 @@ void validate_scenario(const Scenario& s, const std::string& file) {
   if (!(n.blend_far > n.blend_near && n.blend_near >= 0.0))
     bad("controller.blend_far", "need 0 <= blend_near < blend_far");
   if (!(n.obstacle_memory >= 0.0)) bad("controller.obstacle_memory", "must not be negative");
+  if (!(n.clear_shot_corridor >= 0.0))
+    bad("controller.clear_shot_corridor", "must not be negative (0 turns it off)");
   if (n.chatter_switches < 2 || n.chatter_switches > ChatterMonitor::kCapacity)
     bad("controller.chatter_switches",
         fmt::format("must be between 2 and {}", ChatterMonitor::kCapacity));

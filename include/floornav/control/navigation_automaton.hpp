@@ -35,6 +35,9 @@ struct NavigationInput {
   double clearance{std::numeric_limits<double>::infinity()};  ///< nearest sensed, from the body
   double goal_distance{0.0};                                  ///< |x - x_g|
   bool obstacle_sensed{false};
+  /// A sensed point lies in the corridor towards the goal (NavigationParams::clear_shot_corridor;
+  /// false when that test is off).
+  bool corridor_blocked{false};
 };
 
 /// The automaton's memory, written only by resets.

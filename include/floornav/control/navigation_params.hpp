@@ -36,6 +36,10 @@ struct NavigationParams {
   double blend_far{0.15};        ///< m: blended, sigma_2 = 0 beyond this clearance
   double obstacle_memory{1.0};   ///< s: sensed points are remembered this long (sparse IR rings)
   double obstacle_range{0.0};    ///< m clearance: farther sensed points are ignored (0: use all)
+  /// m: 0 (the chapter): "clear shot" is eq. 5.27, <u_AO, u_GTG> > 0. Positive (an extension for
+  /// dense clutter): no sensed point in the corridor of half-width body radius + d_unsafe
+  /// reaching this far towards the goal (or to the goal, if nearer).
+  double clear_shot_corridor{0.0};
   bool slow_when_turning{true};  ///< V *= max(0, cos e): turn before driving (an extension)
   int chatter_switches{8};       ///< this many switches ...
   double chatter_window{2.0};    ///< ... within this many seconds is a chatter (Zeno) episode
@@ -59,6 +63,9 @@ struct NavigationParams {
     a("obstacle_memory", obstacle_memory, "seconds a sensed obstacle point is remembered");
     a("obstacle_range", obstacle_range,
       "sensed points farther than this clearance are ignored by the behaviours, m (0: all)");
+    a("clear_shot_corridor", clear_shot_corridor,
+      "m; > 0: a clear shot is a free corridor of the body's width this long towards the goal "
+      "(0: eq. 5.27)");
     a("slow_when_turning", slow_when_turning, "scale V by max(0, cos(heading error))");
     a("chatter_switches", chatter_switches, "switches within chatter_window that count as chatter");
     a("chatter_window", chatter_window, "window of the chatter (Zeno) detector, s");
