@@ -162,6 +162,26 @@ OccupancyGrid::OccupancyGrid(int width, int height, double resolution, Pose2 ori
   sin_yaw_ = std::sin(origin_.theta);
   compute_column_nearest(width_, height_, occupied_, column_nearest_);
   compute_nearest(width_, height_, column_nearest_, nearest_);
+  compute_free_run();
+}
+
+void OccupancyGrid::compute_free_run() {
+  // A ray point in cell c is within sqrt(2)/2 of c's centre, and a point of an occupied square
+  // within sqrt(2)/2 of that square's centre, at least D (the nearest occupied centre's
+  // distance) from c's centre. So a ray entering c runs D - sqrt(2) cells before it can touch an
+  // occupied square; 1.5 instead of sqrt(2) leaves room for rounding.
+  free_run_.assign(occupied_.size(), 255);
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      const std::size_t c = static_cast<std::size_t>(y) * width_ + x;
+      const std::int32_t n = nearest_[c];
+      if (n < 0) continue;
+      const double dx = n % width_ - x;
+      const double dy = n / width_ - y;
+      const double run = std::floor(std::sqrt(dx * dx + dy * dy) - 1.5);
+      free_run_[c] = static_cast<std::uint8_t>(std::clamp(run, 0.0, 255.0));
+    }
+  }
 }
 
 bool OccupancyGrid::occupied(int ix, int iy) const {
@@ -190,6 +210,16 @@ Vec2 OccupancyGrid::to_world(const Vec2& grid) const {
 }
 
 double OccupancyGrid::cast_ray(const Vec2& origin_world, const Vec2& dir, double max_range) const {
+  return cast(origin_world, dir, max_range, true);
+}
+
+double OccupancyGrid::cast_ray_cell_by_cell(const Vec2& origin_world, const Vec2& dir,
+                                            double max_range) const {
+  return cast(origin_world, dir, max_range, false);
+}
+
+double OccupancyGrid::cast(const Vec2& origin_world, const Vec2& dir, double max_range,
+                           bool skip) const {
   // Everything below is in cell units of the grid frame: cell (ix, iy) is [ix, ix+1) x [iy, iy+1).
   const Vec2 o = to_grid(origin_world) / resolution_;
   const Vec2 d(cos_yaw_ * dir.x() + sin_yaw_ * dir.y(), -sin_yaw_ * dir.x() + cos_yaw_ * dir.y());
@@ -220,13 +250,54 @@ double OccupancyGrid::cast_ray(const Vec2& origin_world, const Vec2& dir, double
   // Amanatides & Woo, "A Fast Voxel Traversal Algorithm for Ray Tracing" (1987). Each boundary
   // time is computed afresh from the integer boundary and the ray's origin, so no error
   // accumulates along long rays.
+  // The time the walk leaves column i (row i): computed only here, so that a jump below and the
+  // cell-by-cell step see the same bits.
+  const auto exit_x = [&](int i) {
+    return sx > 0 ? (i + 1 - o.x()) / d.x() : (sx < 0 ? (i - o.x()) / d.x() : kInf);
+  };
+  const auto exit_y = [&](int i) {
+    return sy > 0 ? (i + 1 - o.y()) / d.y() : (sy < 0 ? (i - o.y()) / d.y() : kInf);
+  };
   double t = t0;
   for (;;) {
-    if (occupied_[static_cast<std::size_t>(iy) * width_ + ix] != 0) {
-      return std::min(t * resolution_, max_range);
+    const std::size_t cell = static_cast<std::size_t>(iy) * width_ + ix;
+    if (occupied_[cell] != 0) return std::min(t * resolution_, max_range);
+    if (const int run = skip ? free_run_[cell] : 0; run > 0) {
+      // Every point of the ray before t + run lies within `run` cells of this cell, so every
+      // cell it touches is free. The cell-by-cell walk below takes the boundary events (exit_x
+      // of successive columns, exit_y of successive rows) in increasing order, each list being
+      // increasing, so after all events before `target` it is in column jx = the first column
+      // with exit_x(jx) >= target, row jy likewise, entered at the latest event before
+      // `target` (or still at t). Jump there; bit for bit the state the walk would reach.
+      const double target = t + run;
+      int jx = ix, jy = iy;
+      double entered = t;
+      if (sx != 0) {
+        const double guess = std::floor(o.x() + target * d.x());
+        jx = guess * sx > ix * sx ? static_cast<int>(guess) : ix;
+        while (exit_x(jx) < target) jx += sx;
+        while (jx != ix && exit_x(jx - sx) >= target) jx -= sx;
+        if (jx != ix) entered = std::max(entered, exit_x(jx - sx));
+      }
+      if (sy != 0) {
+        const double guess = std::floor(o.y() + target * d.y());
+        jy = guess * sy > iy * sy ? static_cast<int>(guess) : iy;
+        while (exit_y(jy) < target) jy += sy;
+        while (jy != iy && exit_y(jy - sy) >= target) jy -= sy;
+        if (jy != iy) entered = std::max(entered, exit_y(jy - sy));
+      }
+      if (jx != ix || jy != iy) {
+        // The walk would have stopped on the way: past max_range, or out of the grid.
+        if (!(entered <= t_max)) return max_range;
+        if (jx < 0 || jy < 0 || jx >= width_ || jy >= height_) return max_range;
+        ix = jx;
+        iy = jy;
+        t = entered;
+        continue;
+      }
     }
-    const double tx = sx > 0 ? (ix + 1 - o.x()) / d.x() : (sx < 0 ? (ix - o.x()) / d.x() : kInf);
-    const double ty = sy > 0 ? (iy + 1 - o.y()) / d.y() : (sy < 0 ? (iy - o.y()) / d.y() : kInf);
+    const double tx = exit_x(ix);
+    const double ty = exit_y(iy);
     const double tn = std::max(t, std::min(tx, ty));
     if (!(tn <= t_max) || tn == kInf) return max_range;
     if (tx < ty) {
