@@ -63,6 +63,9 @@ class OccupancyGrid {
   /// `cast_ray`; with `skip`, free space is crossed `free_run_` cells at a time.
   void compute_free_run();
   double cast(const Vec2& origin_world, const Vec2& dir, double max_range, bool skip) const;
+  /// The walk of `cast` with `skip`, from cell (ix, iy) entered at t0; cell units, grid frame.
+  double walk_with_jumps(const Vec2& o, const Vec2& d, double max_range, double t_max, double t0,
+                         int ix, int iy) const;
   /// Exact nearest occupied square to grid-frame point (px, py) in cell units: returns the squared
   /// distance in cells^2 (+inf if none) and the cell index in `*cell`.
   double nearest_square(double px, double py, std::int32_t* cell) const;
