@@ -12,6 +12,11 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+/// free_run_ counts in 1/16 cell, up to 4096 cells; a jump shorter than a cell is not worth it.
+constexpr double kFreeRunUnits = 16.0;
+constexpr std::uint16_t kMaxFreeRun = 65535;
+constexpr int kMinJump = 16;
+
 /// Largest grid the int32 cell indices (and the 2 * row + 1 column code) can address.
 constexpr std::size_t kMaxCells = std::size_t{1} << 30;
 
@@ -169,8 +174,9 @@ void OccupancyGrid::compute_free_run() {
   // A ray point in cell c is within sqrt(2)/2 of c's centre, and a point of an occupied square
   // within sqrt(2)/2 of that square's centre, at least D (the nearest occupied centre's
   // distance) from c's centre. So a ray entering c runs D - sqrt(2) cells before it can touch an
-  // occupied square; 1.5 instead of sqrt(2) leaves room for rounding.
-  free_run_.assign(occupied_.size(), 255);
+  // occupied square; 1.5 instead of sqrt(2) leaves room for rounding. In 1/16 cell, rounded
+  // down.
+  free_run_.assign(occupied_.size(), kMaxFreeRun);
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) {
       const std::size_t c = static_cast<std::size_t>(y) * width_ + x;
@@ -178,8 +184,8 @@ void OccupancyGrid::compute_free_run() {
       if (n < 0) continue;
       const double dx = n % width_ - x;
       const double dy = n / width_ - y;
-      const double run = std::floor(std::sqrt(dx * dx + dy * dy) - 1.5);
-      free_run_[c] = static_cast<std::uint8_t>(std::clamp(run, 0.0, 255.0));
+      const double run = std::floor((std::sqrt(dx * dx + dy * dy) - 1.5) * kFreeRunUnits);
+      free_run_[c] = static_cast<std::uint16_t>(std::clamp(run, 0.0, double{kMaxFreeRun}));
     }
   }
 }
@@ -294,7 +300,7 @@ double OccupancyGrid::walk_with_jumps(const Vec2& o, const Vec2& d, double max_r
                                       double t0, int ix, int iy) const {
   // The walk above, to the same bits, with two changes.
   //
-  // 1. It jumps over free space. A ray entering cell c runs free_run_[c] cells before it can
+  // 1. It jumps over free space. A ray entering cell c runs free_run_[c] / 16 cells before it can
   //    touch an occupied square, so every cell it touches before t + run is free. The walk takes
   //    the boundary events (exit_x of successive columns, exit_y of successive rows; each list
   //    increasing) in increasing order, a tie being a corner step. So after all events before
@@ -345,8 +351,8 @@ double OccupancyGrid::walk_with_jumps(const Vec2& o, const Vec2& d, double max_r
   for (;;) {
     const std::size_t cell = static_cast<std::size_t>(iy) * width_ + ix;
     if (occupied_[cell] != 0) return std::min(entry(ix, iy) * resolution_, max_range);
-    if (const int run = free_run_[cell]; run > 0) {
-      const double target = t + run;
+    if (const int run = free_run_[cell]; run >= kMinJump) {
+      const double target = t + run * (1.0 / kFreeRunUnits);
       // exit_x(i) < target, exactly; `near` is near_x(i).
       const auto x_before = [&](int i, double near) {
         if (std::abs(near - target) > kRel * target) return near < target;

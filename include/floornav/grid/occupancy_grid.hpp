@@ -80,10 +80,10 @@ class OccupancyGrid {
   /// (the lower one on a tie) and tie = 1 when row 2 * iy - r is occupied too; -1 if the column
   /// is empty. Pass 1 of the transform, kept for exact point queries (clearance).
   std::vector<std::int32_t> column_nearest_;
-  /// For each cell, a whole number of cells (0..255) that any ray entering the cell travels
-  /// before it can touch an occupied square: floor(centre distance to the nearest occupied
-  /// centre - 1.5). `cast_ray` jumps over that many cells at once.
-  std::vector<std::uint8_t> free_run_;
+  /// For each cell, in 1/16 cell (up to 4096 cells), how far any ray entering the cell travels
+  /// before it can touch an occupied square: the centre distance to the nearest occupied centre
+  /// minus 1.5. `cast_ray` jumps that far at once.
+  std::vector<std::uint16_t> free_run_;
   std::size_t occupied_count_{0};
   double cos_yaw_{1.0};
   double sin_yaw_{0.0};
