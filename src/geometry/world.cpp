@@ -374,7 +374,7 @@ std::optional<FanLayout> even_fan(std::span<const double> angles) {
 template <class F>
 void for_beams_in(const FanLayout& fan, double start, double width, F&& f) {
   double a = start - fan.first;
-  a -= kTwoPi * std::floor(a / kTwoPi);  // [0, 2 pi], up to rounding
+  a -= kTwoPi * std::floor(a * (1.0 / kTwoPi));  // [0, 2 pi], up to rounding
   const auto range = [&](double lo, double hi) {
     const double k0 = std::max(0.0, std::ceil(lo * fan.inv_step));
     const double k1 = std::min(fan.n - 1.0, std::floor(hi * fan.inv_step));
@@ -446,29 +446,41 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
     for (int k = 0; k < fan->n; ++k) test(k);
   };
 
+  const double reach2 = reach * reach;
   for (int y = y0; y <= y1; ++y) {
+    // Distance from the origin to the row's span of y, then to each cell: a cell wholly beyond
+    // reach holds no hit before max_range (such a hit lies in a cell that is within reach, and
+    // an obstacle is listed in every cell it crosses).
+    const double cy0 = ix.origin.y() + y * ix.cell;
+    const double gy = std::max({0.0, cy0 - origin.y(), origin.y() - (cy0 + ix.cell)});
     for (int x = x0; x <= x1; ++x) {
+      const double cx0 = ix.origin.x() + x * ix.cell;
+      const double gx = std::max({0.0, cx0 - origin.x(), origin.x() - (cx0 + ix.cell)});
+      if (gx * gx + gy * gy > reach2) continue;
       const auto c = static_cast<std::size_t>(y) * ix.nx + x;
       for (std::uint32_t k = ix.segment_offsets[c]; k < ix.segment_offsets[c + 1]; ++k) {
         const std::uint32_t id = ix.segment_items[k];
         if (mark[id] == epoch) continue;
         mark[id] = epoch;
         const SegmentRay& s = ix.segment_rays[k];
-        // Segments whose box lies beyond reach cannot be hit before max_range.
-        if (s.lo.x() > origin.x() + reach || s.hi.x() < origin.x() - reach ||
-            s.lo.y() > origin.y() + reach || s.hi.y() < origin.y() - reach)
-          continue;
         const Segment& ref = segments_[id];
         const auto test = [&](int b) {
           out[b] = segment_hit(s.a, s.e, ref, origin, dirs[b], out[b]);
         };
         const Vec2 pa = s.a - origin;
+        const Vec2 pb = pa + s.e;
+        const double len2 = s.e.squaredNorm();
         const double cr = cross(pa, s.e);  // |e| times the distance from the origin to the line
-        if (!(cr * cr >= near * near * s.e.squaredNorm()) || s.e.squaredNorm() == 0.0) {
+        // A segment wholly beyond reach cannot be hit before max_range: both ends are, and so is
+        // the line or the foot of the perpendicular falls outside the segment.
+        const double foot = -pa.dot(s.e);  // len2 times the foot's position along the segment
+        if (std::min(pa.squaredNorm(), pb.squaredNorm()) > reach2 &&
+            (foot < 0.0 || foot > len2 || cr * cr > reach2 * len2))
+          continue;
+        if (!(cr * cr >= near * near * len2) || len2 == 0.0) {
           all_beams(test);
           continue;
         }
-        const Vec2 pb = pa + s.e;
         double lo = coarse_atan2(pa.y(), pa.x()), hi = coarse_atan2(pb.y(), pb.x());
         if (cr < 0.0) std::swap(lo, hi);  // b lies clockwise of a
         double width = hi - lo;
