@@ -76,6 +76,21 @@ void BM_GridCastRay(benchmark::State& state) {
 }
 BENCHMARK(BM_GridCastRay)->Arg(350)->Arg(3000);
 
+/// The same rays walked cell by cell (OccupancyGrid::cast_ray_cell_by_cell, the reference that
+/// cast_ray's free-space jumps match bit for bit).
+void BM_GridCastRayCellByCell(benchmark::State& state) {
+  const WarehouseMap& m = warehouse();
+  if (skip_if_missing(state, m)) return;
+  const double range = static_cast<double>(state.range(0)) / 100.0;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(m.grid->cast_ray_cell_by_cell(m.origins[i], m.dirs[i], range));
+    i = (i + 1) & (kSamples - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_GridCastRayCellByCell)->Arg(350)->Arg(3000);
+
 /// The same rays through World::cast_ray (the path the simulation takes).
 void BM_GridWorldCastRay(benchmark::State& state) {
   const WarehouseMap& m = warehouse();

@@ -99,5 +99,55 @@ BENCHMARK(BM_WorldCastRay_BruteForce)->RangeMultiplier(2)->Range(10, 10000);
 BENCHMARK(BM_WorldClearance_Indexed)->RangeMultiplier(2)->Range(10, 10000);
 BENCHMARK(BM_WorldClearance_BruteForce)->RangeMultiplier(2)->Range(10, 10000);
 
+/// A 180-beam, 360-degree lidar's rays from each sample origin: World::cast_fan against one
+/// World::cast_ray per beam, on the floor with `edges` edges. items_per_second is rays/s.
+struct Fan {
+  std::vector<Vec2> dirs;
+  std::vector<double> angles;
+  std::vector<double> out;
+};
+
+Fan lidar_fan(int beams, double first) {
+  Fan fan;
+  for (int k = 0; k < beams; ++k) {
+    const double a = wrap_angle(first + 2.0 * kPi * k / beams);
+    fan.angles.push_back(a);
+    fan.dirs.emplace_back(std::cos(a), std::sin(a));
+  }
+  fan.out.resize(static_cast<std::size_t>(beams));
+  return fan;
+}
+
+void BM_Fan_CastFan(benchmark::State& state) {
+  const EdgeFloor& f = edge_floor(static_cast<int>(state.range(0)));
+  Fan fan = lidar_fan(180, 0.1);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    f.world->cast_fan(f.origins[i], fan.dirs, fan.angles, kMaxRange, fan.out);
+    benchmark::DoNotOptimize(fan.out.data());
+    i = (i + 1) & (kSamples - 1);
+  }
+  state.SetItemsProcessed(state.iterations() * 180);
+  state.counters["edges"] = static_cast<double>(f.world->edge_count());
+}
+
+void BM_Fan_PerRay(benchmark::State& state) {
+  const EdgeFloor& f = edge_floor(static_cast<int>(state.range(0)));
+  Fan fan = lidar_fan(180, 0.1);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < fan.dirs.size(); ++k)
+      fan.out[k] = f.world->cast_ray(f.origins[i], fan.dirs[k], kMaxRange);
+    benchmark::DoNotOptimize(fan.out.data());
+    i = (i + 1) & (kSamples - 1);
+  }
+  state.SetItemsProcessed(state.iterations() * 180);
+  state.counters["edges"] = static_cast<double>(f.world->edge_count());
+}
+
+// The 50-polygon floor's density at about 280 and 10,000 edges.
+BENCHMARK(BM_Fan_CastFan)->Arg(280)->Arg(10000);
+BENCHMARK(BM_Fan_PerRay)->Arg(280)->Arg(10000);
+
 }  // namespace
 }  // namespace floornav

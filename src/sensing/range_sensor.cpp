@@ -1,6 +1,7 @@
 #include "floornav/sensing/range_sensor.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace floornav {
@@ -29,6 +30,12 @@ double nearest_disc(std::span<const Circle> others, const Vec2& origin, const Ve
   return best;
 }
 
+// A sensor sees nothing beyond its range: noise is added only to real returns.
+double finish_reading(double r, const RangeSensorSpec& s, double noise_stddev, Rng& rng) {
+  if (noise_stddev > 0.0 && r < s.max_range) r += noise_stddev * rng.normal();
+  return std::clamp(r, s.min_range, s.max_range);
+}
+
 double sense_one(const World& world, const SensorBeam& b, const RangeSensorSpec& s,
                  double noise_stddev, Rng& rng, const FreeDisc& free,
                  std::span<const Circle> others) {
@@ -49,9 +56,51 @@ double sense_one(const World& world, const SensorBeam& b, const RangeSensorSpec&
       r = std::min(r, cast(Vec2(std::cos(a), std::sin(a))));
     }
   }
-  // A sensor sees nothing beyond its range: noise is added only to real returns.
-  if (noise_stddev > 0.0 && r < s.max_range) r += noise_stddev * rng.normal();
-  return std::clamp(r, s.min_range, s.max_range);
+  return finish_reading(r, s, noise_stddev, rng);
+}
+
+// Lidars: runs of at least this many single-beam sensors sharing an origin and a max_range are
+// cast as one fan (World::cast_fan), in chunks of kFanChunk beams on the stack.
+constexpr std::size_t kMinFanBeams = 16;
+constexpr std::size_t kFanChunk = 256;
+
+bool single_beam(const RangeSensorSpec& s) {
+  return s.cone_rays <= 1 || s.cone_angle <= 0.0;
+}
+
+// The end of the run of single-beam sensors from `i` with `i`'s origin and max_range.
+std::size_t fan_end(std::span<const SensorBeam> beams, std::span<const RangeSensorSpec> sensors,
+                    std::size_t i) {
+  std::size_t j = i;
+  while (j < sensors.size() && single_beam(sensors[j]) && beams[j].origin == beams[i].origin &&
+         sensors[j].max_range == sensors[i].max_range)
+    ++j;
+  return j;
+}
+
+// Sensors [i, end) of one run (see fan_end): the distances sense_one would cast, bit for bit,
+// written to ranges[i, end).
+void cast_fan(const World& world, std::span<const SensorBeam> beams, std::size_t i, std::size_t end,
+              double max_range, std::span<double> ranges, const FreeDisc& free) {
+  const Vec2 origin = beams[i].origin;
+  const double free_radius = free.radius - kFreeMargin;
+  const bool known_free =
+      free_radius > 0.0 && (origin - free.centre).squaredNorm() < free_radius * free_radius;
+  std::array<Vec2, kFanChunk> dirs;
+  std::array<double, kFanChunk> angles;
+  for (std::size_t first = i; first < end; first += kFanChunk) {
+    const std::size_t n = std::min(kFanChunk, end - first);
+    for (std::size_t k = 0; k < n; ++k) {
+      dirs[k] = beams[first + k].dir;
+      angles[k] = beams[first + k].theta;
+    }
+    const std::span<double> out = ranges.subspan(first, n);
+    if (known_free) {
+      world.cast_fan_from_free(origin, {dirs.data(), n}, {angles.data(), n}, max_range, out);
+    } else {
+      world.cast_fan(origin, {dirs.data(), n}, {angles.data(), n}, max_range, out);
+    }
+  }
 }
 
 }  // namespace
@@ -65,8 +114,23 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
                   std::span<double> ranges, const FreeDisc& free, std::span<const Circle> others) {
-  for (std::size_t i = 0; i < sensors.size(); ++i)
-    ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free, others);
+  for (std::size_t i = 0; i < sensors.size();) {
+    const std::size_t end = fan_end(beams, sensors, i);
+    if (end - i >= kMinFanBeams) {
+      // Cast first (the world, then other robots' bodies), then draw the noise sensor by
+      // sensor: the RNG sees the same order.
+      cast_fan(world, beams, i, end, sensors[i].max_range, ranges, free);
+      for (; i < end; ++i) {
+        if (!others.empty())
+          ranges[i] = nearest_disc(others, beams[i].origin, beams[i].dir, ranges[i]);
+        ranges[i] = finish_reading(ranges[i], sensors[i], noise_stddev, rng);
+      }
+    } else {
+      const std::size_t stop = std::max(end, i + 1);  // at least one (a cone sensor)
+      for (; i < stop; ++i)
+        ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free, others);
+    }
+  }
 }
 
 std::size_t ranges_to_points(std::span<const SensorBeam> beams,

@@ -43,7 +43,9 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
                           std::span<SensorBeam> beams);
 
 /// `sense_ranges` below, from beams already computed (`beams[i]` belongs to `sensors[i]`).
-/// Beams starting inside `free` skip the inside-obstacle test; the ranges are the same.
+/// Beams starting inside `free` skip the inside-obstacle test; the ranges are the same. A run of
+/// at least 16 consecutive single-beam sensors with one origin and one max_range (a lidar) is cast
+/// as one fan (`World::cast_fan`), again with the same ranges and the same noise draws.
 /// `others` are further solid discs the rays hit besides the world: the bodies of other robots.
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
