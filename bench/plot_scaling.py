@@ -49,7 +49,7 @@ def label(v):
     return f"{v:g}"
 
 
-def panel(x0, y0, title, ylabel, lines):
+def panel(x0, y0, title, ylabel, lines, xlabel="obstacle edges"):
     """SVG elements of one log-log panel at (x0, y0); lines = [(name, colour, points)]."""
     xs = [p[0] for _, _, pts in lines for p in pts]
     ys = [p[1] for _, _, pts in lines for p in pts]
@@ -79,7 +79,7 @@ def panel(x0, y0, title, ylabel, lines):
                    f'stroke="#ddd"/>')
         out.append(f'<text x="{x0 - 6}" y="{py(t) + 4:.1f}" text-anchor="end">{label(t)}</text>')
     out.append(f'<text x="{x0 + PANEL_W / 2}" y="{y0 + PANEL_H + 36}" text-anchor="middle">'
-               f'obstacle edges</text>')
+               f'{xlabel}</text>')
     out.append(f'<text transform="translate({x0 - 58},{y0 + PANEL_H / 2}) rotate(-90)" '
                f'text-anchor="middle">{ylabel}</text>')
     for i, (name, colour, pts) in enumerate(lines):

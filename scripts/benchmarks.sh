@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Reproduces the tables of docs/BENCHMARKS.md. Usage: scripts/benchmarks.sh [chapter|movingai|ros|barn|all]
+# Reproduces the tables of docs/BENCHMARKS.md. Usage: scripts/benchmarks.sh [chapter|fleet|movingai|ros|barn|all]
 # Needs ./build (scripts/quickstart.sh) and ../shared/maps beside the repository.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,11 +25,27 @@ header() {
 }
 
 if [[ $what == chapter || $what == all ]]; then
-  echo "### Chapter scenarios (scenarios/*.yaml, without the BARN template)"; header
+  echo "### Chapter scenarios (scenarios/*.yaml, without the templates and fleets)"; header
   for k in "${kinds[@]}"; do
-    $fn batch $(ls scenarios/*.yaml | grep -v template) --set controller.kind=$k --no-timing \
+    $fn batch $(ls scenarios/*.yaml | grep -v -e template -e fleet_) --set controller.kind=$k --no-timing \
       --out "$out/chapter-$k" >/dev/null
     row "$k" "$out/chapter-$k/aggregate.json"
+  done
+fi
+if [[ $what == fleet || $what == all ]]; then
+  echo "### Fleets (scenarios/fleet_*.yaml: robots that sense each other)"
+  echo "| scenario | controller | robots | reached | collided | robot-robot collisions | deliveries | time (s) | min clearance (m) |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+  for k in "${kinds[@]}"; do
+    $fn batch scenarios/fleet_*.yaml --set controller.kind=$k --no-timing --out "$out/fleet-$k" >/dev/null
+    python3 - "$k" "$out/fleet-$k/results.jsonl" <<'PY'
+import json, sys
+for line in open(sys.argv[2]):
+    r = json.loads(line); f = r["fleet"]
+    print(f"| {r['scenario']} | {sys.argv[1]} | {f['robots']} | {f['reached']} | {f['collided']} | "
+          f"{f['robot_collisions']} | {f['deliveries']}/{f['delivery_count']} | {r['sim_time']:.1f} | "
+          f"{r['min_clearance']:.3f} |")
+PY
   done
 fi
 if [[ $what == movingai || $what == all ]]; then
