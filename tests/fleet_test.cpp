@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "floornav/common/rng.hpp"
+#include "floornav/geometry/angle.hpp"
 #include "floornav/io/input_error.hpp"
 #include "floornav/io/scenario_file.hpp"
 #include "floornav/io/summary_json.hpp"
@@ -16,6 +17,7 @@
 #include "floornav/sensing/range_sensor.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/robot_neighbour_grid.hpp"
+#include "floornav/sim/robot_spec.hpp"
 #include "floornav/sim/simulation.hpp"
 
 using namespace floornav;
@@ -65,6 +67,42 @@ TEST(FleetSensing, ABeamStopsAtAnotherRobotsBody) {
   const std::vector<Circle> beside{{Vec2(1.0, 0.25), 0.1}};
   sense_ranges(empty, beams, sensors, 0.0, rng, ranges, {}, beside);
   EXPECT_DOUBLE_EQ(ranges[0], 2.0);
+}
+
+// A lidar fan tests each other robot's body only against the beams near it: the ranges are the
+// all-pairs ones, bit for bit, for full and partial fans, bodies straddling the +-pi seam, bodies
+// around the origin and bodies far beyond the range.
+TEST(FleetSensing, FanAgainstOtherBodiesEqualsEveryBeamAgainstEveryBody) {
+  Rng rng(11);
+  WorldDesc desc;
+  desc.bounds = Box2{Vec2(-6, -6), Vec2(6, 6)};
+  desc.circles.push_back({Vec2(1.5, 0.5), 0.4});
+  const World world(desc);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int beams = std::vector<int>{16, 45, 180, 360, 720}[static_cast<std::size_t>(trial % 5)];
+    const double fov = trial % 3 == 0 ? 2.0 * kPi : uniform(rng, 0.5, 6.0);
+    const Pose2 robot{Vec2(uniform(rng, -2, 2), uniform(rng, -2, 2)), uniform(rng, -kPi, kPi)};
+    const auto sensors = make_lidar(beams, fov, 0.05, uniform(rng, 0.5, 4.0), {Vec2(0.03, 0), 0});
+    std::vector<Circle> others;
+    const int n_others = static_cast<int>(uniform(rng, 1, 30));
+    for (int k = 0; k < n_others; ++k) {
+      const double a = uniform(rng, -kPi, kPi), d = uniform(rng, 0.0, 5.0);
+      // Some bodies exactly behind the robot (the seam of the wrapped beam angles).
+      const double ang = k % 7 == 0 ? robot.theta + kPi : a;
+      others.push_back(
+          {robot.position + d * Vec2(std::cos(ang), std::sin(ang)), uniform(rng, 0.01, 0.5)});
+    }
+    std::vector<SensorBeam> b(sensors.size());
+    compute_sensor_beams(robot, sensors, b);
+    std::vector<double> fan(sensors.size()), each(sensors.size());
+    Rng unused(1);
+    sense_ranges(world, b, sensors, 0.0, unused, fan, {}, others);
+    for (std::size_t k = 0; k < sensors.size(); ++k)  // one sensor at a time: no fan
+      sense_ranges(world, std::span(b).subspan(k, 1), std::span(sensors).subspan(k, 1), 0.0, unused,
+                   std::span(each).subspan(k, 1), {}, others);
+    for (std::size_t k = 0; k < sensors.size(); ++k)
+      ASSERT_EQ(fan[k], each[k]) << "trial " << trial << " beam " << k;
+  }
 }
 
 // A fleet of one is the lone robot, bit for bit.

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "floornav/geometry/angle.hpp"
+
 namespace floornav {
 
 namespace {
@@ -103,6 +105,53 @@ void cast_fan(const World& world, std::span<const SensorBeam> beams, std::size_t
   }
 }
 
+// Other robots' bodies on a fan of beams [i, end) that share an origin, lowering ranges[k] to
+// each hit. For evenly spaced beams each disc is tested only against the beams within its
+// angular extent widened by one beam spacing on each side (a beam's angle is within 1e-6 rad of
+// its place in the fan, far inside that margin), so the result is the all-pairs loop's, bit for
+// bit: the same test, and the minimum does not depend on the order. Otherwise, every pair.
+void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end,
+               std::span<const Circle> others, std::span<double> ranges) {
+  const std::size_t n = end - i;
+  const Vec2 origin = beams[i].origin;
+  const double theta0 = beams[i].theta;
+  const double step = n > 1 ? wrap_angle(beams[i + 1].theta - theta0) : 0.0;
+  bool even = step > 0.0;
+  for (std::size_t k = 0; even && k < n; ++k)
+    even = std::abs(wrap_angle(beams[i + k].theta - theta0 - static_cast<double>(k) * step)) < 1e-6;
+  const bool full_circle = even && static_cast<double>(n) * step > 2.0 * kPi - 0.5 * step;
+  const auto test = [&](std::size_t k, const Circle& c) {
+    if (auto t = intersect_ray(c, origin, beams[i + k].dir); t && *t < ranges[i + k])
+      ranges[i + k] = *t;
+  };
+  for (const Circle& c : others) {
+    const Vec2 v = c.center - origin;
+    const double d = v.norm();
+    if (!even || d <= c.radius + 1e-9) {  // uneven fan, or the origin inside the body
+      for (std::size_t k = 0; k < n; ++k) test(k, c);
+      continue;
+    }
+    const double half = std::asin(std::min(1.0, c.radius / d)) + step + 1e-9;
+    double rel = wrap_angle(std::atan2(v.y(), v.x()) - theta0);  // (-pi, pi]
+    if (rel < 0.0) rel += 2.0 * kPi;                             // [0, 2 pi)
+    // The extent as beam offsets from beam 0; for a fan that does not go all the way round, an
+    // extent that crosses 0 or 2 pi also shows a turn earlier or later.
+    for (const double centre : {rel, rel - 2.0 * kPi, rel + 2.0 * kPi}) {
+      const auto lo = static_cast<long>(std::floor((centre - half) / step));
+      const auto hi = static_cast<long>(std::ceil((centre + half) / step));
+      const auto count = static_cast<long>(n);
+      if (full_circle) {
+        if (centre != rel) break;  // the modulo below covers both sides
+        for (long k = lo; k <= hi && k < lo + count; ++k)
+          test(static_cast<std::size_t>(((k % count) + count) % count), c);
+      } else {
+        for (long k = std::max(lo, 0L); k <= std::min(hi, count - 1); ++k)
+          test(static_cast<std::size_t>(k), c);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
@@ -120,11 +169,8 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
       // Cast first (the world, then other robots' bodies), then draw the noise sensor by
       // sensor: the RNG sees the same order.
       cast_fan(world, beams, i, end, sensors[i].max_range, ranges, free);
-      for (; i < end; ++i) {
-        if (!others.empty())
-          ranges[i] = nearest_disc(others, beams[i].origin, beams[i].dir, ranges[i]);
-        ranges[i] = finish_reading(ranges[i], sensors[i], noise_stddev, rng);
-      }
+      if (!others.empty()) fan_discs(beams, i, end, others, ranges);
+      for (; i < end; ++i) ranges[i] = finish_reading(ranges[i], sensors[i], noise_stddev, rng);
     } else {
       const std::size_t stop = std::max(end, i + 1);  // at least one (a cone sensor)
       for (; i < stop; ++i)
