@@ -195,11 +195,7 @@ Scenario make_fleet_scenario(std::shared_ptr<const World> world, int robots, int
     }
     s.robots.push_back(std::move(t));
   }
-  const RobotTask& first = s.robots.front();
-  s.robot = first.robot;
-  s.start = first.start;
-  s.goals = first.goals;
-  s.navigation = first.navigation;
+  repeat_first_robot(s);
   return s;
 }
 

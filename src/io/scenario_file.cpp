@@ -369,12 +369,7 @@ void read_fleet(const std::string& file, const YAML::Node& root, MapReader& top,
     task.navigation = one.navigation;
     s.robots.push_back(std::move(task));
   }
-  const RobotTask& first = s.robots.front();
-  s.robot = first.robot;
-  s.start = first.start;
-  s.goals = first.goals;
-  s.controller = first.controller;
-  s.navigation = first.navigation;
+  repeat_first_robot(s);
 }
 
 Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& origin) {

@@ -65,4 +65,15 @@ struct Scenario {
   std::vector<RobotTask> robots;
 };
 
+/// Makes robot, start, goals, controller and navigation repeat robots[0] (see Scenario::robots).
+inline void repeat_first_robot(Scenario& s) {
+  if (s.robots.empty()) return;
+  const RobotTask& first = s.robots.front();
+  s.robot = first.robot;
+  s.start = first.start;
+  s.goals = first.goals;
+  s.controller = first.controller;
+  s.navigation = first.navigation;
+}
+
 }  // namespace floornav
