@@ -71,6 +71,7 @@ FleetSimulation::FleetSimulation(const Scenario& scenario) : scenario_(scenario)
     a.name = t.name;
     a.log_transitions = n == 1 || scenario.sim.record_trajectory;
     a.names = false;
+    a.reserve_trajectory = n == 1;
     agents_.emplace_back(a);
     radius_[i] = t.robot.body_radius;
     reach_[i] = sensing_reach(t.robot);

@@ -65,7 +65,8 @@ RobotAgent::RobotAgent(const AgentSetup& setup)
   r.final_theta = pose_.theta;
   if (sim_->record_trajectory) {
     const double steps = std::ceil(sim_->t_max / sim_->dt) + 2.0;
-    r.trajectory.reserve(static_cast<std::size_t>(std::min(steps, 2.0e6)));
+    if (setup.reserve_trajectory)
+      r.trajectory.reserve(static_cast<std::size_t>(std::min(steps, 2.0e6)));
     r.trajectory.push_back({0.0, pose_.position.x(), pose_.position.y(), pose_.theta, 0.0, 0.0, 0.0,
                             0.0, state_.mode});
   }

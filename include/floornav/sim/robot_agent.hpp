@@ -49,6 +49,9 @@ struct AgentSetup {
   std::string name;            ///< RunResult::scenario
   bool log_transitions{true};  ///< keep the transition log (fleets keep counts only)
   bool names{true};            ///< copy mode and guard names into the result (fleets keep one)
+  /// Reserve the trajectory for t_max up front when recording (a lone robot: no reallocation in
+  /// the step loop). Fleets grow it instead: most robots finish long before t_max.
+  bool reserve_trajectory{true};
 };
 
 class RobotAgent {
