@@ -236,6 +236,27 @@ TEST(Fleet, AnyNumberOfThreadsGivesTheSameResult) {
   EXPECT_EQ(fleet_summary_to_json(a).dump(), fleet_summary_to_json(b).dump());
 }
 
+// Lidar robots (fans cast with per-thread marks) on two threads: the same bits as on one.
+TEST(Fleet, LidarFleetOnTwoThreadsGivesTheSameResult) {
+  std::string yaml =
+      "world: {bounds: [0, 0, 6, 6], obstacles: [{circle: {center: [3, 3], radius: 0.4}}]}\n"
+      "robot: {preset: turtlebot3_burger}\n"
+      "sim: {t_max: 3}\n"
+      "robots:\n";
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j) {
+      if (i == 2 && j == 2) continue;
+      const double x = 0.6 + 1.2 * i, y = 0.6 + 1.2 * j;
+      yaml += "  - {start: [" + std::to_string(x) + ", " + std::to_string(y) + ", 0.3], goal: [" +
+              std::to_string(6.0 - x) + ", " + std::to_string(6.0 - y) + "]}\n";
+    }
+  const Scenario s = load_scenario_text(yaml, "lidars.yaml");
+  FleetSimulation one(s), two(s);
+  one.run(1);
+  two.run(2);
+  EXPECT_EQ(fleet_summary_to_json(one.result()).dump(), fleet_summary_to_json(two.result()).dump());
+}
+
 // The neighbour grid returns every robot within the radius (and maybe a few more), for robots
 // inside and outside its box.
 TEST(RobotNeighbourGrid, FindsEveryRobotWithinTheRadius) {
