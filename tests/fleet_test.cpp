@@ -203,11 +203,13 @@ TEST(Fleet, ParkedRobotsAreObstaclesUnlessTheyLeave) {
   EXPECT_LT(gone.robots[0].path_length, parked.robots[0].path_length);
 }
 
-// A random fleet of 60 noisy robots: one thread and three threads give the same bits.
+// A random fleet of 60 noisy robots (72-beam rings, enough work for threads): one thread and
+// three threads give the same bits.
 TEST(Fleet, AnyNumberOfThreadsGivesTheSameResult) {
   std::string yaml =
       "world: {bounds: [0, 0, 8, 8], obstacles: [{circle: {center: [4, 4], radius: 0.5}}]}\n"
-      "robot: {preset: quickbot, sensors: {noise: 0.003}}\n"
+      "robot: {preset: quickbot, sensors: {noise: 0.003, lidar: {beams: 72, fov: 6.283185307, "
+      "min_range: 0.02, max_range: 0.3}}}\n"
       "sim: {t_max: 20}\n"
       "robots:\n";
   Rng rng(7);
@@ -220,6 +222,7 @@ TEST(Fleet, AnyNumberOfThreadsGivesTheSameResult) {
   }
   const Scenario s = load_scenario_text(yaml, "random.yaml");
   FleetSimulation one(s), three(s);
+  ASSERT_EQ(three.threads_for(3), 2u);  // 60 x 72 rays: two threads' worth of work
   one.run(1);
   three.run(3);
   const FleetResult a = one.result(), b = three.result();
@@ -252,6 +255,7 @@ TEST(Fleet, LidarFleetOnTwoThreadsGivesTheSameResult) {
     }
   const Scenario s = load_scenario_text(yaml, "lidars.yaml");
   FleetSimulation one(s), two(s);
+  ASSERT_EQ(two.threads_for(2), 2u);
   one.run(1);
   two.run(2);
   EXPECT_EQ(fleet_summary_to_json(one.result()).dump(), fleet_summary_to_json(two.result()).dump());

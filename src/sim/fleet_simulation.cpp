@@ -24,6 +24,9 @@ double sensing_reach(const RobotSpec& robot) {
   return reach;
 }
 
+// Rays a thread should have per step before a fleet is split across threads.
+constexpr std::size_t kRaysPerThread = 2000;
+
 RobotTask lone_robot(const Scenario& s) {
   return RobotTask{s.name, s.robot, s.start, s.goals, s.controller, s.navigation};
 }
@@ -78,6 +81,8 @@ FleetSimulation::FleetSimulation(const Scenario& scenario) : scenario_(scenario)
     max_radius_ = std::max(max_radius_, radius_[i]);
     max_reach = std::max(max_reach, reach_[i]);
     max_sensors = std::max(max_sensors, t.robot.sensors.size());
+    for (const RangeSensorSpec& sensor : t.robot.sensors)
+      rays_per_step_ += static_cast<std::size_t>(std::max(sensor.cone_rays, 1));
   }
   scratch_.emplace_back(max_sensors);
   others_.emplace_back();
@@ -213,11 +218,17 @@ long long FleetSimulation::robot_steps() const {
   return n;
 }
 
+std::size_t FleetSimulation::threads_for(int requested) const {
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t wanted = requested > 0 ? static_cast<std::size_t>(requested) : hw;
+  // A step must hold enough work to pay for two barriers (a few microseconds each): about 2,000
+  // rays per thread (100 QuickBots are 500 rays, a step of ~50 us: one thread is faster).
+  return std::min(wanted, std::max<std::size_t>(1, rays_per_step_ / kRaysPerThread));
+}
+
 long long FleetSimulation::run_steps(long long max_steps, int threads) {
   const long long first = steps_;
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  std::size_t n_threads = threads > 0 ? static_cast<std::size_t>(threads) : hw;
-  n_threads = std::min(n_threads, std::max<std::size_t>(1, agents_.size() / 16));
+  const std::size_t n_threads = threads_for(threads);
   if (n_threads <= 1) {
     while (steps_ - first < max_steps && step()) {
     }

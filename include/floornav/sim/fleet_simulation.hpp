@@ -60,6 +60,9 @@ class FleetSimulation {
   /// At most `max_steps` world steps (fewer if every robot ends), on `threads` threads (0: all
   /// cores); returns the steps taken. run() is run_steps(unlimited).
   long long run_steps(long long max_steps, int threads = 1);
+  /// The threads run_steps uses when asked for `requested` (0: all cores): fewer when a step is
+  /// too little work to share (under ~2,000 rays per thread).
+  std::size_t threads_for(int requested) const;
   /// Robot-steps taken so far, over all robots.
   long long robot_steps() const;
 
@@ -94,6 +97,7 @@ class FleetSimulation {
   std::vector<double> gap_;    ///< m to the nearest other body after the move (moving robots)
   std::vector<double> reach_;  ///< m from the centre: the farthest a sensor of robot i sees
   double max_radius_{0.0};
+  std::size_t rays_per_step_{0};  ///< over all robots: the work of a step, to size the threads
   RobotNeighbourGrid grid_;
   std::vector<SensingScratch> scratch_;      ///< per thread
   std::vector<std::vector<Circle>> others_;  ///< per thread, reserved for every robot
