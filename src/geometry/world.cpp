@@ -356,6 +356,16 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
                                std::span<const double> angles, double max_range,
                                std::span<double> out) const {
   const std::size_t n = dirs.size();
+  if (segments_.empty() && circles_.empty()) {
+    // cast_ray_from_free is then min(max_range, the grid's cast_ray).
+    if (grid_ == nullptr) {
+      std::fill(out.begin(), out.end(), max_range);
+      return;
+    }
+    grid_->cast_fan(origin, dirs, angles, max_range, out);
+    for (std::size_t i = 0; i < n; ++i) out[i] = std::min(max_range, out[i]);
+    return;
+  }
   std::optional<FanLayout> fan;
   if (n >= 2 && (!segments_.empty() || !circles_.empty()) && is_finite(origin) &&
       max_range >= 0.0 && std::isfinite(max_range))
@@ -366,8 +376,12 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
   }
   // What cast_ray_from_free starts from; then the minimum over every obstacle that may be hit
   // within max_range, which does not depend on the order (each test keeps the smaller value).
-  for (std::size_t i = 0; i < n; ++i)
-    out[i] = grid_ ? std::min(max_range, grid_->cast_ray(origin, dirs[i], max_range)) : max_range;
+  if (grid_ != nullptr) {
+    grid_->cast_fan(origin, dirs, angles, max_range, out);
+    for (std::size_t i = 0; i < n; ++i) out[i] = std::min(max_range, out[i]);
+  } else {
+    std::fill(out.begin(), out.end(), max_range);
+  }
 
   // Obstacles closer than `near` to the origin are tested against every beam: their angular
   // extent is ill-conditioned. Beyond it, a beam outside an extent by kFanMargin passes the
