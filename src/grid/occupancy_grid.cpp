@@ -369,9 +369,13 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     // already has a nearer hit needs no test (the minimum is the same).
     const double lower = std::sqrt(gap2) * (1.0 - 1e-5);
     // The face of the run that facing walks cross: the line a = face of axis a (0: x = face,
-    // 1: y = face). A beam crossing it at b (the other axis) first touches the run within a cell
-    // of floor(b), clamped to the run (a beam entering the box through an end touches the end
-    // cell first); the walk's exact test decides each of these cells.
+    // 1: y = face). A walk crosses it with the event q = (face - o_a) / d_a, the very quotient it
+    // computes, at b = o_b + q d_b on the other axis (to within far less than eps). When b is
+    // inside the face, away from its ends, the walk enters the run's line there, in a cell of
+    // the run (or touches one through a corner at that event), and it has touched none of the
+    // line before: the run's first distance is max(0, q) exactly (max(t0, ...) as the walk
+    // keeps it). Otherwise (near an end, or entering the box through an end) the cells of the
+    // run within a cell of floor(b), clamped to the run, are tested with the walk's exact test.
     const int axis = rows ? 1 : 0;
     const double face = (s == 0 || s == 2) ? l : l + 1.0;
     const double oa = o[axis], ob = o[1 - axis];
@@ -380,7 +384,14 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
       if (lower > best[k] || per_ray[k] != 0) return;
       const double da = axis == 0 ? dx[k] : dy[k], db = axis == 0 ? dy[k] : dx[k];
       if (!((s == 0 || s == 2) ? da > 0.0 : da < 0.0)) return;  // moving away from the face
-      const double b = ob + (face - oa) * (db / da);
+      const double q = (face - oa) / da;
+      const double b = ob + q * db;
+      const double eps = 1e-10 * (1.0 + std::abs(q) + std::abs(ob));
+      if (b >= lo + eps && b <= hi + 1.0 - eps) {
+        const double h = std::max(0.0, q);
+        if (h <= t_max && h < best[k]) best[k] = h;
+        return;
+      }
       if (!(b == b)) {
         for (int c = r.first; c <= r.last; ++c) rows ? test(k, c, l) : test(k, l, c);
         return;
