@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "../geometry/fan_layout.hpp"
@@ -357,8 +358,9 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   const double reach2 = reach * reach;
   const double yaw = origin_.theta;
   // Run `r` of side `s` on line `l`: the box [x0, x1] x [y0, y1] of its cells.
-  const auto run = [&](int s, int l, const Run& r) {
-    const bool rows = s >= 2;
+  const auto run = [&](auto side, int l, const Run& r) {
+    constexpr int s = decltype(side)::value;
+    constexpr bool rows = s >= 2;
     const double x0 = rows ? r.first : l, x1 = rows ? r.last + 1.0 : l + 1.0;
     const double y0 = rows ? l : r.first, y1 = rows ? l + 1.0 : r.last + 1.0;
     const double gx = std::max({0.0, x0 - o.x(), o.x() - x1});
@@ -376,14 +378,25 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     // line before: the run's first distance is max(0, q) exactly (max(t0, ...) as the walk
     // keeps it). Otherwise (near an end, or entering the box through an end) the cells of the
     // run within a cell of floor(b), clamped to the run, are tested with the walk's exact test.
-    const int axis = rows ? 1 : 0;
+    constexpr int axis = rows ? 1 : 0;
     const double face = (s == 0 || s == 2) ? l : l + 1.0;
     const double oa = o[axis], ob = o[1 - axis];
     const double lo = r.first, hi = r.last;
+    const auto cell_test = [&](int k, int c) {
+      if constexpr (rows) {
+        test(k, c, l);
+      } else {
+        test(k, l, c);
+      }
+    };
     const auto each = [&](int k) {
       if (lower > best[k] || per_ray[k] != 0) return;
       const double da = axis == 0 ? dx[k] : dy[k], db = axis == 0 ? dy[k] : dx[k];
-      if (!((s == 0 || s == 2) ? da > 0.0 : da < 0.0)) return;  // moving away from the face
+      if constexpr (s == 0 || s == 2) {
+        if (!(da > 0.0)) return;  // moving away from the face
+      } else {
+        if (!(da < 0.0)) return;
+      }
       const double q = (face - oa) / da;
       const double b = ob + q * db;
       const double eps = 1e-10 * (1.0 + std::abs(q) + std::abs(ob));
@@ -393,46 +406,45 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
         return;
       }
       if (!(b == b)) {
-        for (int c = r.first; c <= r.last; ++c) rows ? test(k, c, l) : test(k, l, c);
+        for (int c = r.first; c <= r.last; ++c) cell_test(k, c);
         return;
       }
       const double fb = std::floor(b);
       const int c0 = static_cast<int>(std::clamp(fb - 1.0, lo, hi));
       const int c1 = static_cast<int>(std::clamp(fb + 1.0, lo, hi));
-      for (int c = c0; c <= c1; ++c) rows ? test(k, c, l) : test(k, l, c);
+      for (int c = c0; c <= c1; ++c) cell_test(k, c);
     };
     if (gap2 < 1e-12) {
       for (int k = 0; k < fan->n; ++k) each(k);
       return;
     }
-    // The box's angular extent: its corners' directions relative to its centre's (the origin is
-    // outside the box, so it spans less than pi and contains the centre's direction).
-    const double centre =
-        fan_detail::coarse_atan2(0.5 * (y0 + y1) - o.y(), 0.5 * (x0 + x1) - o.x());
-    double a_lo = 0.0, a_hi = 0.0;
-    for (int c = 0; c < 4; ++c) {
-      const double px = ((c & 1) != 0 ? x1 : x0) - o.x(), py = ((c & 2) != 0 ? y1 : y0) - o.y();
-      double a = (px == 0.0 && py == 0.0) ? 0.0 : fan_detail::coarse_atan2(py, px) - centre;
-      if (a > kPi) a -= fan_detail::kTwoPi;
-      if (a < -kPi) a += fan_detail::kTwoPi;
-      a_lo = std::min(a_lo, a);
-      a_hi = std::max(a_hi, a);
-    }
+    // The box's angular extent, from its silhouette corners as seen from the origin (outside
+    // the box): the clockwise-most one, then counter-clockwise (less than pi) to the other.
+    const double ox = o.x(), oy = o.y();
+    const double cw_x = oy < y0 ? x1 : (oy > y1 ? x0 : (ox > x1 ? x1 : x0));
+    const double cw_y = ox > x1 ? y1 : (ox < x0 ? y0 : (oy < y0 ? y0 : y1));
+    const double ccw_x = oy > y1 ? x1 : (oy < y0 ? x0 : (ox < x0 ? x0 : x1));
+    const double ccw_y = ox < x0 ? y1 : (ox > x1 ? y0 : (oy > y1 ? y1 : y0));
+    const double a_cw = fan_detail::coarse_atan2(cw_y - oy, cw_x - ox);
+    double width = fan_detail::coarse_atan2(ccw_y - oy, ccw_x - ox) - a_cw;
+    if (width < 0.0) width += fan_detail::kTwoPi;
     const double m = fan_detail::kFanMargin;
-    fan_detail::for_beams_in(*fan, centre + yaw + a_lo - m, a_hi - a_lo + 2.0 * m, each);
+    fan_detail::for_beams_in(*fan, a_cw + yaw - m, width + 2.0 * m, each);
   };
   // Only runs whose side faces the origin: side 0 on columns right of the origin's column, 1 on
   // those left of it, 2 on rows above, 3 on rows below. Nearest lines first.
-  const auto line = [&](int s, int l) {
-    for (std::int32_t i = run_start_[s][l]; i < run_start_[s][l + 1]; ++i) run(s, l, runs_[s][i]);
+  const auto line = [&](auto side, int l) {
+    constexpr int s = decltype(side)::value;
+    for (std::int32_t i = run_start_[s][l]; i < run_start_[s][l + 1]; ++i)
+      run(side, l, runs_[s][i]);
   };
   const int reach_cells = static_cast<int>(std::min(reach + 2.0, 1e9));
   for (int j = 1; j <= reach_cells; ++j) {
     bool any = false;
-    if (ix0 + j < width_) line(0, ix0 + j), any = true;
-    if (ix0 - j >= 0) line(1, ix0 - j), any = true;
-    if (iy0 + j < height_) line(2, iy0 + j), any = true;
-    if (iy0 - j >= 0) line(3, iy0 - j), any = true;
+    if (ix0 + j < width_) line(std::integral_constant<int, 0>{}, ix0 + j), any = true;
+    if (ix0 - j >= 0) line(std::integral_constant<int, 1>{}, ix0 - j), any = true;
+    if (iy0 + j < height_) line(std::integral_constant<int, 2>{}, iy0 + j), any = true;
+    if (iy0 - j >= 0) line(std::integral_constant<int, 3>{}, iy0 - j), any = true;
     if (!any) break;
   }
   for (std::size_t i = 0; i < n; ++i) {
