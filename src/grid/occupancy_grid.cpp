@@ -435,8 +435,14 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   // those left of it, 2 on rows above, 3 on rows below. Nearest lines first.
   const auto line = [&](auto side, int l) {
     constexpr int s = decltype(side)::value;
-    for (std::int32_t i = run_start_[s][l]; i < run_start_[s][l + 1]; ++i)
-      run(side, l, runs_[s][i]);
+    // The runs of the line that overlap the reach's span along it (they are disjoint and in
+    // order, so their ends are in order too).
+    const double along = s >= 2 ? o.x() : o.y();
+    const double a_lo = along - reach - 1.0, a_hi = along + reach + 1.0;
+    const Run* first = runs_[s].data() + run_start_[s][l];
+    const Run* last = runs_[s].data() + run_start_[s][l + 1];
+    first = std::partition_point(first, last, [&](const Run& r) { return r.last < a_lo; });
+    for (; first != last && first->first <= a_hi; ++first) run(side, l, *first);
   };
   const int reach_cells = static_cast<int>(std::min(reach + 2.0, 1e9));
   for (int j = 1; j <= reach_cells; ++j) {
