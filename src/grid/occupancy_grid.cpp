@@ -261,7 +261,6 @@ namespace {
 // Per-thread scratch of OccupancyGrid::cast_fan: it only grows.
 struct GridFanScratch {
   std::vector<double> dx, dy, best;
-  std::vector<std::uint8_t> per_ray;
 };
 
 GridFanScratch& grid_fan_scratch(std::size_t n) {
@@ -270,7 +269,6 @@ GridFanScratch& grid_fan_scratch(std::size_t n) {
     s.dx.resize(n);
     s.dy.resize(n);
     s.best.resize(n);
-    s.per_ray.resize(n);
   }
   return s;
 }
@@ -303,15 +301,14 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   double* dx = scratch.dx.data();
   double* dy = scratch.dy.data();
   double* best = scratch.best.data();
-  std::uint8_t* per_ray = scratch.per_ray.data();
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2& dir = dirs[i];
     dx[i] = cos_yaw_ * dir.x() + sin_yaw_ * dir.y();
     dy[i] = -sin_yaw_ * dir.x() + cos_yaw_ * dir.y();
-    best[i] = kInf;
-    // The culling below assumes a unit direction at the given angle.
+    // The culling below assumes a unit direction at the given angle; other beams are cast ray
+    // by ray, marked by best = -inf (no test takes them: every lower bound is above).
     const double len2 = dx[i] * dx[i] + dy[i] * dy[i];
-    per_ray[i] = std::isfinite(len2) && std::abs(len2 - 1.0) <= 1e-6 ? 0 : 1;
+    best[i] = std::abs(len2 - 1.0) <= 1e-6 ? kInf : -kInf;
   }
 
   // The walk from (ix0, iy0) enters or touches (through a corner) cell (x, y) exactly when the
@@ -323,7 +320,7 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   // cell within t_max, whose distance is the least. So the minimum over the occupied cells below
   // is `cast`'s answer to the bit; cells no walk can reach first only need to be left out.
   const auto test = [&](int k, int x, int y) {
-    if (per_ray[k] != 0) return;
+    if (best[k] == -kInf) return;
     const double ddx = dx[k], ddy = dy[k];
     double ax = 0.0, bx = kInf, ay = 0.0, by = kInf;
     if (ddx > 0.0) {
@@ -390,7 +387,7 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
       }
     };
     const auto each = [&](int k) {
-      if (lower > best[k] || per_ray[k] != 0) return;
+      if (lower > best[k]) return;
       const double da = axis == 0 ? dx[k] : dy[k], db = axis == 0 ? dy[k] : dx[k];
       if constexpr (s == 0 || s == 2) {
         if (!(da > 0.0)) return;  // moving away from the face
@@ -454,7 +451,7 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     if (!any) break;
   }
   for (std::size_t i = 0; i < n; ++i) {
-    if (per_ray[i] != 0) {
+    if (best[i] == -kInf) {
       out[i] = cast_ray(origin_world, dirs[i], max_range);
     } else {
       out[i] = best[i] < kInf ? std::min(best[i] * resolution_, max_range) : max_range;
