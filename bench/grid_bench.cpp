@@ -105,6 +105,46 @@ void BM_GridWorldCastRay(benchmark::State& state) {
 }
 BENCHMARK(BM_GridWorldCastRay)->Arg(350)->Arg(3000);
 
+/// A 360-beam fan (1 degree apart) from each sample origin: OccupancyGrid::cast_fan against the
+/// same beams one cast_ray at a time. Items are rays. The directions are computed beforehand.
+void grid_fan(benchmark::State& state, bool fan) {
+  const WarehouseMap& m = warehouse();
+  if (skip_if_missing(state, m)) return;
+  const double range = static_cast<double>(state.range(0)) / 100.0;
+  constexpr int kBeams = 360;
+  constexpr std::size_t kSets = 8;  // fans turned by 0.37 rad from one set to the next
+  std::vector<std::vector<Vec2>> dir_sets(kSets, std::vector<Vec2>(kBeams));
+  std::vector<std::vector<double>> angle_sets(kSets, std::vector<double>(kBeams));
+  for (std::size_t j = 0; j < kSets; ++j) {
+    for (int k = 0; k < kBeams; ++k) {
+      angle_sets[j][k] = wrap_angle(0.37 * static_cast<double>(j) + 2.0 * kPi * k / kBeams);
+      dir_sets[j][k] = Vec2(std::cos(angle_sets[j][k]), std::sin(angle_sets[j][k]));
+    }
+  }
+  std::vector<double> out(kBeams);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::vector<Vec2>& dirs = dir_sets[i % kSets];
+    const std::vector<double>& angles = angle_sets[i % kSets];
+    if (fan) {
+      m.grid->cast_fan(m.origins[i], dirs, angles, range, out);
+    } else {
+      for (int k = 0; k < kBeams; ++k) out[k] = m.grid->cast_ray(m.origins[i], dirs[k], range);
+    }
+    benchmark::DoNotOptimize(out.data());
+    i = (i + 1) & (kSamples - 1);
+  }
+  state.SetItemsProcessed(state.iterations() * kBeams);
+}
+void BM_GridCastFan360(benchmark::State& state) {
+  grid_fan(state, true);
+}
+void BM_GridCastFan360PerRay(benchmark::State& state) {
+  grid_fan(state, false);
+}
+BENCHMARK(BM_GridCastFan360)->Arg(350)->Arg(3000);
+BENCHMARK(BM_GridCastFan360PerRay)->Arg(350)->Arg(3000);
+
 void BM_GridClearance(benchmark::State& state) {
   const WarehouseMap& m = warehouse();
   if (skip_if_missing(state, m)) return;

@@ -1,0 +1,156 @@
+// OccupancyGrid::cast_fan (and World::cast_fan over a grid) against OccupancyGrid::cast_ray and
+// cast_ray_cell_by_cell, bit for bit, on random grids and on the AWS warehouse map.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "floornav/common/rng.hpp"
+#include "floornav/geometry/angle.hpp"
+#include "floornav/geometry/world.hpp"
+#include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/io/ros_map.hpp"
+
+namespace floornav {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double uniform(Rng& rng, double lo, double hi) {
+  return lo + (hi - lo) * rng.uniform();
+}
+
+std::uint64_t bits(double v) {
+  return std::bit_cast<std::uint64_t>(v);
+}
+
+// A lidar's beams: angle first + k * 2 pi / n, wrapped as sensors wrap them. Beams within 1e-12
+// rad of an axis or a diagonal get the exact axis or diagonal direction (angles within 1e-9 of
+// the direction's are what cast_fan asks for).
+void make_fan(double first, int n, std::vector<Vec2>& dirs, std::vector<double>& angles) {
+  dirs.resize(n);
+  angles.resize(n);
+  const double s = std::sqrt(0.5);
+  for (int k = 0; k < n; ++k) {
+    const double a = wrap_angle(first + 2.0 * kPi * k / n);
+    angles[k] = a;
+    dirs[k] = Vec2(std::cos(a), std::sin(a));
+    const double q = a / (0.25 * kPi);
+    if (std::abs(q - std::round(q)) < 1e-12) {
+      const int o = (static_cast<int>(std::round(q)) % 8 + 8) % 8;
+      const double ex[8] = {1.0, s, 0.0, -s, -1.0, -s, 0.0, s};
+      const double ey[8] = {0.0, s, 1.0, s, 0.0, -s, -1.0, -s};
+      dirs[k] = Vec2(ex[o], ey[o]);
+    }
+  }
+}
+
+// Fans from `fans` origins on `g`: every beam bit for bit cast_ray (and, for every 8th fan,
+// cast_ray_cell_by_cell). Adds the number of rays compared to `rays`.
+void expect_grid_fans_match(const OccupancyGrid& g, Rng& rng, int fans, bool near_free,
+                            const char* what, long& rays) {
+  Vec2 lo, hi;
+  g.world_extent(&lo, &hi);
+  const Vec2 span = hi - lo;
+  const double res = g.resolution();
+  const Pose2& go = g.origin();
+  const double c = std::cos(go.theta), s = std::sin(go.theta);
+  std::vector<Vec2> dirs;
+  std::vector<double> angles, out;
+  WorldDesc desc;
+  desc.grid = &g;
+  const World world(std::move(desc));
+  for (int f = 0; f < fans; ++f) {
+    Vec2 p(lo.x() + span.x() * uniform(rng, -0.1, 1.1),
+           lo.y() + span.y() * uniform(rng, -0.1, 1.1));
+    if (near_free && f % 4 != 3) {
+      do {
+        p = Vec2(uniform(rng, lo.x(), hi.x()), uniform(rng, lo.y(), hi.y()));
+      } while (!(g.clearance(p) > 0.05));
+    }
+    // On a cell corner or a cell edge of the grid frame (any yaw), sometimes.
+    const int place = f % 6;
+    if (place == 1 || place == 2) {
+      const Vec2 d = p - go.position;
+      Vec2 q(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+      q /= res;
+      q.x() = std::round(q.x());
+      if (place == 1) q.y() = std::round(q.y());
+      q *= res;
+      p = go.position + Vec2(c * q.x() - s * q.y(), s * q.x() + c * q.y());
+    }
+    const int pick_n = f % 5;
+    const int n = pick_n == 0 ? 180 : (pick_n == 1 ? 64 : (pick_n == 2 ? 720 : 360));
+    double first = uniform(rng, -kPi, kPi);
+    if (f % 3 == 0) first = go.theta + std::round(first / (0.25 * kPi)) * 0.25 * kPi;
+    make_fan(first, n, dirs, angles);
+    const int pick_r = f % 7;
+    const double range =
+        pick_r == 0 ? 3.5 : (pick_r == 1 ? 0.0 : (pick_r == 2 ? 1e9 : uniform(rng, 0.0, 8.0)));
+    out.assign(n, -1.0);
+    g.cast_fan(p, dirs, angles, range, out);
+    for (int k = 0; k < n; ++k) {
+      const double want = g.cast_ray(p, dirs[k], range);
+      ASSERT_EQ(bits(out[k]), bits(want))
+          << what << " fan " << f << " beam " << k << " from (" << p.x() << ", " << p.y()
+          << ") angle " << angles[k] << " range " << range << ": " << out[k] << " vs " << want;
+      if (f % 8 == 0) {
+        ASSERT_EQ(bits(out[k]), bits(g.cast_ray_cell_by_cell(p, dirs[k], range)));
+      }
+    }
+    rays += n;
+    if (f % 10 == 0) {
+      world.cast_fan(p, dirs, angles, range, out);
+      for (int k = 0; k < n; ++k)
+        ASSERT_EQ(bits(out[k]), bits(world.cast_ray(p, dirs[k], range))) << what << " world fan";
+    }
+  }
+}
+
+TEST(GridFan, MatchesCastRayOnRandomGrids) {
+  Rng rng(7);
+  long rays = 0;
+  for (int n = 0; n < 60; ++n) {
+    const int w = 1 + static_cast<int>(uniform(rng, 0.0, 200.0));
+    const int h = 1 + static_cast<int>(uniform(rng, 0.0, 200.0));
+    const double density = std::pow(10.0, uniform(rng, -3.0, -0.3));
+    std::vector<std::uint8_t> cells(static_cast<std::size_t>(w) * h);
+    for (auto& c : cells) c = rng.uniform() < density ? 1 : 0;
+    if (n % 4 == 1) {
+      // Walls: runs of occupied cells along rows and columns.
+      for (int r = 0; r < 10; ++r) {
+        const int x0 = static_cast<int>(uniform(rng, 0.0, w)),
+                  y0 = static_cast<int>(uniform(rng, 0.0, h));
+        const int len = static_cast<int>(uniform(rng, 1.0, 60.0));
+        for (int i = 0; i < len; ++i) {
+          const int x = r % 2 == 0 ? x0 + i : x0, y = r % 2 == 0 ? y0 : y0 + i;
+          if (x < w && y < h) cells[static_cast<std::size_t>(y) * w + x] = 1;
+        }
+      }
+    }
+    const double yaw = n % 3 == 0 ? uniform(rng, -kPi, kPi) : (n % 3 == 1 ? 0.5 * kPi : 0.0);
+    const double res = n % 2 == 0 ? 0.05 : 0.1;
+    const OccupancyGrid g(w, h, res, Pose2{Vec2(-1.0, -2.0), yaw}, cells);
+    ASSERT_NO_FATAL_FAILURE(expect_grid_fans_match(g, rng, 60, n % 2 == 0, "random grid", rays));
+  }
+  EXPECT_GT(rays, 1000000);
+}
+
+TEST(GridFan, MatchesCastRayOnTheAwsWarehouse) {
+  const auto map = std::filesystem::path(FLOORNAV_SHARED_MAPS_DIR) /
+                   "aws-robomaker-small-warehouse" / "005" / "map.yaml";
+  if (!std::filesystem::exists(map)) GTEST_SKIP() << "no " << map.string();
+  const OccupancyGrid g = load_ros_map(map);
+  Rng rng(11);
+  long rays = 0;
+  ASSERT_NO_FATAL_FAILURE(expect_grid_fans_match(g, rng, 1500, true, "AWS 005", rays));
+  EXPECT_GT(rays, 400000);
+}
+
+}  // namespace
+}  // namespace floornav
