@@ -64,6 +64,9 @@ double sense_one(const World& world, const SensorBeam& b, const RangeSensorSpec&
 // Lidars: runs of at least this many single-beam sensors sharing an origin and a max_range are
 // cast as one fan (World::cast_fan), in chunks of kFanChunk beams on the stack.
 constexpr std::size_t kMinFanBeams = 16;
+// A lidar's beam directions are turned from the previous beam's, and computed exactly every
+// this many beams.
+constexpr std::size_t kAnchorEvery = 32;
 constexpr std::size_t kFanChunk = 256;
 
 bool single_beam(const RangeSensorSpec& s) {
@@ -152,12 +155,57 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
   }
 }
 
+// A lidar in the sensor list: the end of the run from `i` of single-beam sensors on one mount
+// point whose headings are evenly spaced (to 1e-9 rad), or i + 1.
+std::size_t lidar_end(std::span<const RangeSensorSpec> sensors, std::size_t i) {
+  if (i + 1 >= sensors.size() || !single_beam(sensors[i])) return i + 1;
+  const double spacing = sensors[i + 1].mount.theta - sensors[i].mount.theta;
+  if (!(std::abs(spacing) > 0.0 && std::abs(spacing) < kPi)) return i + 1;
+  std::size_t j = i + 1;
+  while (j < sensors.size() && single_beam(sensors[j]) &&
+         sensors[j].mount.position == sensors[i].mount.position &&
+         std::abs(sensors[j].mount.theta - sensors[i].mount.theta -
+                  static_cast<double>(j - i) * spacing) < 1e-9)
+    ++j;
+  return j;
+}
+
 }  // namespace
 
 void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
                           std::span<SensorBeam> beams) {
   const double c = std::cos(robot.theta), s = std::sin(robot.theta);
-  for (std::size_t i = 0; i < sensors.size(); ++i) beams[i] = beam_of(robot, c, s, sensors[i]);
+  for (std::size_t i = 0; i < sensors.size();) {
+    const std::size_t end = lidar_end(sensors, i);
+    if (end - i < kMinFanBeams) {
+      beams[i] = beam_of(robot, c, s, sensors[i]);
+      ++i;
+      continue;
+    }
+    // A lidar: its first beam as above, then each next one turned by the fixed spacing (a
+    // rotation, not a sine and a cosine per beam; re-anchored exactly every kAnchorEvery beams,
+    // so directions stay within ~1e-15 of the exact ones).
+    // The mean spacing: two neighbours' difference would carry their rounding into every turn.
+    const double spacing = (sensors[end - 1].mount.theta - sensors[i].mount.theta) /
+                           static_cast<double>(end - 1 - i);
+    const Vec2 turn(std::cos(spacing), std::sin(spacing));
+    for (std::size_t k = i; k < end; ++k) {
+      if ((k - i) % kAnchorEvery == 0) {
+        beams[k] = beam_of(robot, c, s, sensors[k]);
+        continue;
+      }
+      SensorBeam& b = beams[k];
+      const SensorBeam& prev = beams[k - 1];
+      b.origin = prev.origin;
+      b.dir = Vec2(prev.dir.x() * turn.x() - prev.dir.y() * turn.y(),
+                   prev.dir.x() * turn.y() + prev.dir.y() * turn.x());
+      double theta = robot.theta + sensors[k].mount.theta;
+      while (theta > kPi) theta -= 2.0 * kPi;
+      while (theta <= -kPi) theta += 2.0 * kPi;
+      b.theta = theta;
+    }
+    i = end;
+  }
 }
 
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
