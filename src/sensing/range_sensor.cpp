@@ -186,23 +186,25 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
     // rotation, not a sine and a cosine per beam; re-anchored exactly every kAnchorEvery beams,
     // so directions stay within ~1e-15 of the exact ones).
     // The mean spacing: two neighbours' difference would carry their rounding into every turn.
-    const double spacing = (sensors[end - 1].mount.theta - sensors[i].mount.theta) /
-                           static_cast<double>(end - 1 - i);
+    const double spacing =
+        (sensors[end - 1].mount.theta - sensors[i].mount.theta) / static_cast<double>(end - 1 - i);
     const Vec2 turn(std::cos(spacing), std::sin(spacing));
+    const SensorBeam first = beam_of(robot, c, s, sensors[i]);
     for (std::size_t k = i; k < end; ++k) {
-      if ((k - i) % kAnchorEvery == 0) {
-        beams[k] = beam_of(robot, c, s, sensors[k]);
-        continue;
-      }
       SensorBeam& b = beams[k];
-      const SensorBeam& prev = beams[k - 1];
-      b.origin = prev.origin;
-      b.dir = Vec2(prev.dir.x() * turn.x() - prev.dir.y() * turn.y(),
-                   prev.dir.x() * turn.y() + prev.dir.y() * turn.x());
+      b.origin = first.origin;
+      // The exact sum, wrapped by whole turns (not wrap_angle's atan2: this is per beam).
       double theta = robot.theta + sensors[k].mount.theta;
       while (theta > kPi) theta -= 2.0 * kPi;
       while (theta <= -kPi) theta += 2.0 * kPi;
       b.theta = theta;
+      if ((k - i) % kAnchorEvery == 0) {
+        b.dir = Vec2(std::cos(theta), std::sin(theta));
+      } else {
+        const Vec2& prev = beams[k - 1].dir;
+        b.dir = Vec2(prev.x() * turn.x() - prev.y() * turn.y(),
+                     prev.x() * turn.y() + prev.y() * turn.x());
+      }
     }
     i = end;
   }
