@@ -354,8 +354,9 @@ int run_bench(const BenchOptions& options) {
     return 0;
   }
 
-  fmt::print("floornav bench: {} ({} cores), {}, {}; single thread, ~{:g} s per case\n", cpu, cores,
-             compiler(), build_type(), budget);
+  fmt::print(
+      "floornav bench: {} ({} cores), {}, {}; one thread (fleets: all cores), ~{:g} s per case\n",
+      cpu, cores, compiler(), build_type(), budget);
   fmt::print("{:<34} {:>15} {:>15} {:>10}  {}\n", "case", "robot-steps/s", "rays/s", "ns/step",
              "notes");
   for (const CaseResult& r : results) {
