@@ -24,20 +24,16 @@ struct Disc {
   double radius;
 };
 
-double uniform(Rng& rng, double lo, double hi) {
-  return lo + (hi - lo) * rng.uniform();
-}
-
 // A star-shaped polygon about `d.centre`: vertices at evenly spaced angles (jittered by up to a
 // third of the spacing) and radii between 0.6 and 1 times `d.radius`. Star-shaped means simple.
 std::vector<Vec2> star_polygon(const Disc& d, int vertices, Rng& rng) {
   std::vector<Vec2> poly;
   poly.reserve(static_cast<std::size_t>(vertices));
   const double step = 2.0 * kPi / vertices;
-  const double phase = uniform(rng, 0.0, step);
+  const double phase = rng.uniform(0.0, step);
   for (int i = 0; i < vertices; ++i) {
-    const double a = phase + i * step + uniform(rng, -step / 3.0, step / 3.0);
-    const double r = d.radius * uniform(rng, 0.6, 1.0);
+    const double a = phase + i * step + rng.uniform(-step / 3.0, step / 3.0);
+    const double r = d.radius * rng.uniform(0.6, 1.0);
     poly.emplace_back(d.centre.x() + r * std::cos(a), d.centre.y() + r * std::sin(a));
   }
   return poly;
@@ -45,7 +41,7 @@ std::vector<Vec2> star_polygon(const Disc& d, int vertices, Rng& rng) {
 
 Vec2 pick_free_point(const World& world, Rng& rng, double side, double min_clearance) {
   for (int attempt = 0; attempt < 100000; ++attempt) {
-    const Vec2 p(uniform(rng, 0.0, side), uniform(rng, 0.0, side));
+    const Vec2 p(rng.uniform(0.0, side), rng.uniform(0.0, side));
     if (!world.is_inside_obstacle(p) && world.clearance(p) >= min_clearance) return p;
   }
   throw std::runtime_error("bench floor: no free point found");
@@ -63,10 +59,10 @@ WorldDesc make_bench_floor(const BenchFloorParams& p) {
     if (attempt > 1000 * (p.polygons + 10))
       throw std::runtime_error("bench floor: " + std::to_string(p.polygons) +
                                " polygons do not fit on a " + std::to_string(p.side) + " m floor");
-    const double r = uniform(rng, p.min_radius, p.max_radius);
+    const double r = rng.uniform(p.min_radius, p.max_radius);
     const double lo = r + wall_gap, hi = p.side - r - wall_gap;
     if (hi <= lo) continue;
-    const Disc d{Vec2(uniform(rng, lo, hi), uniform(rng, lo, hi)), r};
+    const Disc d{Vec2(rng.uniform(lo, hi), rng.uniform(lo, hi)), r};
     const bool clear = std::all_of(discs.begin(), discs.end(), [&](const Disc& o) {
       return (o.centre - d.centre).norm() >= o.radius + d.radius + p.gap;
     });
@@ -111,7 +107,7 @@ Scenario make_floor_scenario(std::shared_ptr<const World> world, int beams, int 
   Rng rng(1000 + static_cast<std::uint64_t>(index));
   const double margin = s.robot.body_radius + 0.3;
   const Vec2 start = pick_free_point(*s.world, rng, side, margin);
-  s.start = {start, uniform(rng, -kPi, kPi)};
+  s.start = {start, rng.uniform(-kPi, kPi)};
   Vec2 from = start;
   while (s.goals.size() < 4) {
     const Vec2 g = pick_free_point(*s.world, rng, side, margin);
@@ -185,7 +181,7 @@ Scenario make_fleet_scenario(std::shared_ptr<const World> world, int robots, int
   s.robots.reserve(static_cast<std::size_t>(robots));
   for (int i = 0; i < robots; ++i) {
     RobotTask t{fmt::format("r{}", i), model.robot, {}, {}, model.controller, model.navigation};
-    t.start = {lattice[static_cast<std::size_t>(i)], uniform(rng, -kPi, kPi)};
+    t.start = {lattice[static_cast<std::size_t>(i)], rng.uniform(-kPi, kPi)};
     Vec2 from = t.start.position;
     while (t.goals.size() < 4) {
       const Vec2 g = pick_free_point(*world, rng, side, margin);

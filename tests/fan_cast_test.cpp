@@ -19,10 +19,6 @@
 namespace floornav {
 namespace {
 
-double uniform(Rng& rng, double lo, double hi) {
-  return lo + (hi - lo) * rng.uniform();
-}
-
 std::uint64_t bits(double v) {
   return std::bit_cast<std::uint64_t>(v);
 }
@@ -37,40 +33,40 @@ struct RandomWorld {
 RandomWorld random_world(Rng& rng, bool with_grid) {
   RandomWorld rw;
   WorldDesc d;
-  const double side = uniform(rng, 3.0, 25.0);
+  const double side = rng.uniform(3.0, 25.0);
   if (rng.uniform() < 0.8) d.bounds = Box2{Vec2(0.0, 0.0), Vec2(side, side)};
-  const int polygons = static_cast<int>(uniform(rng, 0.0, 40.0));
+  const int polygons = static_cast<int>(rng.uniform(0.0, 40.0));
   for (int p = 0; p < polygons; ++p) {
-    const Vec2 c(uniform(rng, 0.0, side), uniform(rng, 0.0, side));
-    const double r = uniform(rng, 0.05, 1.5);
-    const int n = 3 + static_cast<int>(uniform(rng, 0.0, 6.0));
+    const Vec2 c(rng.uniform(0.0, side), rng.uniform(0.0, side));
+    const double r = rng.uniform(0.05, 1.5);
+    const int n = 3 + static_cast<int>(rng.uniform(0.0, 6.0));
     const bool grid_aligned = rng.uniform() < 0.3;  // axis-aligned boxes: many exact ties
     std::vector<Vec2> poly;
     if (grid_aligned) {
       const double x0 = std::round(c.x()), y0 = std::round(c.y());
-      const double w = std::round(uniform(rng, 1.0, 3.0)) * 0.5, h = std::round(r + 0.5) * 0.5;
+      const double w = std::round(rng.uniform(1.0, 3.0)) * 0.5, h = std::round(r + 0.5) * 0.5;
       poly = {{x0, y0}, {x0 + w, y0}, {x0 + w, y0 + h}, {x0, y0 + h}};
     } else {
       for (int i = 0; i < n; ++i) {
-        const double a = 2.0 * kPi * (i + uniform(rng, -0.3, 0.3)) / n;
-        const double rr = r * uniform(rng, 0.4, 1.0);
+        const double a = 2.0 * kPi * (i + rng.uniform(-0.3, 0.3)) / n;
+        const double rr = r * rng.uniform(0.4, 1.0);
         poly.emplace_back(c.x() + rr * std::cos(a), c.y() + rr * std::sin(a));
       }
     }
     d.polygons.push_back(poly);
   }
-  const int circles = static_cast<int>(uniform(rng, 0.0, 15.0));
+  const int circles = static_cast<int>(rng.uniform(0.0, 15.0));
   for (int i = 0; i < circles; ++i) {
-    const double radius = rng.uniform() < 0.2 ? 0.0 : uniform(rng, 0.02, 1.0);
-    d.circles.push_back({Vec2(uniform(rng, 0.0, side), uniform(rng, 0.0, side)), radius});
+    const double radius = rng.uniform() < 0.2 ? 0.0 : rng.uniform(0.02, 1.0);
+    d.circles.push_back({Vec2(rng.uniform(0.0, side), rng.uniform(0.0, side)), radius});
   }
   if (with_grid) {
-    const int w = 20 + static_cast<int>(uniform(rng, 0.0, 60.0));
-    const int h = 20 + static_cast<int>(uniform(rng, 0.0, 60.0));
+    const int w = 20 + static_cast<int>(rng.uniform(0.0, 60.0));
+    const int h = 20 + static_cast<int>(rng.uniform(0.0, 60.0));
     std::vector<std::uint8_t> cells(static_cast<std::size_t>(w) * h);
     for (auto& c : cells) c = rng.uniform() < 0.02 ? 1 : 0;
     const double res = side / std::max(w, h);
-    const double yaw = rng.uniform() < 0.5 ? 0.0 : uniform(rng, -kPi, kPi);
+    const double yaw = rng.uniform() < 0.5 ? 0.0 : rng.uniform(-kPi, kPi);
     rw.grid = std::make_unique<OccupancyGrid>(w, h, res, Pose2{Vec2(0.1, 0.2), yaw}, cells);
     d.grid = rw.grid.get();
   }
@@ -85,23 +81,23 @@ std::vector<Vec2> tricky_origins(const World& w, Rng& rng) {
   const Box2 e = w.extent();
   const Vec2 size = e.size().cwiseMax(Vec2(1.0, 1.0));
   for (int i = 0; i < 12; ++i)
-    out.emplace_back(e.min.x() + size.x() * uniform(rng, -0.1, 1.1),
-                     e.min.y() + size.y() * uniform(rng, -0.1, 1.1));
+    out.emplace_back(e.min.x() + size.x() * rng.uniform(-0.1, 1.1),
+                     e.min.y() + size.y() * rng.uniform(-0.1, 1.1));
   const auto segs = w.segments();
   for (int i = 0; i < 12 && !segs.empty(); ++i) {
-    const Segment& s = segs[static_cast<std::size_t>(uniform(rng, 0.0, segs.size() - 0.5))];
+    const Segment& s = segs[static_cast<std::size_t>(rng.uniform(0.0, segs.size() - 0.5))];
     const Vec2 e2 = s.b - s.a;
     const Vec2 normal = Vec2(-e2.y(), e2.x()).normalized();
-    const double off = std::pow(10.0, uniform(rng, -12.0, -2.0)) * (rng.uniform() < 0.5 ? -1 : 1);
+    const double off = std::pow(10.0, rng.uniform(-12.0, -2.0)) * (rng.uniform() < 0.5 ? -1 : 1);
     if (i % 4 == 0) {
       out.push_back(s.a);  // on a vertex
     } else {
-      out.push_back(s.a + uniform(rng, 0.0, 1.0) * e2 + off * normal);
+      out.push_back(s.a + rng.uniform(0.0, 1.0) * e2 + off * normal);
     }
   }
   for (const Circle& c : w.circles()) {
-    const double a = uniform(rng, -kPi, kPi);
-    out.push_back(c.center + (c.radius + std::pow(10.0, uniform(rng, -12.0, -3.0))) *
+    const double a = rng.uniform(-kPi, kPi);
+    out.push_back(c.center + (c.radius + std::pow(10.0, rng.uniform(-12.0, -3.0))) *
                                  Vec2(std::cos(a), std::sin(a)));
   }
   return out;
@@ -150,10 +146,10 @@ TEST(FanCast, MatchesCastRayBitForBitOnRandomWorlds) {
     const World& w = *rw.world;
     for (const Vec2& o : tricky_origins(w, rng)) {
       const int sizes[] = {2, 16, 180, 360, 720};
-      const int n = sizes[static_cast<int>(uniform(rng, 0.0, 4.999))];
-      const double fov = rng.uniform() < 0.7 ? 2.0 * kPi : uniform(rng, 0.1, 6.2);
-      const double range = rng.uniform() < 0.1 ? uniform(rng, 30.0, 60.0) : uniform(rng, 0.1, 6.0);
-      make_fan(uniform(rng, -kPi, kPi), fov, n, dirs, angles);
+      const int n = sizes[static_cast<int>(rng.uniform(0.0, 4.999))];
+      const double fov = rng.uniform() < 0.7 ? 2.0 * kPi : rng.uniform(0.1, 6.2);
+      const double range = rng.uniform() < 0.1 ? rng.uniform(30.0, 60.0) : rng.uniform(0.1, 6.0);
+      make_fan(rng.uniform(-kPi, kPi), fov, n, dirs, angles);
       ASSERT_NO_FATAL_FAILURE(expect_fan_matches(w, o, dirs, angles, range, false));
       if (!w.is_inside_obstacle(o) && w.clearance(o) > 0.0) {
         ASSERT_NO_FATAL_FAILURE(expect_fan_matches(w, o, dirs, angles, range, true));
@@ -162,7 +158,7 @@ TEST(FanCast, MatchesCastRayBitForBitOnRandomWorlds) {
       // Beam 0 straight at a vertex within range: the ray grazes it.
       const auto segs = w.segments();
       if (!segs.empty()) {
-        const Vec2 v = segs[static_cast<std::size_t>(uniform(rng, 0.0, segs.size() - 0.5))].b;
+        const Vec2 v = segs[static_cast<std::size_t>(rng.uniform(0.0, segs.size() - 0.5))].b;
         if (v != o) {
           make_fan(std::atan2(v.y() - o.y(), v.x() - o.x()), 2.0 * kPi, 180, dirs, angles);
           ASSERT_NO_FATAL_FAILURE(expect_fan_matches(w, o, dirs, angles, 30.0, false));
@@ -201,7 +197,7 @@ TEST(FanCast, UnevenAnglesFallBackToRayByRay) {
   std::vector<Vec2> dirs;
   std::vector<double> angles;
   for (int k = 0; k < 50; ++k) {
-    const double a = uniform(rng, -kPi, kPi);
+    const double a = rng.uniform(-kPi, kPi);
     angles.push_back(a);
     dirs.emplace_back(std::cos(a), std::sin(a));
   }
@@ -231,8 +227,8 @@ TEST(FanCast, SenseRangesMatchesSensorBySensorWithNoise) {
   for (int i = 0; i < 300; ++i) {
     const Box2 e = w.extent();
     const Pose2 robot{
-        Vec2(uniform(pose_rng, e.min.x(), e.max.x()), uniform(pose_rng, e.min.y(), e.max.y())),
-        uniform(pose_rng, -kPi, kPi)};
+        Vec2(pose_rng.uniform(e.min.x(), e.max.x()), pose_rng.uniform(e.min.y(), e.max.y())),
+        pose_rng.uniform(-kPi, kPi)};
     compute_sensor_beams(robot, sensors, beams);
     const FreeDisc free{robot.position,
                         i % 2 == 0 ? std::max(0.0, w.clearance(robot.position)) : 0.0};

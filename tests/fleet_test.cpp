@@ -24,10 +24,6 @@ using namespace floornav;
 
 namespace {
 
-double uniform(Rng& rng, double lo, double hi) {
-  return lo + (hi - lo) * rng.uniform();
-}
-
 Scenario scenario_file(const std::string& name, std::vector<std::string> sets = {}) {
   return load_scenario_file(std::string(FLOORNAV_SCENARIO_DIR) + "/" + name, sets);
 }
@@ -80,17 +76,17 @@ TEST(FleetSensing, FanAgainstOtherBodiesEqualsEveryBeamAgainstEveryBody) {
   const World world(desc);
   for (int trial = 0; trial < 300; ++trial) {
     const int beams = std::vector<int>{16, 45, 180, 360, 720}[static_cast<std::size_t>(trial % 5)];
-    const double fov = trial % 3 == 0 ? 2.0 * kPi : uniform(rng, 0.5, 6.0);
-    const Pose2 robot{Vec2(uniform(rng, -2, 2), uniform(rng, -2, 2)), uniform(rng, -kPi, kPi)};
-    const auto sensors = make_lidar(beams, fov, 0.05, uniform(rng, 0.5, 4.0), {Vec2(0.03, 0), 0});
+    const double fov = trial % 3 == 0 ? 2.0 * kPi : rng.uniform(0.5, 6.0);
+    const Pose2 robot{Vec2(rng.uniform(-2, 2), rng.uniform(-2, 2)), rng.uniform(-kPi, kPi)};
+    const auto sensors = make_lidar(beams, fov, 0.05, rng.uniform(0.5, 4.0), {Vec2(0.03, 0), 0});
     std::vector<Circle> others;
-    const int n_others = static_cast<int>(uniform(rng, 1, 30));
+    const int n_others = static_cast<int>(rng.uniform(1, 30));
     for (int k = 0; k < n_others; ++k) {
-      const double a = uniform(rng, -kPi, kPi), d = uniform(rng, 0.0, 5.0);
+      const double a = rng.uniform(-kPi, kPi), d = rng.uniform(0.0, 5.0);
       // Some bodies exactly behind the robot (the seam of the wrapped beam angles).
       const double ang = k % 7 == 0 ? robot.theta + kPi : a;
       others.push_back(
-          {robot.position + d * Vec2(std::cos(ang), std::sin(ang)), uniform(rng, 0.01, 0.5)});
+          {robot.position + d * Vec2(std::cos(ang), std::sin(ang)), rng.uniform(0.01, 0.5)});
     }
     std::vector<SensorBeam> b(sensors.size());
     compute_sensor_beams(robot, sensors, b);
@@ -111,9 +107,9 @@ TEST(FleetSensing, LidarBeamsTurnedFromTheFirstStayOnTheExactDirections) {
   Rng rng(5);
   for (int trial = 0; trial < 200; ++trial) {
     const int n = std::vector<int>{16, 180, 360, 720}[static_cast<std::size_t>(trial % 4)];
-    const double fov = trial % 2 == 0 ? 2.0 * kPi : uniform(rng, 0.5, 6.0);
-    const auto sensors = make_lidar(n, fov, 0.1, 3.5, {Vec2(0.05, 0.01), uniform(rng, -3, 3)});
-    const Pose2 robot{Vec2(uniform(rng, -5, 5), uniform(rng, -5, 5)), uniform(rng, -10, 10)};
+    const double fov = trial % 2 == 0 ? 2.0 * kPi : rng.uniform(0.5, 6.0);
+    const auto sensors = make_lidar(n, fov, 0.1, 3.5, {Vec2(0.05, 0.01), rng.uniform(-3, 3)});
+    const Pose2 robot{Vec2(rng.uniform(-5, 5), rng.uniform(-5, 5)), rng.uniform(-10, 10)};
     std::vector<SensorBeam> beams(sensors.size());
     compute_sensor_beams(robot, sensors, beams);
     for (std::size_t k = 0; k < sensors.size(); ++k) {
@@ -240,8 +236,8 @@ TEST(Fleet, AnyNumberOfThreadsGivesTheSameResult) {
     const double x = 0.4 + (i % 8) * 1.0, y = 0.4 + (i / 8) * 1.0;
     if (std::hypot(x - 4, y - 4) < 0.8) continue;
     yaml += "  - {start: [" + std::to_string(x) + ", " + std::to_string(y) + ", " +
-            std::to_string(uniform(rng, -3.0, 3.0)) + "], goal: [" + std::to_string(8.0 - x) +
-            ", " + std::to_string(8.0 - y) + "]}\n";
+            std::to_string(rng.uniform(-3.0, 3.0)) + "], goal: [" + std::to_string(8.0 - x) + ", " +
+            std::to_string(8.0 - y) + "]}\n";
   }
   const Scenario s = load_scenario_text(yaml, "random.yaml");
   FleetSimulation one(s), three(s);
@@ -290,14 +286,14 @@ TEST(RobotNeighbourGrid, FindsEveryRobotWithinTheRadius) {
   Rng rng(3);
   std::vector<Vec2> pts(500);
   std::vector<std::uint8_t> present(pts.size(), 1);
-  for (auto& p : pts) p = Vec2(uniform(rng, -2.0, 12.0), uniform(rng, -2.0, 12.0));
+  for (auto& p : pts) p = Vec2(rng.uniform(-2.0, 12.0), rng.uniform(-2.0, 12.0));
   present[7] = 0;
   RobotNeighbourGrid grid;
   grid.reset(Box2{Vec2(0, 0), Vec2(10, 10)}, 0.7, pts.size());
   grid.build(pts, present);
   for (int q = 0; q < 200; ++q) {
-    const Vec2 c(uniform(rng, -3.0, 13.0), uniform(rng, -3.0, 13.0));
-    const double radius = uniform(rng, 0.1, 2.0);
+    const Vec2 c(rng.uniform(-3.0, 13.0), rng.uniform(-3.0, 13.0));
+    const double radius = rng.uniform(0.1, 2.0);
     std::set<std::size_t> found;
     grid.for_each_near(c, radius, [&](std::size_t j) { EXPECT_TRUE(found.insert(j).second); });
     for (std::size_t j = 0; j < pts.size(); ++j) {

@@ -21,10 +21,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double uniform(Rng& rng, double lo, double hi) {
-  return lo + (hi - lo) * rng.uniform();
-}
-
 std::uint64_t bits(double v) {
   return std::bit_cast<std::uint64_t>(v);
 }
@@ -66,11 +62,10 @@ void expect_grid_fans_match(const OccupancyGrid& g, Rng& rng, int fans, bool nea
   desc.grid = &g;
   const World world(std::move(desc));
   for (int f = 0; f < fans; ++f) {
-    Vec2 p(lo.x() + span.x() * uniform(rng, -0.1, 1.1),
-           lo.y() + span.y() * uniform(rng, -0.1, 1.1));
+    Vec2 p(lo.x() + span.x() * rng.uniform(-0.1, 1.1), lo.y() + span.y() * rng.uniform(-0.1, 1.1));
     if (near_free && f % 4 != 3) {
       do {
-        p = Vec2(uniform(rng, lo.x(), hi.x()), uniform(rng, lo.y(), hi.y()));
+        p = Vec2(rng.uniform(lo.x(), hi.x()), rng.uniform(lo.y(), hi.y()));
       } while (!(g.clearance(p) > 0.05));
     }
     // On a cell corner or a cell edge of the grid frame (any yaw), sometimes.
@@ -86,12 +81,12 @@ void expect_grid_fans_match(const OccupancyGrid& g, Rng& rng, int fans, bool nea
     }
     const int pick_n = f % 5;
     const int n = pick_n == 0 ? 180 : (pick_n == 1 ? 64 : (pick_n == 2 ? 720 : 360));
-    double first = uniform(rng, -kPi, kPi);
+    double first = rng.uniform(-kPi, kPi);
     if (f % 3 == 0) first = go.theta + std::round(first / (0.25 * kPi)) * 0.25 * kPi;
     make_fan(first, n, dirs, angles);
     const int pick_r = f % 7;
     const double range =
-        pick_r == 0 ? 3.5 : (pick_r == 1 ? 0.0 : (pick_r == 2 ? 1e9 : uniform(rng, 0.0, 8.0)));
+        pick_r == 0 ? 3.5 : (pick_r == 1 ? 0.0 : (pick_r == 2 ? 1e9 : rng.uniform(0.0, 8.0)));
     out.assign(n, -1.0);
     g.cast_fan(p, dirs, angles, range, out);
     for (int k = 0; k < n; ++k) {
@@ -116,24 +111,24 @@ TEST(GridFan, MatchesCastRayOnRandomGrids) {
   Rng rng(7);
   long rays = 0;
   for (int n = 0; n < 60; ++n) {
-    const int w = 1 + static_cast<int>(uniform(rng, 0.0, 200.0));
-    const int h = 1 + static_cast<int>(uniform(rng, 0.0, 200.0));
-    const double density = std::pow(10.0, uniform(rng, -3.0, -0.3));
+    const int w = 1 + static_cast<int>(rng.uniform(0.0, 200.0));
+    const int h = 1 + static_cast<int>(rng.uniform(0.0, 200.0));
+    const double density = std::pow(10.0, rng.uniform(-3.0, -0.3));
     std::vector<std::uint8_t> cells(static_cast<std::size_t>(w) * h);
     for (auto& c : cells) c = rng.uniform() < density ? 1 : 0;
     if (n % 4 == 1) {
       // Walls: runs of occupied cells along rows and columns.
       for (int r = 0; r < 10; ++r) {
-        const int x0 = static_cast<int>(uniform(rng, 0.0, w)),
-                  y0 = static_cast<int>(uniform(rng, 0.0, h));
-        const int len = static_cast<int>(uniform(rng, 1.0, 60.0));
+        const int x0 = static_cast<int>(rng.uniform(0.0, w)),
+                  y0 = static_cast<int>(rng.uniform(0.0, h));
+        const int len = static_cast<int>(rng.uniform(1.0, 60.0));
         for (int i = 0; i < len; ++i) {
           const int x = r % 2 == 0 ? x0 + i : x0, y = r % 2 == 0 ? y0 : y0 + i;
           if (x < w && y < h) cells[static_cast<std::size_t>(y) * w + x] = 1;
         }
       }
     }
-    const double yaw = n % 3 == 0 ? uniform(rng, -kPi, kPi) : (n % 3 == 1 ? 0.5 * kPi : 0.0);
+    const double yaw = n % 3 == 0 ? rng.uniform(-kPi, kPi) : (n % 3 == 1 ? 0.5 * kPi : 0.0);
     const double res = n % 2 == 0 ? 0.05 : 0.1;
     const OccupancyGrid g(w, h, res, Pose2{Vec2(-1.0, -2.0), yaw}, cells);
     ASSERT_NO_FATAL_FAILURE(expect_grid_fans_match(g, rng, 60, n % 2 == 0, "random grid", rays));

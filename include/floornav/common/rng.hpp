@@ -34,6 +34,8 @@ class Rng {
 
   /// Uniform in [0, 1), 53 random bits.
   double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+  /// Uniform in [lo, hi).
+  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
 
   /// Standard normal, by the Box-Muller transform.
   double normal() {
