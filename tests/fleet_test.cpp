@@ -366,6 +366,36 @@ TEST(FleetScenario, ErrorsNameTheRobotAndTheKey) {
             std::string::npos);
 }
 
+// --set reaches into the list as errors name its entries: robots[1].start, robots[0].goal
+// (replacing that robot's goals), a whole entry; a missing entry is one clear error.
+TEST(FleetScenario, SetOverridesIndexTheRobotsList) {
+  const std::string file = std::string(FLOORNAV_SCENARIO_DIR) + "/fleet_crossing.yaml";
+  const Scenario s = load_scenario_file(
+      file, std::vector<std::string>{
+                "robots[1].start=[1.0, -0.2, 3.0]", "robots[0].goals=[[1, 1], [1.2, 0.1]]",
+                "robots[3]={name: last, start: [0.1, 1.2, -1.5], goal: [0, 0]}"});
+  EXPECT_EQ(s.robots[1].start.position, Vec2(1.0, -0.2));
+  EXPECT_EQ(s.robots[1].start.theta, 3.0);
+  ASSERT_EQ(s.robots[0].goals.size(), 2u);
+  EXPECT_EQ(s.robots[0].goals[1], Vec2(1.2, 0.1));
+  EXPECT_EQ(s.robots[3].name, "last");
+  EXPECT_EQ(s.robots[2].name, "north");  // untouched
+  auto error_of = [&](const std::string& set) {
+    try {
+      load_scenario_file(file, std::vector<std::string>{set});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of("robots[4].start=[0, 0, 0]").find("'robots' has no entry [4] (it has 4)"),
+            std::string::npos);
+  EXPECT_NE(error_of("robots[-1].start=[0, 0, 0]").find("a list index is a number in brackets"),
+            std::string::npos);
+  EXPECT_NE(error_of("robots[0].start=[9, 9, 0]").find("--set robots[0].start=[9, 9, 0]"),
+            std::string::npos);  // the bad value is blamed on the --set
+}
+
 // Shared robot defaults, per-robot controllers on top of the shared controller section.
 TEST(FleetScenario, SharedRobotAndControllerDefaultsAreOverriddenPerRobot) {
   const Scenario s = load_scenario_text(

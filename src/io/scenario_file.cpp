@@ -4,6 +4,7 @@
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <optional>
@@ -76,28 +77,61 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
     if (part.empty()) throw InputError("", "--set " + key, "empty part in the key path");
     parts.push_back(part);
   }
-  // Walk down with plain node copies (yaml-cpp nodes are handles), creating maps as needed.
+  // Walk down with plain node copies (yaml-cpp nodes are handles), creating maps as needed. A part
+  // may index a list, as errors name its entries: `robots[2].start`. (Assigning one yaml-cpp
+  // node to another copies content, so the walk keeps each step's handle in `chain`.)
   std::vector<YAML::Node> chain{root};
-  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
-    YAML::Node parent = chain.back();
-    if (!parent.IsMap() && !parent.IsNull())
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    YAML::Node node = chain.back();
+    std::string name = parts[i];
+    std::vector<std::size_t> indices;
+    while (!name.empty() && name.back() == ']') {
+      const auto open = name.rfind('[');
+      std::size_t index = 0;
+      const std::string digits =
+          open == std::string::npos ? "" : name.substr(open + 1, name.size() - open - 2);
+      const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+      if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size())
+        throw InputError("", "--set " + key,
+                         fmt::format("'{}': a list index is a number in brackets", parts[i]));
+      indices.insert(indices.begin(), index);
+      name.erase(open);
+    }
+    if (name.empty()) throw InputError("", "--set " + key, "empty part in the key path");
+    if (!node.IsMap() && !node.IsNull())
       throw InputError("", "--set " + key,
                        fmt::format("'{}' is not a mapping, cannot set a key inside it",
-                                   parts[i - (i > 0 ? 1 : 0)]));
-    YAML::Node child = parent[parts[i]];
-    if (!child.IsDefined() || child.IsNull()) {
-      parent[parts[i]] = YAML::Node(YAML::NodeType::Map);
-      child = parent[parts[i]];
+                                   i > 0 ? parts[i - 1] : std::string("the scenario")));
+    const bool last = i + 1 == parts.size();
+    if (last && indices.empty()) {
+      // `goal` and `goals` are alternatives: setting one replaces the other.
+      if ((name == "goal" || name == "goals") && node.IsMap())
+        node.remove(name == "goal" ? "goals" : "goal");
+      node[name] = value;
+      return;
+    }
+    YAML::Node child = node[name];
+    if (indices.empty() && (!child.IsDefined() || child.IsNull())) {
+      node[name] = YAML::Node(YAML::NodeType::Map);
+      child = node[name];
     }
     chain.push_back(child);
+    std::string path = name;
+    for (std::size_t k = 0; k < indices.size(); ++k) {
+      YAML::Node list = chain.back();
+      if (!list.IsSequence() || indices[k] >= list.size())
+        throw InputError(
+            "", "--set " + key,
+            fmt::format("'{}' has no entry [{}] ({})", path, indices[k],
+                        list.IsSequence() ? fmt::format("it has {}", list.size()) : "not a list"));
+      if (last && k + 1 == indices.size()) {
+        list[indices[k]] = value;
+        return;
+      }
+      path += fmt::format("[{}]", indices[k]);
+      chain.push_back(list[indices[k]]);
+    }
   }
-  YAML::Node parent = chain.back();
-  if (!parent.IsMap() && !parent.IsNull())
-    throw InputError("", "--set " + key, "the key's parent is not a mapping");
-  // `goal` and `goals` are alternatives: setting one replaces the other.
-  if (parts.size() == 1 && (key == "goal" || key == "goals") && parent.IsMap())
-    parent.remove(key == "goal" ? "goals" : "goal");
-  parent[parts.back()] = value;
 }
 
 // --- sections -------------------------------------------------------------------------------
