@@ -3,6 +3,7 @@
 // result; the neighbour grid finds exactly who is near).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <string>
@@ -324,6 +325,32 @@ TEST(FleetSummary, ListsTheFleetTheCollisionsAndEachRobot) {
   const std::string csv = trajectory_to_csv(f);
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "t,x,y,theta,v,omega,w_left,w_right,mode,robot");
   EXPECT_NE(csv.find(",go_to_goal,b\n"), std::string::npos);
+}
+
+// A big fleet's CSV is handed out in pieces of about 1 MiB, never the whole file at once; the
+// pieces make the same text, row for row.
+TEST(FleetSummary, TheCsvComesInPiecesOfAboutAMegabyte) {
+  FleetResult f;
+  for (int k = 0; k < 3; ++k) {
+    RunResult r;
+    r.scenario = std::string(1, 'r');
+    r.scenario += std::to_string(k);
+    r.mode_names = {"go_to_goal"};
+    for (int i = 0; i < 20000; ++i)
+      r.trajectory.push_back({i * 0.01, 1.0 / (i + 3), 2.0 / (i + 7), 0.5, 0.1, 0.2, 3.0, 4.0, 0});
+    f.robots.push_back(std::move(r));
+  }
+  std::vector<std::size_t> sizes;
+  std::string text;
+  trajectory_csv_pieces(f, [&](std::string_view piece) {
+    sizes.push_back(piece.size());
+    text.append(piece);
+  });
+  ASSERT_GE(sizes.size(), 3u);
+  for (std::size_t size : sizes) EXPECT_LE(size, (1u << 20) + 256u);
+  EXPECT_EQ(text, trajectory_to_csv(f));
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1 + 3 * 20000);
+  EXPECT_EQ(text.substr(text.size() - 4), ",r2\n");
 }
 
 // Scenario errors name the robot: its index in the list and the key.

@@ -50,12 +50,17 @@ int write_all(int fd, std::string_view content) {
 
 }  // namespace
 
-void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+void write_file_atomically(
+    const std::filesystem::path& path,
+    const std::function<void(const std::function<void(std::string_view)>& sink)>& produce) {
   const std::filesystem::path temp = temp_path_for(path);
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) throw_cannot_write(path, errno);
 
-  int error = write_all(fd, content);
+  int error = 0;  // the first failure; later pieces are skipped
+  produce([&](std::string_view piece) {
+    if (error == 0) error = write_all(fd, piece);
+  });
   if (::close(fd) != 0 && error == 0) error = errno;  // NFS and quotas report late, at close
   if (error == 0) {
     std::error_code ec;
@@ -66,6 +71,11 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
   std::error_code ignored;
   std::filesystem::remove(temp, ignored);
   throw_cannot_write(path, error);
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+  write_file_atomically(path,
+                        [&](const std::function<void(std::string_view)>& sink) { sink(content); });
 }
 
 void ensure_directory(const std::filesystem::path& dir) {

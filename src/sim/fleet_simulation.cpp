@@ -274,6 +274,20 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
 }
 
 FleetResult FleetSimulation::result() const {
+  std::vector<RunResult> runs;
+  runs.reserve(agents_.size());
+  for (const RobotAgent& a : agents_) runs.push_back(a.result());
+  return make_result(std::move(runs));
+}
+
+FleetResult FleetSimulation::take_result() {
+  std::vector<RunResult> runs;
+  runs.reserve(agents_.size());
+  for (RobotAgent& a : agents_) runs.push_back(std::move(a.result()));
+  return make_result(std::move(runs));
+}
+
+FleetResult FleetSimulation::make_result(std::vector<RunResult> runs) const {
   FleetResult f;
   f.scenario = scenario_.name;
   f.collisions = collisions_;
@@ -281,7 +295,7 @@ FleetResult FleetSimulation::result() const {
   f.min_clearance = std::numeric_limits<double>::infinity();
   bool any_collision = false, any_stuck = false;
   for (std::size_t i = 0; i < agents_.size(); ++i) {
-    RunResult r = agents_[i].result();
+    RunResult r = std::move(runs[i]);
     const NavigationAutomaton& a = automata_[automaton_of_[i]];
     for (const auto& m : a.modes()) r.mode_names.push_back(m.name);
     for (const auto& e : a.edges()) r.guard_names.push_back(e.guard_name);
@@ -306,7 +320,7 @@ FleetResult FleetSimulation::result() const {
 FleetResult simulate_fleet(const Scenario& scenario, int threads) {
   FleetSimulation sim(scenario);
   sim.run(threads);
-  return sim.result();
+  return sim.take_result();
 }
 
 }  // namespace floornav

@@ -4,6 +4,7 @@
 /// file beside the target, which is then renamed over it.
 
 #include <filesystem>
+#include <functional>
 #include <string_view>
 
 namespace floornav {
@@ -13,6 +14,12 @@ namespace floornav {
 /// On failure (no such directory, permission denied, disk full) the temporary file is removed and
 /// InputError(path, "", "cannot write: <reason>") is thrown; `path` is left as it was.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
+
+/// The same for content too big to hold at once: `produce` is called with a sink and hands it the
+/// content piece by piece; the same checks and the same atomic rename.
+void write_file_atomically(
+    const std::filesystem::path& path,
+    const std::function<void(const std::function<void(std::string_view)>& sink)>& produce);
 
 /// Creates `dir` and its missing parents. Throws InputError(dir, "", "cannot create directory:
 /// <reason>") when that fails or when `dir` exists but is not a directory.

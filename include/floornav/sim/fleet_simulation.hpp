@@ -71,6 +71,9 @@ class FleetSimulation {
   const RobotAgent& robot(std::size_t i) const { return agents_[i]; }
   /// The result, with each robot's mode and guard names filled in.
   FleetResult result() const;
+  /// The same, moving each robot's run (and its trajectory) out instead of copying it: for the
+  /// end of a simulation, which is no use afterwards.
+  FleetResult take_result();
 
  private:
   void step_robots(std::size_t begin, std::size_t end, std::size_t thread);
@@ -82,6 +85,8 @@ class FleetSimulation {
   void apply_gaps();
   void after_step();
   void update_snapshot();
+  /// The fleet's result from each robot's run (in robot order), names filled in.
+  FleetResult make_result(std::vector<RunResult> runs) const;
 
   const Scenario& scenario_;
   std::vector<RobotTask> own_tasks_;  ///< the lone robot as a fleet of one
