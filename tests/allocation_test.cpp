@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "floornav/io/scenario_file.hpp"
+#include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/simulation.hpp"
 
 namespace {
@@ -190,6 +191,23 @@ TEST(Allocation, GridLidarRobotStepAllocatesNothing) {
   const WindowResult r = count_step_allocations(
       "movingai_template.yaml", {"goal=[29.5, 29.5]", "sim.dt=0.01", "sim.t_max=600"});
   EXPECT_EQ(r.allocations, 0);
+}
+
+// A fleet step (sensing each other, the neighbour grid, contacts) allocates nothing either.
+TEST(Allocation, FleetStepAllocatesNothing) {
+  Scenario s = load_scenario_file(std::string(FLOORNAV_SCENARIO_DIR) + "/fleet_aisles.yaml");
+  s.sim.record_trajectory = false;
+  FleetSimulation fleet(s);
+  for (int i = 0; i < kWarmUpSteps; ++i) EXPECT_TRUE(fleet.step());
+  long allocations = 0;
+  bool running = true;
+  {
+    const AllocationWindow window;
+    for (int i = 0; i < kCountedSteps; ++i) running = fleet.step() && running;
+    allocations = window.count();
+  }
+  EXPECT_TRUE(running) << "the fleet ended inside the counted window";
+  EXPECT_EQ(allocations, 0);
 }
 
 }  // namespace
