@@ -199,3 +199,43 @@ TEST(Cli, DiskFullIsAClearErrorAndKeepsEarlierResults) {
   EXPECT_EQ(std::count(o.text.begin(), o.text.end(), '\n'), 1) << o.text;
   EXPECT_EQ(kept, "{\"case\": 0}\n");
 }
+
+// A fleet scenario through the command line: the contract's three files, the fleet and its robots
+// in the summary, a robot column in the CSV, every robot in the picture; --threads gives the
+// same summary.
+TEST(Cli, RunWritesAFleetsFiles) {
+  const fs::path one = temp_dir("fleet1"), two = temp_dir("fleet2");
+  const Output o =
+      floornav("run " + scenario("fleet_crossing.yaml") + " --threads 1 --out " + one.string());
+  ASSERT_EQ(o.status, 0) << o.text;
+  EXPECT_NE(o.text.find("fleet-crossing: 4 robots, 4 reached, 0 collided, 4/4 deliveries"),
+            std::string::npos)
+      << o.text;
+  const auto summary = nlohmann::json::parse(read(one / "summary.json"));
+  for (const char* key :
+       {"scenario", "status", "reached_goal", "collided", "sim_time", "path_length",
+        "min_clearance", "mode_switches", "mode_time", "steps", "wall_time"})
+    EXPECT_TRUE(summary.contains(key)) << key;
+  EXPECT_EQ(summary["status"], "reached");
+  EXPECT_EQ(summary["fleet"]["robots"], 4);
+  EXPECT_EQ(summary["fleet"]["deliveries"], 4);
+  ASSERT_EQ(summary["robots"].size(), 4u);
+  EXPECT_EQ(summary["robots"][0]["scenario"], "east");
+  const std::string csv = read(one / "trajectory.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "t,x,y,theta,v,omega,w_left,w_right,mode,robot");
+  for (const char* name : {",east\n", ",west\n", ",north\n", ",south\n"})
+    EXPECT_NE(csv.find(name), std::string::npos) << name;
+  const std::string svg = read(one / "trajectory.svg");
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_NE(svg.find(">south</text>"), std::string::npos);
+
+  ASSERT_EQ(floornav("run " + scenario("fleet_crossing.yaml") + " --threads 2 --quiet --out " +
+                     two.string())
+                .status,
+            0);
+  auto a = summary, b = nlohmann::json::parse(read(two / "summary.json"));
+  a.erase("wall_time");
+  b.erase("wall_time");
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(csv, read(two / "trajectory.csv"));
+}
