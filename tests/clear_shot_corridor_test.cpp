@@ -3,11 +3,13 @@
 // world.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "floornav/control/navigation_automaton.hpp"
+#include "floornav/geometry/angle.hpp"
 #include "floornav/io/scenario_file.hpp"
 #include "floornav/sim/simulation.hpp"
 
@@ -73,6 +75,28 @@ TEST(ClearShotCorridor, GuardsUseTheCorridorInsteadOfEq5_27) {
   in.corridor_blocked = true;
   EXPECT_TRUE(corridor.step(in, b, 0.02, 0.01).has_value());
   EXPECT_NE(corridor.modes()[b.mode].name, std::string(mode_names::kGoToGoal));
+}
+
+// Footprint clearance (NavigationParams::footprint_clearance): the Jackal's 0.508 x 0.430 m
+// rectangle instead of its 0.25 m disc, worked by hand for a robot at the origin.
+TEST(FootprintClearance, MeasuresFromTheRectangleTurnedWithTheRobot) {
+  const std::vector<Vec2> jackal{
+      {-0.254, -0.215}, {0.254, -0.215}, {0.254, 0.215}, {-0.254, 0.215}};
+  NavigationParams p;
+  p.footprint_clearance = true;
+  auto clearance = [&](const Vec2& q, double heading, const NavigationParams& params) {
+    const std::vector<Vec2> points{q};
+    const BodyShape shape{jackal, heading};
+    return make_navigation_input(Vec2(0, 0), Vec2(5, 0), points, 0.25, params, &shape).clearance;
+  };
+  EXPECT_NEAR(clearance(Vec2(0.3, 0.0), 0.0, p), 0.3 - 0.254, 1e-12);                // ahead
+  EXPECT_NEAR(clearance(Vec2(0.0, 0.3), 0.0, p), 0.3 - 0.215, 1e-12);                // beside
+  EXPECT_NEAR(clearance(Vec2(0.3, 0.25), 0.0, p), std::hypot(0.046, 0.035), 1e-12);  // the corner
+  EXPECT_NEAR(clearance(Vec2(0.0, 0.3), kPi / 2, p), 0.3 - 0.254, 1e-12);  // turned: ahead again
+  EXPECT_NEAR(clearance(Vec2(0.1, 0.0), 0.0, p), -(0.254 - 0.1), 1e-12);   // inside: negative
+  // Off (the chapter): the disc, 0.3905 - 0.25 at the corner point.
+  EXPECT_NEAR(clearance(Vec2(0.3, 0.25), 0.0, NavigationParams{}), std::hypot(0.3, 0.25) - 0.25,
+              1e-12);
 }
 
 // BARN world 150: with the template (corridor on) the Jackal gets through; with the chapter's

@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 
+#include "floornav/geometry/polygon.hpp"
+
 namespace floornav {
 
 namespace {
@@ -53,9 +55,22 @@ namespace {
 constexpr std::size_t kMaxNearPoints = 1024;
 
 NavigationInput finish_input(NavigationInput in, const Vec2& x, std::span<const Vec2> points,
-                             double body_radius, const NavigationParams& p) {
+                             double body_radius, const NavigationParams& p,
+                             const BodyShape* shape) {
   in.u_ao = avoid_obstacle_velocity(x, points, p.v0);
   in.away = normalized_or_zero(in.u_ao);
+  if (shape && p.footprint_clearance && shape->footprint.size() >= 3) {
+    // Each point in the robot's frame, against the footprint: signed (negative inside).
+    const double c = std::cos(shape->heading), s = std::sin(shape->heading);
+    for (const Vec2& q : points) {
+      const Vec2 d = q - x;
+      const Vec2 local(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+      const double gap = boundary_distance(shape->footprint, local);
+      in.clearance = std::min(in.clearance, contains(shape->footprint, local) ? -gap : gap);
+      in.obstacle_sensed = true;
+    }
+    return in;
+  }
   for (const Vec2& q : points) {
     in.clearance = std::min(in.clearance, (q - x).norm() - body_radius);
     in.obstacle_sensed = true;
@@ -66,7 +81,7 @@ NavigationInput finish_input(NavigationInput in, const Vec2& x, std::span<const 
 
 NavigationInput make_navigation_input(const Vec2& x, const Vec2& goal,
                                       std::span<const Vec2> obstacle_points, double body_radius,
-                                      const NavigationParams& p) {
+                                      const NavigationParams& p, const BodyShape* shape) {
   NavigationInput in;
   in.x = x;
   in.goal = goal;
@@ -84,9 +99,9 @@ NavigationInput make_navigation_input(const Vec2& x, const Vec2& goal,
     const double limit = p.obstacle_range + body_radius;
     for (const Vec2& q : obstacle_points)
       if ((q - x).squaredNorm() <= limit * limit && n < near.size()) near[n++] = q;
-    return finish_input(in, x, std::span<const Vec2>(near.data(), n), body_radius, p);
+    return finish_input(in, x, std::span<const Vec2>(near.data(), n), body_radius, p, shape);
   }
-  return finish_input(in, x, obstacle_points, body_radius, p);
+  return finish_input(in, x, obstacle_points, body_radius, p, shape);
 }
 
 NavigationAutomaton make_navigation_automaton(ControllerKind kind, const NavigationParams& p) {

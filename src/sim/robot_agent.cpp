@@ -122,8 +122,9 @@ bool RobotAgent::step(SensingScratch& scratch, std::span<const Circle> others) {
 
   // 2. supervise
   const Vec2 goal = goals_[goal_index_];
+  const BodyShape shape{robot.footprint, pose_.theta};
   const NavigationInput in =
-      make_navigation_input(pose_.position, goal, points, robot.body_radius, nav);
+      make_navigation_input(pose_.position, goal, points, robot.body_radius, nav, &shape);
   if (auto tr = automaton_->step(in, state_, t_ + dt, dt)) {
     if (log_transitions_) {
       r.transitions.push_back(*tr);

@@ -62,9 +62,18 @@ inline constexpr const char* kStop = "stop";
 /// Builds the automaton of `kind` (validated and frozen).
 NavigationAutomaton make_navigation_automaton(ControllerKind kind, const NavigationParams& p);
 
+/// A robot's footprint polygon (robot frame) and heading, for guards that measure clearance from
+/// the footprint (NavigationParams::footprint_clearance).
+struct BodyShape {
+  std::span<const Vec2> footprint;
+  double heading{0.0};  ///< rad
+};
+
 /// The step's input from the robot position, goal and sensed obstacle points (world frame).
+/// The clearance is from the body disc of `body_radius`, or, with `shape` given and
+/// `p.footprint_clearance` on, from the footprint polygon.
 NavigationInput make_navigation_input(const Vec2& x, const Vec2& goal,
                                       std::span<const Vec2> obstacle_points, double body_radius,
-                                      const NavigationParams& p);
+                                      const NavigationParams& p, const BodyShape* shape = nullptr);
 
 }  // namespace floornav

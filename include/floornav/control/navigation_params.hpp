@@ -40,6 +40,9 @@ struct NavigationParams {
   /// dense clutter): no sensed point in the corridor of half-width body radius + d_unsafe
   /// reaching this far towards the goal (or to the goal, if nearer).
   double clear_shot_corridor{0.0};
+  /// An extension for robots with a footprint polygon (the Jackal): the guards' clearance is the
+  /// distance from the sensed points to the footprint instead of to the body disc.
+  bool footprint_clearance{false};
   bool slow_when_turning{true};  ///< V *= max(0, cos e): turn before driving (an extension)
   int chatter_switches{8};       ///< this many switches ...
   double chatter_window{2.0};    ///< ... within this many seconds is a chatter (Zeno) episode
@@ -66,6 +69,8 @@ struct NavigationParams {
     a("clear_shot_corridor", clear_shot_corridor,
       "m; > 0: a clear shot is a free corridor of the body's width this long towards the goal "
       "(0: eq. 5.27)");
+    a("footprint_clearance", footprint_clearance,
+      "robots with a footprint: clearance from the footprint polygon, not the body disc");
     a("slow_when_turning", slow_when_turning, "scale V by max(0, cos(heading error))");
     a("chatter_switches", chatter_switches, "switches within chatter_window that count as chatter");
     a("chatter_window", chatter_window, "window of the chatter (Zeno) detector, s");
