@@ -46,7 +46,11 @@ void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scena
   ensure_directory(dir);
   if (which.summary)
     write_file_atomically(dir / "summary.json", fleet_summary_to_json(result).dump(2) + "\n");
-  if (which.csv) write_file_atomically(dir / "trajectory.csv", trajectory_to_csv(result));
+  if (which.csv)
+    write_file_atomically(dir / "trajectory.csv",
+                          [&](const std::function<void(std::string_view)>& sink) {
+                            trajectory_csv_pieces(result, sink);
+                          });
   if (which.svg) write_file_atomically(dir / "trajectory.svg", render_fleet_svg(scenario, result));
 }
 
