@@ -102,6 +102,7 @@ FleetSimulation::FleetSimulation(const Scenario& scenario) : scenario_(scenario)
   present_.assign(n, 0);
   moving_.assign(n, 0);
   gap_.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) positions_[i] = agents_[i].pose().position;
   update_snapshot();
 
   // Robots that start touching each other have collided before the first step.
@@ -115,15 +116,14 @@ void FleetSimulation::update_snapshot() {
   bool presence_changed = false;
   for (std::size_t i = 0; i < agents_.size(); ++i) {
     const RobotAgent& a = agents_[i];
-    positions_[i] = a.pose().position;
     moving_[i] = !a.finished();
     const std::uint8_t present = !a.finished() || park || a.result().collided;
     presence_changed = presence_changed || present != present_[i];
     present_[i] = present;
     running_ += moving_[i];
   }
-  // prepare_contacts() filed these positions already; only robots that left need a rebuild.
-  if (presence_changed || steps_ == 0) grid_.build(positions_, present_);
+  // prepare_contacts() filed the positions already; only robots that left need a rebuild.
+  if (presence_changed) grid_.build(positions_, present_);
 }
 
 void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_t thread) {
