@@ -319,32 +319,27 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   // distance it returns for the cell (its running maximum), and it returns the first occupied
   // cell within t_max, whose distance is the least. So the minimum over the occupied cells below
   // is `cast`'s answer to the bit; cells no walk can reach first only need to be left out.
+  // On one axis: the times the walk enters (a) and leaves (b) line c of the cells, from origin
+  // coordinate oc in line c0 along direction component d; false when it never gets there.
+  const auto axis_times = [](double d, int c, int c0, double oc, double& a, double& b) {
+    if (d > 0.0) {
+      if (c < c0) return false;
+      if (c != c0) a = (c - oc) / d;
+      b = (c + 1 - oc) / d;
+    } else if (d < 0.0) {
+      if (c > c0) return false;
+      if (c != c0) a = (c + 1 - oc) / d;
+      b = (c - oc) / d;
+    } else if (c != c0) {
+      return false;
+    }
+    return true;
+  };
   const auto test = [&](int k, int x, int y) {
     if (best[k] == -kInf) return;
-    const double ddx = dx[k], ddy = dy[k];
     double ax = 0.0, bx = kInf, ay = 0.0, by = kInf;
-    if (ddx > 0.0) {
-      if (x < ix0) return;
-      if (x != ix0) ax = (x - o.x()) / ddx;
-      bx = (x + 1 - o.x()) / ddx;
-    } else if (ddx < 0.0) {
-      if (x > ix0) return;
-      if (x != ix0) ax = (x + 1 - o.x()) / ddx;
-      bx = (x - o.x()) / ddx;
-    } else if (x != ix0) {
+    if (!axis_times(dx[k], x, ix0, o.x(), ax, bx) || !axis_times(dy[k], y, iy0, o.y(), ay, by))
       return;
-    }
-    if (ddy > 0.0) {
-      if (y < iy0) return;
-      if (y != iy0) ay = (y - o.y()) / ddy;
-      by = (y + 1 - o.y()) / ddy;
-    } else if (ddy < 0.0) {
-      if (y > iy0) return;
-      if (y != iy0) ay = (y + 1 - o.y()) / ddy;
-      by = (y - o.y()) / ddy;
-    } else if (y != iy0) {
-      return;
-    }
     const double h = std::max(0.0, std::max(ax, ay));
     if (h <= std::min(bx, by) && h <= t_max && h < best[k]) best[k] = h;
   };
