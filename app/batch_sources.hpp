@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "floornav/io/batch.hpp"
+#include "floornav/runner/batch.hpp"
 
 namespace floornav {
 

@@ -9,11 +9,12 @@
 
 #include <fmt/format.h>
 
-#include "floornav/common/rng.hpp"
+#include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/ros_map.hpp"
 #include "floornav/io/scenario_file.hpp"
-#include "floornav/sim/robot_spec.hpp"
+#include "floornav/robot/robot_spec.hpp"
+#include "floornav/scenario/presets.hpp"
 
 namespace floornav {
 

@@ -7,9 +7,9 @@
 #include <memory>
 #include <optional>
 
-#include "floornav/geometry/world.hpp"
-#include "floornav/grid/occupancy_grid.hpp"
-#include "floornav/sim/scenario.hpp"
+#include "floornav/scenario/scenario.hpp"
+#include "floornav/world/occupancy_grid.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 

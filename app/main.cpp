@@ -16,11 +16,12 @@
 #include "batch_sources.hpp"
 #include "bench_command.hpp"
 #include "demo_scenario.hpp"
-#include "floornav/io/batch.hpp"
 #include "floornav/io/input_error.hpp"
-#include "floornav/io/run_outputs.hpp"
 #include "floornav/io/scenario_file.hpp"
-#include "floornav/sim/robot_spec.hpp"
+#include "floornav/robot/robot_spec.hpp"
+#include "floornav/runner/batch.hpp"
+#include "floornav/runner/run_outputs.hpp"
+#include "floornav/scenario/presets.hpp"
 
 namespace fs = std::filesystem;
 using namespace floornav;

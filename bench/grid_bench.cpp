@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "bench_cases.hpp"
-#include "floornav/common/rng.hpp"
+#include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
-#include "floornav/geometry/world.hpp"
-#include "floornav/grid/occupancy_grid.hpp"
 #include "floornav/io/ros_map.hpp"
+#include "floornav/world/occupancy_grid.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 namespace {

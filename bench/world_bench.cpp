@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "bench_cases.hpp"
-#include "floornav/common/rng.hpp"
+#include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
-#include "floornav/geometry/world.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 namespace {

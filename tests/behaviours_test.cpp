@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "floornav/control/behaviours.hpp"
-#include "floornav/control/heading_tracker.hpp"
-#include "floornav/control/pid.hpp"
 #include "floornav/geometry/angle.hpp"
+#include "floornav/nav/behaviours.hpp"
+#include "floornav/nav/heading_tracker.hpp"
+#include "floornav/nav/pid.hpp"
 
 using namespace floornav;
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "floornav/control/navigation_automaton.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/scenario_file.hpp"
+#include "floornav/nav/navigation_automaton.hpp"
 #include "floornav/sim/simulation.hpp"
 
 using namespace floornav;

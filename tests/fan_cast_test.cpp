@@ -9,12 +9,12 @@
 #include <memory>
 #include <vector>
 
-#include "floornav/common/rng.hpp"
+#include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
-#include "floornav/geometry/world.hpp"
-#include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/robot/robot_spec.hpp"
 #include "floornav/sensing/range_sensor.hpp"
-#include "floornav/sim/robot_spec.hpp"
+#include "floornav/world/occupancy_grid.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 namespace {

@@ -9,16 +9,16 @@
 #include <string>
 #include <vector>
 
-#include "floornav/common/rng.hpp"
+#include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/input_error.hpp"
 #include "floornav/io/scenario_file.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
+#include "floornav/robot/robot_spec.hpp"
 #include "floornav/sensing/range_sensor.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/robot_neighbour_grid.hpp"
-#include "floornav/sim/robot_spec.hpp"
 #include "floornav/sim/simulation.hpp"
 
 using namespace floornav;

@@ -8,7 +8,7 @@
 #include "floornav/geometry/polygon.hpp"
 #include "floornav/geometry/pose2.hpp"
 #include "floornav/geometry/segment.hpp"
-#include "floornav/geometry/world.hpp"
+#include "floornav/world/world.hpp"
 
 using namespace floornav;
 

@@ -9,10 +9,10 @@
 #include <limits>
 #include <vector>
 
-#include "floornav/common/rng.hpp"
+#include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
-#include "floornav/grid/occupancy_grid.hpp"
 #include "floornav/io/ros_map.hpp"
+#include "floornav/world/occupancy_grid.hpp"
 
 namespace floornav {
 namespace {

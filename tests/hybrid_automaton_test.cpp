@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "floornav/automaton/hybrid_automaton.hpp"
-#include "floornav/control/navigation_automaton.hpp"
+#include "floornav/nav/navigation_automaton.hpp"
 
 using namespace floornav;
 

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "floornav/geometry/polygon.hpp"
+#include "floornav/scenario/presets.hpp"
 #include "floornav/sim/simulation.hpp"
 
 using namespace floornav;

@@ -1,4 +1,4 @@
-#include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/world/occupancy_grid.hpp"
 
 #include <gtest/gtest.h>
 

@@ -15,12 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "floornav/geometry/world.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/input_error.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
-#include "floornav/io/trajectory_svg.hpp"
+#include "floornav/render/trajectory_svg.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 namespace {

@@ -1,5 +1,5 @@
 // Octile A*, raster line of sight, string pulling and the scenario optimum, on hand-worked cases.
-#include "floornav/grid/shortest_path.hpp"
+#include "floornav/world/shortest_path.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,9 +11,9 @@
 #include <numbers>
 #include <vector>
 
-#include "floornav/geometry/world.hpp"
-#include "floornav/grid/occupancy_grid.hpp"
 #include "floornav/io/movingai_map.hpp"
+#include "floornav/world/occupancy_grid.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 namespace {

@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "floornav/geometry/world.hpp"
-#include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/world/occupancy_grid.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav::io_detail {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "floornav/control/heading_tracker.hpp"
 #include "floornav/kinematics/unicycle.hpp"
-#include "floornav/sim/body_clearance.hpp"
+#include "floornav/nav/heading_tracker.hpp"
+#include "floornav/robot/body_clearance.hpp"
 
 namespace floornav {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "floornav/geometry/vec2.hpp"
-#include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/world/occupancy_grid.hpp"
 
 namespace floornav {
 

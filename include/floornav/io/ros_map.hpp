@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/world/occupancy_grid.hpp"
 
 namespace floornav {
 

@@ -10,7 +10,7 @@
 #include <string_view>
 
 #include "floornav/io/input_error.hpp"
-#include "floornav/sim/scenario.hpp"
+#include "floornav/scenario/scenario.hpp"
 
 namespace floornav {
 

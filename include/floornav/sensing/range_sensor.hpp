@@ -4,10 +4,10 @@
 
 #include <span>
 
-#include "floornav/common/rng.hpp"
+#include "floornav/core/rng.hpp"
 #include "floornav/geometry/circle.hpp"
 #include "floornav/geometry/pose2.hpp"
-#include "floornav/geometry/world.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 

@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "floornav/control/navigation_automaton.hpp"
+#include "floornav/nav/navigation_automaton.hpp"
+#include "floornav/scenario/scenario.hpp"
 #include "floornav/sim/robot_agent.hpp"
 #include "floornav/sim/robot_neighbour_grid.hpp"
 #include "floornav/sim/run_result.hpp"
-#include "floornav/sim/scenario.hpp"
 
 namespace floornav {
 

@@ -13,14 +13,14 @@
 #include <string>
 #include <vector>
 
-#include "floornav/common/rng.hpp"
-#include "floornav/control/navigation_automaton.hpp"
-#include "floornav/control/pid.hpp"
+#include "floornav/core/rng.hpp"
 #include "floornav/geometry/circle.hpp"
+#include "floornav/nav/navigation_automaton.hpp"
+#include "floornav/nav/pid.hpp"
+#include "floornav/scenario/scenario.hpp"
 #include "floornav/sensing/obstacle_memory.hpp"
 #include "floornav/sensing/range_sensor.hpp"
 #include "floornav/sim/run_result.hpp"
-#include "floornav/sim/scenario.hpp"
 
 namespace floornav {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "floornav/geometry/vec2.hpp"
-#include "floornav/geometry/world.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 

@@ -14,10 +14,10 @@
 /// grows only beyond that; tests/allocation_test.cpp checks). Same scenario and seed: the same
 /// trajectory, bit for bit.
 
-#include "floornav/control/navigation_automaton.hpp"
+#include "floornav/nav/navigation_automaton.hpp"
+#include "floornav/scenario/scenario.hpp"
 #include "floornav/sim/robot_agent.hpp"
 #include "floornav/sim/run_result.hpp"
-#include "floornav/sim/scenario.hpp"
 
 namespace floornav {
 

@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "floornav/sim/scenario.hpp"
+#include "floornav/scenario/scenario.hpp"
 
 namespace floornav {
 

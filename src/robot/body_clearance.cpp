@@ -1,4 +1,4 @@
-#include "floornav/sim/body_clearance.hpp"
+#include "floornav/robot/body_clearance.hpp"
 
 #include <array>
 

@@ -4,9 +4,9 @@
 /// the point robot becomes a heading reference theta_d = atan2(u_2, u_1), a PID turns the wrapped
 /// heading error into omega, and V = |u| (capped).
 
-#include "floornav/control/pid.hpp"
 #include "floornav/geometry/vec2.hpp"
 #include "floornav/kinematics/differential_drive.hpp"
+#include "floornav/nav/pid.hpp"
 
 namespace floornav {
 

@@ -1,4 +1,4 @@
-#include "floornav/io/batch.hpp"
+#include "floornav/runner/batch.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -13,11 +13,11 @@
 #include <optional>
 #include <thread>
 
-#include "floornav/grid/shortest_path.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/input_error.hpp"
-#include "floornav/io/run_outputs.hpp"
 #include "floornav/io/summary_json.hpp"
+#include "floornav/runner/run_outputs.hpp"
+#include "floornav/world/shortest_path.hpp"
 
 namespace floornav {
 

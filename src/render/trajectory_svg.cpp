@@ -1,4 +1,4 @@
-#include "floornav/io/trajectory_svg.hpp"
+#include "floornav/render/trajectory_svg.hpp"
 
 #include <fmt/format.h>
 
@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
-#include "floornav/geometry/world.hpp"
-#include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/world/occupancy_grid.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 namespace svg_detail {

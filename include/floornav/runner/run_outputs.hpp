@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <string>
 
+#include "floornav/scenario/scenario.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/run_result.hpp"
-#include "floornav/sim/scenario.hpp"
 
 namespace floornav {
 

@@ -1,14 +1,13 @@
 #pragma once
 /// @file
-/// A robot: its differential-drive base, its body, its range sensors; and the published presets.
+/// A robot: its differential-drive base, its body, its range sensors. The published presets
+/// (robot and controller defaults together) are in scenario/presets.hpp.
 
-#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "floornav/control/navigation_params.hpp"
 #include "floornav/kinematics/differential_drive.hpp"
 #include "floornav/sensing/range_sensor.hpp"
 
@@ -22,16 +21,6 @@ struct RobotSpec {
   std::vector<RangeSensorSpec> sensors;  ///< in the robot frame
   double sensor_noise{0.0};              ///< m: std. dev. of Gaussian range noise
 };
-
-/// A preset: the robot and the supervisor defaults that suit its speed and sensor range.
-struct RobotPreset {
-  RobotSpec robot;
-  NavigationParams navigation;
-};
-
-/// The preset called `name` (quickbot, khepera3, pioneer_p3dx, turtlebot3_burger, jackal).
-std::optional<RobotPreset> find_robot_preset(std::string_view name);
-std::span<const std::string_view> robot_preset_names();
 
 /// `beams` single-beam sensors spread evenly over `fov` radians centred on the mount's heading
 /// (a planar lidar); both ends included when fov < 2 pi, evenly round the circle otherwise.

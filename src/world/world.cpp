@@ -1,4 +1,4 @@
-#include "floornav/geometry/world.hpp"
+#include "floornav/world/world.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "fan_layout.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
-#include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/world/occupancy_grid.hpp"
 
 namespace floornav {
 

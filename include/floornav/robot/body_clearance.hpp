@@ -4,8 +4,8 @@
 /// robot has one (a Jackal in BARN's narrow passages is a rectangle, not a disc).
 
 #include "floornav/geometry/pose2.hpp"
-#include "floornav/geometry/world.hpp"
-#include "floornav/sim/robot_spec.hpp"
+#include "floornav/robot/robot_spec.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 

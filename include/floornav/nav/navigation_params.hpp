@@ -7,7 +7,7 @@
 #include <optional>
 #include <string_view>
 
-#include "floornav/control/pid.hpp"
+#include "floornav/nav/pid.hpp"
 
 namespace floornav {
 

@@ -1,4 +1,4 @@
-#include "floornav/control/heading_tracker.hpp"
+#include "floornav/nav/heading_tracker.hpp"
 
 #include <algorithm>
 #include <cmath>

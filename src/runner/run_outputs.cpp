@@ -1,4 +1,4 @@
-#include "floornav/io/run_outputs.hpp"
+#include "floornav/runner/run_outputs.hpp"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
-#include "floornav/io/trajectory_svg.hpp"
+#include "floornav/render/trajectory_svg.hpp"
 #include "floornav/sim/simulation.hpp"
 
 namespace floornav {

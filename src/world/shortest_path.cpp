@@ -1,4 +1,4 @@
-#include "floornav/grid/shortest_path.hpp"
+#include "floornav/world/shortest_path.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,8 @@
 #include <tuple>
 #include <utility>
 
-#include "floornav/geometry/world.hpp"
-#include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/world/occupancy_grid.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 namespace {

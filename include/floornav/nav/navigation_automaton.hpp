@@ -19,9 +19,9 @@
 #include <span>
 
 #include "floornav/automaton/hybrid_automaton.hpp"
-#include "floornav/control/behaviours.hpp"
-#include "floornav/control/navigation_params.hpp"
 #include "floornav/geometry/vec2.hpp"
+#include "floornav/nav/behaviours.hpp"
+#include "floornav/nav/navigation_params.hpp"
 
 namespace floornav {
 

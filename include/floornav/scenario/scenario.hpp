@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "floornav/control/navigation_params.hpp"
 #include "floornav/geometry/pose2.hpp"
-#include "floornav/geometry/world.hpp"
-#include "floornav/grid/occupancy_grid.hpp"
-#include "floornav/sim/robot_spec.hpp"
+#include "floornav/nav/navigation_params.hpp"
+#include "floornav/robot/robot_spec.hpp"
+#include "floornav/world/occupancy_grid.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 

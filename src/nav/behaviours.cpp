@@ -1,4 +1,4 @@
-#include "floornav/control/behaviours.hpp"
+#include "floornav/nav/behaviours.hpp"
 
 #include <algorithm>
 #include <cmath>

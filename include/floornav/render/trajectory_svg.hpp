@@ -6,9 +6,9 @@
 #include <string>
 #include <string_view>
 
+#include "floornav/scenario/scenario.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/run_result.hpp"
-#include "floornav/sim/scenario.hpp"
 
 namespace floornav {
 

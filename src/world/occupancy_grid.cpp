@@ -1,4 +1,4 @@
-#include "floornav/grid/occupancy_grid.hpp"
+#include "floornav/world/occupancy_grid.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "../geometry/fan_layout.hpp"
+#include "fan_layout.hpp"
 
 namespace floornav {
 namespace {

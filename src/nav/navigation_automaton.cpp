@@ -1,4 +1,4 @@
-#include "floornav/control/navigation_automaton.hpp"
+#include "floornav/nav/navigation_automaton.hpp"
 
 #include <array>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "floornav/control/pid.hpp"
+#include "floornav/nav/pid.hpp"
 
 #include <algorithm>
 
