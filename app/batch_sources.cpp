@@ -6,8 +6,8 @@
 #include <cmath>
 #include <fstream>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/io/barn.hpp"
-#include "floornav/io/input_error.hpp"
 #include "floornav/io/movingai_map.hpp"
 #include "floornav/io/scenario_file.hpp"
 
@@ -50,8 +50,8 @@ std::vector<BatchCase> make_scen_cases(const std::string& template_file,
     Scenario s = base;
     const Vec2 start = movingai_cell_center(row.start_x, row.start_y, row.height, cell_size);
     const Vec2 goal = movingai_cell_center(row.goal_x, row.goal_y, row.height, cell_size);
-    s.start = {start, std::atan2(goal.y() - start.y(), goal.x() - start.x())};
-    s.goals = {goal};
+    s.robot().start = {start, std::atan2(goal.y() - start.y(), goal.x() - start.x())};
+    s.robot().goals = {goal};
     s.name = fmt::format("{}-{}", base.name, i);
     validate_scenario(s, fmt::format("{} (row {})", scen_file, i + 2));
     BatchCase c{std::move(s), fmt::format("{}:{}", scen_file, i + 2), i, {}, {}};
@@ -100,8 +100,9 @@ std::vector<BatchCase> make_world_cases(const std::string& template_file, const 
     if (!barn_paths.empty()) {
       const long n = number_in(worlds[i].filename().string());
       const auto path = std::filesystem::path(barn_paths) / fmt::format("path_{}.npy", n);
-      c.optimal_time = barn_optimal_time(load_npy_int_pairs(path), c.scenario.start.position,
-                                         c.scenario.goals.back());
+      c.optimal_time =
+          barn_optimal_time(load_npy_int_pairs(path), c.scenario.robot().start.position,
+                            c.scenario.robot().goals.back());
     }
     cases.push_back(std::move(c));
   }

@@ -15,6 +15,7 @@
 #include "floornav/io/scenario_file.hpp"
 #include "floornav/robot/robot_spec.hpp"
 #include "floornav/scenario/presets.hpp"
+#include "floornav/scenario/validate.hpp"
 
 namespace floornav {
 
@@ -96,9 +97,10 @@ Scenario make_floor_scenario(std::shared_ptr<const World> world, int beams, int 
   Scenario s;
   s.name = lidar ? "lidar" + std::to_string(beams) + "-floor" : "quickbot-floor";
   s.world = std::move(world);
-  s.robot = preset.robot;
-  s.navigation = preset.navigation;
-  if (lidar) s.robot.sensors = make_lidar(beams, 2.0 * kPi, 0.12, 3.5, {Vec2(-0.032, 0.0), 0.0});
+  RobotTask& t = s.robots.emplace_back();
+  t.robot = preset.robot;
+  t.controller.params = preset.navigation;
+  if (lidar) t.robot.sensors = make_lidar(beams, 2.0 * kPi, 0.12, 3.5, {Vec2(-0.032, 0.0), 0.0});
   s.sim.dt = 0.01;
   s.sim.t_max = 1.0e5;
   s.sim.record_trajectory = false;
@@ -106,14 +108,14 @@ Scenario make_floor_scenario(std::shared_ptr<const World> world, int beams, int 
 
   const double side = s.world->extent().max.x();
   Rng rng(1000 + static_cast<std::uint64_t>(index));
-  const double margin = s.robot.body_radius + 0.3;
+  const double margin = t.robot.body_radius + 0.3;
   const Vec2 start = pick_free_point(*s.world, rng, side, margin);
-  s.start = {start, rng.uniform(-kPi, kPi)};
+  t.start = {start, rng.uniform(-kPi, kPi)};
   Vec2 from = start;
-  while (s.goals.size() < 4) {
+  while (t.goals.size() < 4) {
     const Vec2 g = pick_free_point(*s.world, rng, side, margin);
     if ((g - from).norm() < side / 3.0) continue;  // cross the floor, not a step aside
-    s.goals.push_back(g);
+    t.goals.push_back(g);
     from = g;
   }
   validate_scenario(s, s.name);
@@ -131,15 +133,14 @@ std::optional<Scenario> make_aws_scenario(const std::filesystem::path& maps_dir)
   const RobotPreset preset = *find_robot_preset("turtlebot3_burger");
   Scenario s;
   s.name = "lidar360-aws-warehouse";
-  auto grid = std::make_shared<const OccupancyGrid>(load_ros_map(map));
   WorldDesc desc;
-  desc.grid = grid.get();
-  s.grid = std::move(grid);
+  desc.grid = std::make_shared<const OccupancyGrid>(load_ros_map(map));
   s.world = std::make_shared<const World>(std::move(desc));
-  s.robot = preset.robot;
-  s.navigation = preset.navigation;
-  s.start = {Vec2(-5.0, -8.5), 0.5 * kPi};
-  s.goals = {Vec2(-5.0, 8.5)};
+  RobotTask& t = s.robots.emplace_back();
+  t.robot = preset.robot;
+  t.controller.params = preset.navigation;
+  t.start = {Vec2(-5.0, -8.5), 0.5 * kPi};
+  t.goals = {Vec2(-5.0, 8.5)};
   s.sim.dt = 0.01;
   s.sim.t_max = 1.0e5;
   s.sim.record_trajectory = false;
@@ -169,7 +170,7 @@ Scenario make_fleet_scenario(std::shared_ptr<const World> world, int robots, int
   const double side = world->extent().max.x();
   // Free lattice points, shuffled with a fixed seed: distinct points 0.6 m apart never touch.
   const Scenario model = make_floor_scenario(world, beams, 0);
-  const double margin = model.robot.body_radius + 0.1;
+  const double margin = model.robot().robot.body_radius + 0.1;
   std::vector<Vec2> lattice;
   for (double y = 0.3; y < side; y += 0.6)
     for (double x = 0.3; x < side; x += 0.6)
@@ -181,7 +182,9 @@ Scenario make_fleet_scenario(std::shared_ptr<const World> world, int robots, int
     std::swap(lattice[i], lattice[static_cast<std::size_t>(rng.uniform() * (i + 1)) % (i + 1)]);
   s.robots.reserve(static_cast<std::size_t>(robots));
   for (int i = 0; i < robots; ++i) {
-    RobotTask t{fmt::format("r{}", i), model.robot, {}, {}, model.controller, model.navigation};
+    RobotTask t = model.robot();
+    t.name = fmt::format("r{}", i);
+    t.goals.clear();
     t.start = {lattice[static_cast<std::size_t>(i)], rng.uniform(-kPi, kPi)};
     Vec2 from = t.start.position;
     while (t.goals.size() < 4) {
@@ -192,7 +195,7 @@ Scenario make_fleet_scenario(std::shared_ptr<const World> world, int robots, int
     }
     s.robots.push_back(std::move(t));
   }
-  repeat_first_robot(s);
+  s.robots_listed = true;
   return s;
 }
 

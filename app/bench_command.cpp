@@ -19,8 +19,7 @@
 #include "bench_cases.hpp"
 #include "demo_scenario.hpp"
 #include "floornav/io/scenario_file.hpp"
-#include "floornav/sim/fleet_simulation.hpp"
-#include "floornav/sim/simulation.hpp"
+#include "floornav/scenario/simulate.hpp"
 
 namespace fs = std::filesystem;
 
@@ -53,7 +52,7 @@ struct CaseResult {
 
 double rays_per_step(const Scenario& s) {
   double n = 0.0;
-  for (const RangeSensorSpec& r : s.robot.sensors)
+  for (const RangeSensorSpec& r : s.robot().robot.sensors)
     n += (r.cone_rays > 1 && r.cone_angle > 0.0) ? r.cone_rays : 1;
   return n;
 }
@@ -65,10 +64,10 @@ void require_running(const Simulation& sim, const std::string& name) {
 /// One robot stepped for `budget` seconds of timed work. A run that ends is restarted outside
 /// the timed chunks, so the timed loop holds nothing but Simulation::step().
 void time_stepping(const Scenario& s, double budget, CaseResult& out) {
-  std::optional<Simulation> sim(std::in_place, s);
+  std::optional<Simulation> sim(std::in_place, *s.world, s.robot(), s.sim, s.name);
   require_running(*sim, out.name);
   for (int i = 0; i < kWarmUpSteps; ++i)
-    if (!sim->step()) sim.emplace(s);
+    if (!sim->step()) sim.emplace(*s.world, s.robot(), s.sim, s.name);
   Clock::duration timed{};
   std::uint64_t steps = 0, restarts = 0;
   while (Seconds(timed).count() < budget) {
@@ -83,7 +82,7 @@ void time_stepping(const Scenario& s, double budget, CaseResult& out) {
     }
     timed += Clock::now() - t0;
     if (ended) {
-      sim.emplace(s);
+      sim.emplace(*s.world, s.robot(), s.sim, s.name);
       ++restarts;
     }
   }
@@ -96,7 +95,8 @@ void time_stepping(const Scenario& s, double budget, CaseResult& out) {
 /// A fleet in one world (FleetSimulation: the robots sense each other, contacts are checked),
 /// on `threads` threads; timed in batches of about 10,000 robot-steps.
 void time_fleet(const Scenario& fleet, int threads, double budget, CaseResult& out) {
-  std::optional<FleetSimulation> sim(std::in_place, fleet);
+  std::optional<FleetSimulation> sim(std::in_place, *fleet.world, fleet.robots, fleet.sim,
+                                     fleet.name);
   const long long batch =
       std::max<long long>(1, 10000 / static_cast<long long>(fleet.robots.size()));
   sim->run_steps(kWarmUpSteps / 10, threads);
@@ -109,7 +109,7 @@ void time_fleet(const Scenario& fleet, int threads, double budget, CaseResult& o
     timed += Clock::now() - t0;
     steps += static_cast<std::uint64_t>(sim->robot_steps() - before);
     if (done == 0) {
-      sim.emplace(fleet);
+      sim.emplace(*fleet.world, fleet.robots, fleet.sim, fleet.name);
       ++restarts;
     }
   }

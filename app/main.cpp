@@ -16,7 +16,7 @@
 #include "batch_sources.hpp"
 #include "bench_command.hpp"
 #include "demo_scenario.hpp"
-#include "floornav/io/input_error.hpp"
+#include "floornav/core/input_error.hpp"
 #include "floornav/io/scenario_file.hpp"
 #include "floornav/robot/robot_spec.hpp"
 #include "floornav/runner/batch.hpp"
@@ -39,7 +39,7 @@ std::string default_out_dir(const std::string& name) {
 
 int run_one(const Scenario& scenario, const std::string& out, bool quiet, int threads) {
   const fs::path dir = out.empty() ? fs::path(default_out_dir(scenario.name)) : fs::path(out);
-  if (!scenario.robots.empty()) {
+  if (scenario.is_fleet()) {
     const FleetResult f = run_fleet_timed(scenario, threads);
     write_fleet_outputs(dir, scenario, f);
     if (!quiet) fmt::print("{} -> {}\n", describe_fleet(f), dir.string());

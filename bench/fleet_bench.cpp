@@ -31,7 +31,7 @@ const Scenario& warehouse_fleet(int robots, int beams) {
 }
 
 void step_fleet(benchmark::State& state, const Scenario& s, int threads) {
-  std::optional<FleetSimulation> sim(std::in_place, s);
+  std::optional<FleetSimulation> sim(std::in_place, *s.world, s.robots, s.sim, s.name);
   const long long batch = std::max<long long>(1, 10000 / static_cast<long long>(s.robots.size()));
   sim->run_steps(1, threads);  // warm-up: threads, caches
   long long steps = 0;
@@ -39,7 +39,7 @@ void step_fleet(benchmark::State& state, const Scenario& s, int threads) {
     const long long before = sim->robot_steps();
     if (sim->run_steps(batch, threads) == 0) {
       state.PauseTiming();
-      sim.emplace(s);
+      sim.emplace(*s.world, s.robots, s.sim, s.name);
       state.ResumeTiming();
       continue;
     }
@@ -78,11 +78,12 @@ void BM_StepBeams_Lidar(benchmark::State& state) {
              .emplace(beams, make_floor_scenario(
                                  std::make_shared<const World>(make_bench_floor({})), beams))
              .first;
-  std::optional<Simulation> sim(std::in_place, it->second);
+  std::optional<Simulation> sim(std::in_place, *it->second.world, it->second.robot(),
+                                it->second.sim, it->second.name);
   for (auto _ : state) {
     if (!sim->step()) {
       state.PauseTiming();
-      sim.emplace(it->second);
+      sim.emplace(*it->second.world, it->second.robot(), it->second.sim, it->second.name);
       state.ResumeTiming();
     }
   }

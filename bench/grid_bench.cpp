@@ -24,9 +24,9 @@ namespace {
 constexpr std::size_t kSamples = 1024;
 
 struct WarehouseMap {
-  std::unique_ptr<OccupancyGrid> grid;  ///< null when the map is missing
-  std::unique_ptr<World> world;         ///< the grid as a World (what the simulation casts into)
-  std::vector<Vec2> origins;            ///< free points, >= 0.2 m from anything
+  std::shared_ptr<const OccupancyGrid> grid;  ///< null when the map is missing
+  std::unique_ptr<World> world;  ///< the grid as a World (what the simulation casts into)
+  std::vector<Vec2> origins;     ///< free points, >= 0.2 m from anything
   std::vector<Vec2> dirs;
   std::string path;
 };
@@ -37,9 +37,9 @@ const WarehouseMap& warehouse() {
     m.path = aws_warehouse_map(FLOORNAV_SHARED_MAPS_DIR).string();
     std::error_code ec;
     if (!std::filesystem::exists(m.path, ec)) return m;
-    m.grid = std::make_unique<OccupancyGrid>(load_ros_map(m.path));
+    m.grid = std::make_shared<const OccupancyGrid>(load_ros_map(m.path));
     WorldDesc desc;
-    desc.grid = m.grid.get();
+    desc.grid = m.grid;
     m.world = std::make_unique<World>(std::move(desc));
     Vec2 lo, hi;
     m.grid->world_extent(&lo, &hi);

@@ -16,6 +16,7 @@
 
 #include "bench_cases.hpp"
 #include "floornav/io/scenario_file.hpp"
+#include "floornav/scenario/simulate.hpp"
 #include "floornav/sim/simulation.hpp"
 
 namespace floornav {
@@ -33,19 +34,19 @@ std::shared_ptr<const World> floor_world(int edges) {
 
 double rays_per_step(const Scenario& s) {
   double n = 0.0;
-  for (const RangeSensorSpec& r : s.robot.sensors)
+  for (const RangeSensorSpec& r : s.robot().robot.sensors)
     n += (r.cone_rays > 1 && r.cone_angle > 0.0) ? r.cone_rays : 1;
   return n;
 }
 
 /// Steps one robot of `s` per iteration.
 void step_robot(benchmark::State& state, const Scenario& s) {
-  std::optional<Simulation> sim(std::in_place, s);
+  std::optional<Simulation> sim(std::in_place, *s.world, s.robot(), s.sim, s.name);
   std::int64_t restarts = 0;
   for (auto _ : state) {
     if (!sim->step()) {
       state.PauseTiming();
-      sim.emplace(s);
+      sim.emplace(*s.world, s.robot(), s.sim, s.name);
       ++restarts;
       state.ResumeTiming();
     }
@@ -110,7 +111,10 @@ void BM_FleetStep_100xLidar180_50Polygons(benchmark::State& state) {
     return v;
   }();
   std::vector<std::optional<Simulation>> sims(kRobots);
-  for (int i = 0; i < kRobots; ++i) sims[static_cast<std::size_t>(i)].emplace(scenarios[i]);
+  for (int i = 0; i < kRobots; ++i) {
+    const Scenario& sc = scenarios[static_cast<std::size_t>(i)];
+    sims[static_cast<std::size_t>(i)].emplace(*sc.world, sc.robot(), sc.sim, sc.name);
+  }
   std::vector<int> ended;
   ended.reserve(kRobots);
   for (auto _ : state) {
@@ -118,7 +122,10 @@ void BM_FleetStep_100xLidar180_50Polygons(benchmark::State& state) {
       if (!sims[static_cast<std::size_t>(i)]->step()) ended.push_back(i);
     if (!ended.empty()) {
       state.PauseTiming();
-      for (int i : ended) sims[static_cast<std::size_t>(i)].emplace(scenarios[i]);
+      for (int i : ended) {
+        const Scenario& sc = scenarios[static_cast<std::size_t>(i)];
+        sims[static_cast<std::size_t>(i)].emplace(*sc.world, sc.robot(), sc.sim, sc.name);
+      }
       ended.clear();
       state.ResumeTiming();
     }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "floornav/io/scenario_file.hpp"
+#include "floornav/scenario/simulate.hpp"
 #include "floornav/sim/simulation.hpp"
 #include "fuzz_support.hpp"
 
@@ -19,7 +20,8 @@ using namespace floornav;
 
 /// Runs at most 20 steps and checks that every number the run reports is finite.
 void simulate_briefly(Scenario s) {
-  if (s.robot.sensors.size() > 1024) return;  // valid, but too slow to be worth a fuzzer's time
+  if (s.robot().robot.sensors.size() > 1024)
+    return;  // valid, but too slow to be worth a fuzzer's time
   s.sim.t_max = std::min(s.sim.t_max, 20.0 * s.sim.dt);
   const RunResult r = simulate(s);
   for (const TrajectorySample& p : r.trajectory) {

@@ -15,8 +15,8 @@
 #include <string>
 #include <string_view>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/geometry/vec2.hpp"
-#include "floornav/io/input_error.hpp"
 
 namespace floornav::fuzz {
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "floornav/io/scenario_file.hpp"
+#include "floornav/scenario/simulate.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/simulation.hpp"
 
@@ -133,7 +134,7 @@ struct WindowResult {
 WindowResult count_step_allocations(const std::string& file, std::vector<std::string> sets) {
   Scenario s = load_scenario_file(std::string(FLOORNAV_SCENARIO_DIR) + "/" + file, sets);
   s.sim.record_trajectory = false;
-  Simulation sim(s);
+  Simulation sim = make_simulation(s);
   for (int i = 0; i < kWarmUpSteps; ++i) EXPECT_TRUE(sim.step());
   const int switches_before = sim.result().mode_switches;
   WindowResult out;
@@ -197,7 +198,7 @@ TEST(Allocation, GridLidarRobotStepAllocatesNothing) {
 TEST(Allocation, FleetStepAllocatesNothing) {
   Scenario s = load_scenario_file(std::string(FLOORNAV_SCENARIO_DIR) + "/fleet_aisles.yaml");
   s.sim.record_trajectory = false;
-  FleetSimulation fleet(s);
+  FleetSimulation fleet = make_fleet_simulation(s);
   for (int i = 0; i < kWarmUpSteps; ++i) EXPECT_TRUE(fleet.step());
   long allocations = 0;
   bool running = true;

@@ -28,8 +28,8 @@
 #include <typeinfo>
 #include <vector>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/io/course_world.hpp"
-#include "floornav/io/input_error.hpp"
 #include "floornav/io/movingai_map.hpp"
 #include "floornav/io/ros_map.hpp"
 #include "floornav/io/sdf_world.hpp"

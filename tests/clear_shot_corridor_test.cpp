@@ -11,6 +11,7 @@
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/scenario_file.hpp"
 #include "floornav/nav/navigation_automaton.hpp"
+#include "floornav/scenario/simulate.hpp"
 #include "floornav/sim/simulation.hpp"
 
 using namespace floornav;

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "floornav/io/input_error.hpp"
+#include "floornav/core/input_error.hpp"
 #include "loader_test_support.hpp"
 
 namespace floornav {

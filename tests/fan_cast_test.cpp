@@ -26,7 +26,7 @@ std::uint64_t bits(double v) {
 /// A random walled floor: star-shaped polygons (some sharing vertices' rows and columns, so that
 /// rays graze them), circles and points, optionally over an occupancy grid.
 struct RandomWorld {
-  std::unique_ptr<OccupancyGrid> grid;
+  std::shared_ptr<const OccupancyGrid> grid;
   std::unique_ptr<World> world;
 };
 
@@ -67,8 +67,8 @@ RandomWorld random_world(Rng& rng, bool with_grid) {
     for (auto& c : cells) c = rng.uniform() < 0.02 ? 1 : 0;
     const double res = side / std::max(w, h);
     const double yaw = rng.uniform() < 0.5 ? 0.0 : rng.uniform(-kPi, kPi);
-    rw.grid = std::make_unique<OccupancyGrid>(w, h, res, Pose2{Vec2(0.1, 0.2), yaw}, cells);
-    d.grid = rw.grid.get();
+    rw.grid = std::make_shared<const OccupancyGrid>(w, h, res, Pose2{Vec2(0.1, 0.2), yaw}, cells);
+    d.grid = rw.grid;
   }
   rw.world = std::make_unique<World>(std::move(d));
   return rw;

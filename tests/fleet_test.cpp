@@ -9,13 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
-#include "floornav/io/input_error.hpp"
 #include "floornav/io/scenario_file.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
 #include "floornav/robot/robot_spec.hpp"
+#include "floornav/scenario/simulate.hpp"
 #include "floornav/sensing/range_sensor.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/robot_neighbour_grid.hpp"
@@ -241,7 +242,7 @@ TEST(Fleet, AnyNumberOfThreadsGivesTheSameResult) {
             std::to_string(8.0 - y) + "]}\n";
   }
   const Scenario s = load_scenario_text(yaml, "random.yaml");
-  FleetSimulation one(s), three(s);
+  FleetSimulation one = make_fleet_simulation(s), three = make_fleet_simulation(s);
   ASSERT_EQ(three.threads_for(3), 2u);  // 60 x 72 rays: two threads' worth of work
   one.run(1);
   three.run(3);
@@ -274,7 +275,7 @@ TEST(Fleet, LidarFleetOnTwoThreadsGivesTheSameResult) {
               std::to_string(6.0 - x) + ", " + std::to_string(6.0 - y) + "]}\n";
     }
   const Scenario s = load_scenario_text(yaml, "lidars.yaml");
-  FleetSimulation one(s), two(s);
+  FleetSimulation one = make_fleet_simulation(s), two = make_fleet_simulation(s);
   ASSERT_EQ(two.threads_for(2), 2u);
   one.run(1);
   two.run(2);
@@ -439,10 +440,10 @@ TEST(FleetScenario, SharedRobotAndControllerDefaultsAreOverriddenPerRobot) {
   EXPECT_EQ(s.robots[1].robot.preset, "quickbot");
   EXPECT_EQ(s.robots[0].robot.sensor_noise, 0.01);
   EXPECT_EQ(s.robots[1].robot.sensor_noise, 0.01);
-  EXPECT_EQ(s.robots[0].controller, ControllerKind::Blended);
-  EXPECT_EQ(s.robots[1].controller, ControllerKind::Hybrid);
-  EXPECT_EQ(s.robots[0].navigation.v0, 0.05);
-  EXPECT_EQ(s.robots[1].navigation.v0, 0.05);
+  EXPECT_EQ(s.robots[0].controller.kind, "blended");
+  EXPECT_EQ(s.robots[1].controller.kind, "hybrid");
+  EXPECT_EQ(s.robots[0].controller.params.v0, 0.05);
+  EXPECT_EQ(s.robots[1].controller.params.v0, 0.05);
 }
 
 }  // namespace

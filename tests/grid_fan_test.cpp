@@ -59,7 +59,7 @@ void expect_grid_fans_match(const OccupancyGrid& g, Rng& rng, int fans, bool nea
   std::vector<Vec2> dirs;
   std::vector<double> angles, out;
   WorldDesc desc;
-  desc.grid = &g;
+  desc.grid = std::make_shared<const OccupancyGrid>(g);
   const World world(std::move(desc));
   for (int f = 0; f < fans; ++f) {
     Vec2 p(lo.x() + span.x() * rng.uniform(-0.1, 1.1), lo.y() + span.y() * rng.uniform(-0.1, 1.1));

@@ -7,6 +7,7 @@
 
 #include "floornav/geometry/polygon.hpp"
 #include "floornav/scenario/presets.hpp"
+#include "floornav/scenario/simulate.hpp"
 #include "floornav/sim/simulation.hpp"
 
 using namespace floornav;
@@ -27,11 +28,12 @@ Scenario base_scenario(WorldDesc desc, Pose2 start, Vec2 goal, ControllerKind ki
   const RobotPreset p = *find_robot_preset("quickbot");
   Scenario s;
   s.world = std::make_shared<const World>(std::move(desc));
-  s.robot = p.robot;
-  s.navigation = p.navigation;
-  s.start = start;
-  s.goals = {goal};
-  s.controller = kind;
+  s.robots.emplace_back();
+  s.robot().robot = p.robot;
+  s.robot().controller.params = p.navigation;
+  s.robot().start = start;
+  s.robot().goals = {goal};
+  s.robot().controller.kind = std::string(to_string(kind));
   s.sim.t_max = 40.0;
   return s;
 }
@@ -58,8 +60,8 @@ TEST(NumericalSafety, RandomFloorsNeverProduceNanOrInf) {
     }
     Scenario s = base_scenario(d, {Vec2(0.2, 0.2 + 1.6 * u(rng)), 6.28 * u(rng) - 3.14},
                                Vec2(2.8, 0.2 + 1.6 * u(rng)), kinds[i % 4]);
-    if (s.world->clearance(s.start.position) <= s.robot.body_radius) continue;
-    s.robot.sensor_noise = 0.01 * u(rng);
+    if (s.world->clearance(s.robot().start.position) <= s.robot().robot.body_radius) continue;
+    s.robot().robot.sensor_noise = 0.01 * u(rng);
     s.sim.seed = static_cast<std::uint64_t>(i);
     expect_all_finite(simulate(s));
     ++runs;

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/io/atomic_file.hpp"
-#include "floornav/io/input_error.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
 #include "floornav/render/trajectory_svg.hpp"
@@ -66,9 +66,10 @@ Scenario small_scenario() {
   desc.bounds = Box2{Vec2(-1.0, -1.0), Vec2(2.0, 1.0)};
   desc.circles.push_back(Circle{Vec2(0.8, 0.2), 0.3});
   s.world = std::make_shared<const World>(std::move(desc));
-  s.start = Pose2{Vec2(0.0, 0.0), 0.0};
-  s.goals = {Vec2(1.5, 0.5)};
-  s.controller = ControllerKind::Hybrid;
+  s.robots.emplace_back();
+  s.robot().start = Pose2{Vec2(0.0, 0.0), 0.0};
+  s.robot().goals = {Vec2(1.5, 0.5)};
+  s.robot().controller.kind = "hybrid";
   return s;
 }
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "floornav/io/input_error.hpp"
+#include "floornav/core/input_error.hpp"
 #include "loader_test_support.hpp"
 
 namespace floornav {

@@ -57,30 +57,30 @@ TEST(ScenarioFile, ReadsEveryKey) {
   EXPECT_EQ(s.name, "tiny");
   EXPECT_EQ(s.world->circles().size(), 2u);  // the circle and the point post
   EXPECT_EQ(s.world->polygons().size(), 2u);
-  EXPECT_EQ(s.robot.preset, "quickbot");
-  EXPECT_DOUBLE_EQ(s.navigation.d_o, 0.15);
-  EXPECT_DOUBLE_EQ(s.navigation.heading_pid.kp, 5.0);
+  EXPECT_EQ(s.robot().robot.preset, "quickbot");
+  EXPECT_DOUBLE_EQ(s.robot().controller.params.d_o, 0.15);
+  EXPECT_DOUBLE_EQ(s.robot().controller.params.heading_pid.kp, 5.0);
   EXPECT_EQ(s.sim.seed, 7u);
-  EXPECT_EQ(s.goals.size(), 1u);
+  EXPECT_EQ(s.robot().goals.size(), 1u);
 }
 
 TEST(ScenarioFile, SetOverridesAnyKey) {
   const Scenario s = load(kGood, {"controller.kind=blended", "sim.dt=0.02",
                                   "robot.start=[0,0.1,1.57]", "controller.pid.kd=0.5"});
-  EXPECT_EQ(s.controller, ControllerKind::Blended);
+  EXPECT_EQ(s.robot().controller.kind, "blended");
   EXPECT_DOUBLE_EQ(s.sim.dt, 0.02);
-  EXPECT_DOUBLE_EQ(s.start.theta, 1.57);
-  EXPECT_DOUBLE_EQ(s.navigation.heading_pid.kd, 0.5);
+  EXPECT_DOUBLE_EQ(s.robot().start.theta, 1.57);
+  EXPECT_DOUBLE_EQ(s.robot().controller.params.heading_pid.kd, 0.5);
 }
 
 TEST(ScenarioFile, PresetValuesCanBeOverridden) {
   const Scenario s =
       load(replace(kGood, "preset: quickbot",
                    "preset: khepera3\n  radius: 0.06\n  sensors: {max_range: 0.25, noise: 0.01}"));
-  EXPECT_DOUBLE_EQ(s.robot.body_radius, 0.06);
-  EXPECT_EQ(s.robot.sensors.size(), 9u);
-  EXPECT_DOUBLE_EQ(s.robot.sensors[3].max_range, 0.25);
-  EXPECT_DOUBLE_EQ(s.robot.sensor_noise, 0.01);
+  EXPECT_DOUBLE_EQ(s.robot().robot.body_radius, 0.06);
+  EXPECT_EQ(s.robot().robot.sensors.size(), 9u);
+  EXPECT_DOUBLE_EQ(s.robot().robot.sensors[3].max_range, 0.25);
+  EXPECT_DOUBLE_EQ(s.robot().robot.sensor_noise, 0.01);
 }
 
 TEST(ScenarioFile, UnknownKeysAreErrorsWithASuggestion) {

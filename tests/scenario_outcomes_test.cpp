@@ -5,6 +5,7 @@
 #include <string>
 
 #include "floornav/io/scenario_file.hpp"
+#include "floornav/scenario/simulate.hpp"
 #include "floornav/sim/simulation.hpp"
 
 using namespace floornav;

@@ -10,7 +10,7 @@
 #include <string>
 #include <utility>
 
-#include "floornav/io/input_error.hpp"
+#include "floornav/core/input_error.hpp"
 #include "loader_test_support.hpp"
 
 namespace floornav {

@@ -126,7 +126,7 @@ TEST(OctileAstar, MatchesEveryMovingAiScenOptimum) {
     for (int y = 0; y < g.height(); ++y)
       for (int x = 0; x < g.width(); ++x) r.free.push_back(g.occupied(x, y) ? 0 : 1);
     WorldDesc d;
-    d.grid = &g;
+    d.grid = std::make_shared<const OccupancyGrid>(g);
     const World w(d);
     const auto rows = load_movingai_scen(dir / (std::string(name) + "-random-1.scen"));
     ASSERT_GT(rows.size(), 100u);
@@ -245,7 +245,7 @@ TEST(FreeCells, EqualsOneClearanceQueryPerCell) {
   for (int y = 3; y < 27; ++y) occ[static_cast<std::size_t>(y) * 40 + 17] = 1;
   const OccupancyGrid g(40, 30, 0.1, Pose2{{2.0, 1.0}, 0.3}, std::move(occ));
   WorldDesc gd;
-  gd.grid = &g;
+  gd.grid = std::make_shared<const OccupancyGrid>(g);
   const World gw(gd);
   const FreeRaster f = free_cells(gw, 0.25, g.origin(), 0.1, 40, 30);
   for (int iy = 0; iy < 30; ++iy)
@@ -329,7 +329,7 @@ TEST(ScenarioOptimum, GridWorldUsesTheMapsOwnCells) {
   for (int y = 0; y <= 8; ++y) occ[static_cast<std::size_t>(y) * 10 + 4] = 1;
   const OccupancyGrid g(10, 10, 0.5, Pose2{{-1.0, 2.0}, 0.0}, std::move(occ));
   WorldDesc d;
-  d.grid = &g;
+  d.grid = std::make_shared<const OccupancyGrid>(g);
   const World w(d);
   auto centre = [](int ix, int iy) { return Vec2(-1.0 + 0.5 * ix + 0.25, 2.0 + 0.5 * iy + 0.25); };
   const std::array<Vec2, 1> goal{centre(8, 0)};

@@ -9,7 +9,7 @@
 #include <string>
 #include <system_error>
 
-#include "floornav/io/input_error.hpp"
+#include "floornav/core/input_error.hpp"
 
 namespace floornav {
 

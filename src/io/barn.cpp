@@ -6,7 +6,7 @@
 #include <fstream>
 #include <string>
 
-#include "floornav/io/input_error.hpp"
+#include "floornav/core/input_error.hpp"
 
 namespace floornav {
 

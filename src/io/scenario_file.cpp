@@ -14,9 +14,8 @@
 #include "floornav/automaton/hybrid_automaton.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
-#include "floornav/robot/body_clearance.hpp"
 #include "floornav/scenario/presets.hpp"
-#include "floornav/sim/robot_neighbour_grid.hpp"
+#include "floornav/scenario/validate.hpp"
 #include "world_map.hpp"
 #include "yaml_reader.hpp"
 
@@ -260,7 +259,7 @@ void read_sensors(const std::string& file, MapReader& r, RobotSpec& robot) {
 }
 
 // The robot section: a preset, then overrides of any of its values.
-void read_robot(const std::string& file, MapReader& r, Scenario& s) {
+void read_robot(const std::string& file, MapReader& r, RobotTask& s) {
   std::string preset = "quickbot";
   if (r.has("preset")) {
     const YAML::Node n = r.get("preset");
@@ -275,7 +274,8 @@ void read_robot(const std::string& file, MapReader& r, Scenario& s) {
   }
   const RobotPreset p = *find_robot_preset(preset);
   s.robot = p.robot;
-  s.navigation = p.navigation;
+  s.robot.preset = preset;
+  s.controller.params = p.navigation;
   if (!r.has("start")) fail(file, r.node(), r.path_of("start"), "missing (x, y, theta)");
   s.start = read_pose(file, r.get("start"), r.path_of("start"));
   s.start.theta = wrap_angle(s.start.theta);
@@ -308,7 +308,7 @@ void read_robot(const std::string& file, MapReader& r, Scenario& s) {
   r.finish();
 }
 
-void read_controller(const std::string& file, MapReader& r, Scenario& s) {
+void read_controller(const std::string& file, MapReader& r, ControllerConfig& c) {
   if (r.has("kind")) {
     const YAML::Node n = r.get("kind");
     const std::string kind = io_detail::read_string(file, n, r.path_of("kind"));
@@ -318,9 +318,9 @@ void read_controller(const std::string& file, MapReader& r, Scenario& s) {
            fmt::format("unknown controller '{}' (expected hybrid, hard_switch, blended or "
                        "go_to_goal)",
                        kind));
-    s.controller = *k;
+    c.kind = kind;
   }
-  s.navigation.serialize(r);
+  c.params.serialize(r);
   r.finish();
 }
 
@@ -353,8 +353,7 @@ YAML::Node with_defaults(const YAML::Node& entry, const YAML::Node& defaults) {
 }
 
 // `robots:`, a list of robot sections, each with its own goal(s), an optional name and an
-// optional controller section on top of the shared one. Scenario::robot and friends repeat the
-// first robot.
+// optional controller section on top of the shared one.
 void read_fleet(const std::string& file, const YAML::Node& root, MapReader& top, Scenario& s) {
   for (const char* key : {"goal", "goals"})
     if (top.has(key)) fail(file, root, key, "with robots, each robot has its own goal or goals");
@@ -390,21 +389,16 @@ void read_fleet(const std::string& file, const YAML::Node& root, MapReader& top,
     task.goals = read_goals(file, r);
     std::optional<YAML::Node> own_controller;
     if (r.has("controller")) own_controller = r.get("controller");
-    Scenario one;
-    read_robot(file, r, one);  // the preset, then this robot's values
+    read_robot(file, r, task);  // the preset, then this robot's values
     for (const auto& [node, key] : {std::pair{shared_controller, std::string("controller")},
                                     std::pair{own_controller, r.path_of("controller")}}) {
       if (!node) continue;
       MapReader c(file, *node, key);
-      read_controller(file, c, one);
+      read_controller(file, c, task.controller);
     }
-    task.robot = std::move(one.robot);
-    task.start = one.start;
-    task.controller = one.controller;
-    task.navigation = one.navigation;
     s.robots.push_back(std::move(task));
   }
-  repeat_first_robot(s);
+  s.robots_listed = true;
 }
 
 Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& origin) {
@@ -424,11 +418,12 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
     if (!top.has("robot"))
       fail(file, root, "robot", "missing section (robot: {start: [x, y, theta]})");
     MapReader r(file, top.get("robot"), "robot");
-    read_robot(file, r, s);
+    s.robots.emplace_back();
+    read_robot(file, r, s.robots.back());
   }
   if (top.has("controller") && !fleet) {
     MapReader r(file, top.get("controller"), "controller");
-    read_controller(file, r, s);
+    read_controller(file, r, s.robot().controller);
   }
   if (top.has("sim")) {
     MapReader r(file, top.get("sim"), "sim");
@@ -436,7 +431,7 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
     r.finish();
   }
 
-  if (!fleet) s.goals = read_goals(file, top);
+  if (!fleet) s.robot().goals = read_goals(file, top);
 
   WorldDesc desc;
   if (!top.has("world")) fail(file, root, "world", "missing section (world: {bounds: [...]})");
@@ -472,12 +467,11 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
       const YAML::Node n = w.get("map");
       std::filesystem::path map = io_detail::read_string(file, n, "world.map");
       if (map.is_relative()) map = origin.parent_path() / map;
-      s.grid =
+      desc.grid =
           io_detail::load_world_map(map, options, desc, file, io_detail::where_of(n, "world.map"));
     }
     w.finish();
   }
-  desc.grid = s.grid.get();
   top.finish();
   s.world = std::make_shared<const World>(std::move(desc));
   validate_scenario(s, file);
@@ -485,138 +479,6 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
 }
 
 }  // namespace
-
-namespace {
-
-// Each robot of a fleet is checked as a lone robot would be, its errors naming it
-// (robots[3].start); then no two robots may start touching.
-void validate_fleet(const Scenario& s, const std::string& file) {
-  Scenario one;
-  one.world = s.world;
-  one.grid = s.grid;
-  one.sim = s.sim;
-  for (std::size_t i = 0; i < s.robots.size(); ++i) {
-    const RobotTask& t = s.robots[i];
-    one.robot = t.robot;
-    one.start = t.start;
-    one.goals = t.goals;
-    one.controller = t.controller;
-    one.navigation = t.navigation;
-    try {
-      validate_scenario(one, file);
-    } catch (const InputError& e) {
-      const std::string path = fmt::format("robots[{}]", i);
-      std::string where = e.where;
-      if (where.rfind("robot.", 0) == 0)
-        where = path + where.substr(5);
-      else if (where.rfind("goal", 0) == 0)
-        where = path + "." + where;
-      else
-        where = fmt::format("{} ({})", where, path);
-      throw InputError(file, where, e.detail);
-    }
-  }
-  RobotNeighbourGrid grid;
-  std::vector<Vec2> starts;
-  double max_radius = 0.0;
-  Box2 box{s.robots[0].start.position, s.robots[0].start.position};
-  for (const RobotTask& t : s.robots) {
-    starts.push_back(t.start.position);
-    max_radius = std::max(max_radius, t.robot.body_radius);
-    box.min = box.min.cwiseMin(t.start.position);
-    box.max = box.max.cwiseMax(t.start.position);
-  }
-  grid.reset(box, 2.0 * max_radius, starts.size());
-  grid.build(starts, std::vector<std::uint8_t>(starts.size(), 1));
-  for (std::size_t i = 0; i < starts.size(); ++i)
-    grid.for_each_near(starts[i], 2.0 * max_radius, [&](std::size_t j) {
-      const double touch = s.robots[i].robot.body_radius + s.robots[j].robot.body_radius;
-      if (j > i && (starts[j] - starts[i]).norm() <= touch)
-        throw InputError(file, fmt::format("robots[{}].start", j),
-                         fmt::format("touches robot {} ('{}') at ({}, {}): the bodies overlap", i,
-                                     s.robots[i].name, starts[i].x(), starts[i].y()));
-    });
-}
-
-}  // namespace
-
-void validate_scenario(const Scenario& s, const std::string& file) {
-  if (!s.robots.empty()) return validate_fleet(s, file);
-  auto bad = [&](const std::string& key, const std::string& what) {
-    throw InputError(file, key, what);
-  };
-  const RobotSpec& r = s.robot;
-  const NavigationParams& n = s.navigation;
-  if (!(s.sim.dt > 0.0)) bad("sim.dt", fmt::format("must be positive, got {}", s.sim.dt));
-  const double v_max = max_forward_speed(r.drive);
-  // A step must not carry the robot through half its own body: collisions would be missed.
-  if (v_max * s.sim.dt > 0.5 * r.body_radius)
-    bad("sim.dt", fmt::format("{} s is too large: at {:.3g} m/s the robot moves {:.3g} m per step, "
-                              "more than half its radius {:.3g} m",
-                              s.sim.dt, v_max, v_max * s.sim.dt, r.body_radius));
-  if (!(s.sim.t_max > 0.0) || s.sim.t_max > 1e6)
-    bad("sim.t_max", fmt::format("must be in (0, 1e6] s, got {}", s.sim.t_max));
-  if (s.sim.t_max / s.sim.dt > 1e9) bad("sim.t_max", "more than 1e9 steps");
-  if (!(s.sim.stuck_window > 0.0)) bad("sim.stuck_window", "must be positive");
-  if (s.sim.stuck_radius < 0.0) bad("sim.stuck_radius", "must not be negative");
-  for (std::size_t i = 0; i < r.sensors.size(); ++i) {
-    const RangeSensorSpec& sp = r.sensors[i];
-    if (!(sp.min_range >= 0.0 && sp.max_range > sp.min_range))
-      bad("robot.sensors", fmt::format("sensor {}: need 0 <= min_range < max_range, got {} and {}",
-                                       i, sp.min_range, sp.max_range));
-  }
-  if (!(n.v0 > 0.0)) bad("controller.v0", "must be positive");
-  if (!(n.gtg_a > 0.0)) bad("controller.gtg_a", "must be positive");
-  if (!(n.epsilon > 0.0)) bad("controller.epsilon", "must be positive");
-  if (!(n.d_unsafe >= 0.0)) bad("controller.d_unsafe", "must not be negative");
-  if (!(n.d_fb > n.d_unsafe))
-    bad("controller.d_fb", fmt::format("must be larger than d_unsafe ({})", n.d_unsafe));
-  if (!(n.d_o > n.d_fb))
-    bad("controller.d_o", fmt::format("must be larger than d_fb ({})", n.d_fb));
-  if (!(n.hysteresis >= 0.0)) bad("controller.hysteresis", "must not be negative");
-  if (!(n.d_unsafe + n.hysteresis < n.d_o))
-    bad("controller.hysteresis", "d_unsafe + hysteresis must stay below d_o");
-  if (!(n.progress_margin >= 0.0)) bad("controller.progress_margin", "must not be negative");
-  if (!(n.k_fb >= 0.0)) bad("controller.k_fb", "must not be negative");
-  if (!(n.blend_far > n.blend_near && n.blend_near >= 0.0))
-    bad("controller.blend_far", "need 0 <= blend_near < blend_far");
-  if (!(n.obstacle_memory >= 0.0)) bad("controller.obstacle_memory", "must not be negative");
-  if (!(n.clear_shot_corridor >= 0.0))
-    bad("controller.clear_shot_corridor", "must not be negative (0 turns it off)");
-  if (n.chatter_switches < 2 || n.chatter_switches > ChatterMonitor::kCapacity)
-    bad("controller.chatter_switches",
-        fmt::format("must be between 2 and {}", ChatterMonitor::kCapacity));
-  if (!(n.chatter_window > 0.0)) bad("controller.chatter_window", "must be positive");
-  if (n.heading_pid.integral_limit < 0.0)
-    bad("controller.pid.integral_limit", "must not be negative");
-
-  const World& w = *s.world;
-  // Without bounds a map is the whole world: off the map is unknown space, not free floor.
-  Vec2 map_lo, map_hi;
-  const bool map_only = w.grid() != nullptr && !w.bounds();
-  if (map_only) w.grid()->world_extent(&map_lo, &map_hi);
-  auto off_map = [&](const Vec2& p) { return map_only && !Box2{map_lo, map_hi}.contains(p); };
-  if (off_map(s.start.position))
-    bad("robot.start",
-        fmt::format("({}, {}) is outside the map, which spans ({}, {}) to ({}, {}) m",
-                    s.start.position.x(), s.start.position.y(), map_lo.x(), map_lo.y(), map_hi.x(),
-                    map_hi.y()));
-  if (w.is_inside_obstacle(s.start.position) || body_clearance(w, r, s.start) <= 0.0)
-    bad("robot.start",
-        fmt::format("the robot at ({}, {}) overlaps an obstacle or lies outside the world "
-                    "(clearance {:.3g} m, body radius {} m)",
-                    s.start.position.x(), s.start.position.y(), w.clearance(s.start.position),
-                    r.body_radius));
-  for (std::size_t i = 0; i < s.goals.size(); ++i) {
-    const Vec2 g = s.goals[i];
-    const std::string key = s.goals.size() == 1 ? "goal" : fmt::format("goals[{}]", i);
-    if (off_map(g))
-      bad(key, fmt::format("({}, {}) is outside the map, which spans ({}, {}) to ({}, {}) m", g.x(),
-                           g.y(), map_lo.x(), map_lo.y(), map_hi.x(), map_hi.y()));
-    if (w.is_inside_obstacle(g) || w.clearance(g) <= 0.0)
-      bad(key, fmt::format("({}, {}) is inside an obstacle or outside the world", g.x(), g.y()));
-  }
-}
 
 namespace {
 

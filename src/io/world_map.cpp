@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cctype>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/io/course_world.hpp"
-#include "floornav/io/input_error.hpp"
 #include "floornav/io/movingai_map.hpp"
 #include "floornav/io/ros_map.hpp"
 #include "floornav/io/sdf_world.hpp"

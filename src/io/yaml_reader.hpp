@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/geometry/vec2.hpp"
-#include "floornav/io/input_error.hpp"
 #include "maps/text_parse.hpp"  // kMaxInputMagnitude
 
 namespace floornav::io_detail {

@@ -159,8 +159,7 @@ bool world_has_content(const World& w) {
 }
 
 const OccupancyGrid* grid_of(const Scenario& s) {
-  if (s.world && s.world->grid()) return s.world->grid();
-  return s.grid.get();
+  return s.world ? s.world->grid() : nullptr;
 }
 
 void add_grid_extent(Extent& e, const OccupancyGrid& g) {
@@ -173,10 +172,10 @@ void add_grid_extent(Extent& e, const OccupancyGrid& g) {
 }
 
 /// Everything that must be in the picture: the world, the start, the goals, the path.
-/// One robot's run as the picture draws it: the scenario as that robot sees it (its body,
-/// start, goals and epsilon) and its result.
+/// One robot's run as the picture draws it: the robot's task (its body, start, goals and
+/// epsilon) and its result.
 struct Track {
-  const Scenario* s;
+  const RobotTask* task;
   const RunResult* r;
 };
 
@@ -190,12 +189,13 @@ Extent picture_extent(const Scenario& world_s, std::span<const Track> tracks) {
   if (const OccupancyGrid* g = grid_of(world_s)) add_grid_extent(e, *g);
   double body = 0.0;
   for (const Track& t : tracks) {
-    const Scenario& s = *t.s;
+    const RobotTask& s = *t.task;
     const RunResult& r = *t.r;
     body = std::max(body, std::max(0.0, s.robot.body_radius));
     const double b = std::max(0.0, s.robot.body_radius);
     e.add(s.start.position.x(), s.start.position.y(), b);
-    for (const Vec2& goal : s.goals) e.add(goal.x(), goal.y(), std::max(0.0, s.navigation.epsilon));
+    for (const Vec2& goal : s.goals)
+      e.add(goal.x(), goal.y(), std::max(0.0, s.controller.params.epsilon));
     for (const TrajectorySample& p : r.trajectory) e.add(p.x, p.y, b);
     e.add(r.final_x, r.final_y, b);
   }
@@ -496,8 +496,8 @@ void draw_flag(Out out, double x, double y, double size) {
                  Px{x}, Px{y});
 }
 
-void draw_goal_areas(Out out, const Scenario& s, const View& v) {
-  const double eps = std::max(0.0, s.navigation.epsilon) * v.scale;
+void draw_goal_areas(Out out, const RobotTask& s, const View& v) {
+  const double eps = std::max(0.0, s.controller.params.epsilon) * v.scale;
   for (const Vec2& g : s.goals) {
     if (!is_finite(g)) continue;
     fmt::format_to(out,
@@ -508,7 +508,7 @@ void draw_goal_areas(Out out, const Scenario& s, const View& v) {
   }
 }
 
-void draw_goal_flags(Out out, const Scenario& s, const View& v) {
+void draw_goal_flags(Out out, const RobotTask& s, const View& v) {
   for (std::size_t i = 0; i < s.goals.size(); ++i) {
     const Vec2& g = s.goals[i];
     if (!is_finite(g)) continue;
@@ -572,8 +572,8 @@ std::vector<LegendItem> legend_items(std::span<const Track> tracks) {
     for (int m = 0; m < n; ++m)
       if (used[static_cast<std::size_t>(m)]) add_mode(r, m);
     for (int m : extra) add_mode(r, m);
-    goals = goals || !t.s->goals.empty();
-    many_goals = many_goals || t.s->goals.size() > 1 || (goals && tracks.size() > 1);
+    goals = goals || !t.task->goals.empty();
+    many_goals = many_goals || t.task->goals.size() > 1 || (goals && tracks.size() > 1);
     switches = switches || !r.transition_x.empty();
     collided = collided || r.collided;
   }
@@ -708,12 +708,12 @@ std::string render_tracks(const Scenario& world_s, std::span<const Track> tracks
   if (const OccupancyGrid* g = grid_of(world_s)) draw_grid(out, *g, v);
   if (world_s.world) draw_obstacles(out, *world_s.world, v);
   draw_walls(out, world_s, v);
-  for (const Track& t : tracks) draw_goal_areas(out, *t.s, v);
+  for (const Track& t : tracks) draw_goal_areas(out, *t.task, v);
   for (const Track& t : tracks) draw_path(out, *t.r, v, max_points);
   for (const Track& t : tracks) draw_switches(out, *t.r, v);
 
   for (const Track& t : tracks) {
-    const Scenario& s = *t.s;
+    const RobotTask& s = *t.task;
     const RunResult& r = *t.r;
     const double body_px = std::max(s.robot.body_radius * v.scale, kMinRobotRadius);
     draw_robot(out, v.x(s.start.position.x()), v.y(s.start.position.y()), body_px, s.start.theta,
@@ -725,11 +725,11 @@ std::string render_tracks(const Scenario& world_s, std::span<const Track> tracks
       draw_robot(out, v.x(r.final_x), v.y(r.final_y), body_px, r.final_theta, "#90a4ae", 0.9,
                  "#263238");
   }
-  for (const Track& t : tracks) draw_goal_flags(out, *t.s, v);  // over the final bodies
+  for (const Track& t : tracks) draw_goal_flags(out, *t.task, v);  // over the final bodies
   // A small fleet's robots are named at their start.
   if (fleet && tracks.size() <= kMaxNamedRobots)
     for (const Track& t : tracks) {
-      const Scenario& s = *t.s;
+      const RobotTask& s = *t.task;
       const double body_px = std::max(s.robot.body_radius * v.scale, kMinRobotRadius);
       fmt::format_to(out,
                      R"(<text x="{}" y="{}" font-family="{}" font-size="11" fill="#222222" )"
@@ -777,40 +777,21 @@ double shown_clearance(double c) {
 }  // namespace
 
 std::string render_trajectory_svg(const Scenario& s, const RunResult& r) {
-  const std::string title = fmt::format("{} — {} — {} in {:.2f} s", s.name, to_string(s.controller),
-                                        to_string(r.status), r.sim_time);
+  const std::string title = fmt::format("{} — {} — {} in {:.2f} s", s.name,
+                                        s.robot().controller.kind, to_string(r.status), r.sim_time);
   std::string numbers = fmt::format(
       "path {:.2f} m · min clearance {:.3f} m · {} switch{} · {} steps", r.path_length,
       shown_clearance(r.min_clearance), r.mode_switches, r.mode_switches == 1 ? "" : "es", r.steps);
   if (r.goal_count > 1) numbers += fmt::format(" · goals {}/{}", r.goals_reached, r.goal_count);
   if (r.chatter_episodes > 0) numbers += fmt::format(" · chatter ×{}", r.chatter_episodes);
-  const Track track{&s, &r};
+  const Track track{&s.robot(), &r};
   return render_tracks(s, std::span<const Track>(&track, 1), title, numbers);
 }
 
 std::string render_fleet_svg(const Scenario& s, const FleetResult& f) {
-  // Each robot's own view of the scenario (its body, start, goals), for the shared drawing code.
-  std::vector<Scenario> views;
-  views.reserve(f.robots.size());
-  for (std::size_t i = 0; i < f.robots.size(); ++i) {
-    Scenario v;
-    v.name = s.name;
-    if (i < s.robots.size()) {
-      const RobotTask& t = s.robots[i];
-      v.robot.body_radius = t.robot.body_radius;
-      v.start = t.start;
-      v.goals = t.goals;
-      v.navigation.epsilon = t.navigation.epsilon;
-    } else {
-      v.robot.body_radius = s.robot.body_radius;
-      v.start = s.start;
-      v.goals = s.goals;
-      v.navigation.epsilon = s.navigation.epsilon;
-    }
-    views.push_back(std::move(v));
-  }
   std::vector<Track> tracks;
-  for (std::size_t i = 0; i < f.robots.size(); ++i) tracks.push_back({&views[i], &f.robots[i]});
+  for (std::size_t i = 0; i < f.robots.size() && i < s.robots.size(); ++i)
+    tracks.push_back({&s.robots[i], &f.robots[i]});
   const std::string title = fmt::format("{} — {} robots — {} in {:.2f} s", s.name, f.robots.size(),
                                         to_string(f.status), f.sim_time);
   const std::string numbers = fmt::format(

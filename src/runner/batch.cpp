@@ -13,8 +13,8 @@
 #include <optional>
 #include <thread>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/io/atomic_file.hpp"
-#include "floornav/io/input_error.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/runner/run_outputs.hpp"
 #include "floornav/world/shortest_path.hpp"
@@ -26,7 +26,8 @@ namespace {
 /// The grid optimum of a case's scenario: a length in metres, or the reason there is none.
 Optimum case_optimum(const Scenario& s) {
   if (!s.world) return {};
-  return scenario_optimum(*s.world, s.robot.body_radius, s.start.position, s.goals);
+  const RobotTask& t = s.robot();
+  return scenario_optimum(*s.world, t.robot.body_radius, t.start.position, t.goals);
 }
 
 nlohmann::ordered_json result_line(const BatchCase& c, const RunResult& r, bool timing,
@@ -34,8 +35,8 @@ nlohmann::ordered_json result_line(const BatchCase& c, const RunResult& r, bool 
   nlohmann::ordered_json line;
   line["case"] = c.id;
   line["source"] = c.source;
-  line["controller"] = std::string(to_string(c.scenario.controller));
-  line["robot"] = c.scenario.robot.preset;
+  line["controller"] = c.scenario.robot().controller.kind;
+  line["robot"] = c.scenario.robot().robot.preset;
   const nlohmann::ordered_json summary = summary_to_json(r);
   for (const auto& [k, v] : summary.items()) line[k] = v;
   if (!timing) line["wall_time"] = 0.0;
@@ -69,8 +70,8 @@ nlohmann::ordered_json fleet_result_line(const BatchCase& c, const FleetResult& 
   nlohmann::ordered_json line;
   line["case"] = c.id;
   line["source"] = c.source;
-  line["controller"] = std::string(to_string(c.scenario.controller));
-  line["robot"] = c.scenario.robot.preset;
+  line["controller"] = c.scenario.robot().controller.kind;
+  line["robot"] = c.scenario.robot().robot.preset;
   nlohmann::ordered_json summary = fleet_summary_to_json(f);
   summary.erase("robots");
   for (auto& [k, v] : summary.items()) line[k] = std::move(v);
@@ -216,7 +217,7 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
       Scenario sc = cases[i].scenario;  // shares the world; copies only small data
       sc.sim.record_trajectory = false;
       nlohmann::ordered_json line;
-      if (!sc.robots.empty()) {
+      if (sc.is_fleet()) {
         // A fleet: one thread per case, like every case (the batch is parallel across cases).
         line = fleet_result_line(cases[i], run_fleet_timed(sc, 1), options.timing);
       } else {

@@ -8,7 +8,7 @@
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
 #include "floornav/render/trajectory_svg.hpp"
-#include "floornav/sim/simulation.hpp"
+#include "floornav/scenario/simulate.hpp"
 
 namespace floornav {
 

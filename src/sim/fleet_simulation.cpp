@@ -5,6 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <thread>
+#include <utility>
+
+#include "floornav/nav/navigation_controller.hpp"
 
 namespace floornav {
 
@@ -27,34 +30,13 @@ double sensing_reach(const RobotSpec& robot) {
 // Rays a thread should have per step before a fleet is split across threads.
 constexpr std::size_t kRaysPerThread = 2000;
 
-RobotTask lone_robot(const Scenario& s) {
-  return RobotTask{s.name, s.robot, s.start, s.goals, s.controller, s.navigation};
-}
-
 }  // namespace
 
-FleetSimulation::FleetSimulation(const Scenario& scenario) : scenario_(scenario) {
-  if (scenario.robots.empty()) own_tasks_.push_back(lone_robot(scenario));
-  tasks_ = scenario.robots.empty() ? std::span<const RobotTask>(own_tasks_)
-                                   : std::span<const RobotTask>(scenario.robots);
+FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> robots,
+                                 const SimConfig& sim, std::string name)
+    : world_(world), tasks_(robots), sim_(sim), name_(std::move(name)) {
   const std::size_t n = tasks_.size();
-
-  // One automaton per distinct controller: 100,000 robots of one kind share one.
-  automaton_of_.assign(n, 0);
-  std::vector<std::size_t> first_of;  // automaton k was built for tasks_[first_of[k]]
-  for (std::size_t i = 0; i < n; ++i) {
-    const RobotTask& t = tasks_[i];
-    std::size_t k = 0;
-    while (k < first_of.size() && !(tasks_[first_of[k]].controller == t.controller &&
-                                    tasks_[first_of[k]].navigation == t.navigation))
-      ++k;
-    if (k == first_of.size()) {
-      first_of.push_back(i);
-      automata_.push_back(make_navigation_automaton(t.controller, t.navigation));
-    }
-    automaton_of_[i] = static_cast<std::uint32_t>(k);
-  }
-
+  ControllerMaker controllers;  // robots of one built-in kind share one automaton
   std::size_t max_sensors = 0;
   double max_reach = 0.0;
   agents_.reserve(n);
@@ -63,19 +45,16 @@ FleetSimulation::FleetSimulation(const Scenario& scenario) : scenario_(scenario)
   for (std::size_t i = 0; i < n; ++i) {
     const RobotTask& t = tasks_[i];
     AgentSetup a;
-    a.world = scenario.world.get();
-    a.robot = &t.robot;
-    a.start = t.start;
-    a.goals = t.goals;
-    a.automaton = &automata_[automaton_of_[i]];
-    a.navigation = &t.navigation;
-    a.sim = &scenario.sim;
-    a.seed = robot_seed(scenario.sim.seed, i);
+    a.world = &world_;
+    a.task = &t;
+    a.sim = &sim_;
+    a.controller = controllers.make(t.controller, {t.robot, t.controller.params, t.name, i});
+    a.seed = robot_seed(sim_.seed, i);
     a.name = t.name;
-    a.log_transitions = n == 1 || scenario.sim.record_trajectory;
+    a.log_transitions = n == 1 || sim_.record_trajectory;
     a.names = false;
     a.reserve_trajectory = n == 1;
-    agents_.emplace_back(a);
+    agents_.emplace_back(std::move(a));
     radius_[i] = t.robot.body_radius;
     reach_[i] = sensing_reach(t.robot);
     max_radius_ = std::max(max_radius_, radius_[i]);
@@ -90,7 +69,7 @@ FleetSimulation::FleetSimulation(const Scenario& scenario) : scenario_(scenario)
 
   // The grid covers the world (and the robots, for unbounded worlds); cells about one sensing
   // reach wide, so a robot's query touches few cells.
-  Box2 box = scenario.world->extent();
+  Box2 box = world_.extent();
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2 p = tasks_[i].start.position;
     if (i == 0 && box.size().x() <= 0.0 && box.size().y() <= 0.0) box = Box2{p, p};
@@ -112,7 +91,7 @@ FleetSimulation::FleetSimulation(const Scenario& scenario) : scenario_(scenario)
 
 void FleetSimulation::update_snapshot() {
   running_ = 0;
-  const bool park = scenario_.sim.park_finished;
+  const bool park = sim_.park_finished;
   bool presence_changed = false;
   for (std::size_t i = 0; i < agents_.size(); ++i) {
     const RobotAgent& a = agents_[i];
@@ -289,16 +268,15 @@ FleetResult FleetSimulation::take_result() {
 
 FleetResult FleetSimulation::make_result(std::vector<RunResult> runs) const {
   FleetResult f;
-  f.scenario = scenario_.name;
+  f.scenario = name_;
   f.collisions = collisions_;
   f.steps = steps_;
   f.min_clearance = std::numeric_limits<double>::infinity();
   bool any_collision = false, any_stuck = false;
   for (std::size_t i = 0; i < agents_.size(); ++i) {
     RunResult r = std::move(runs[i]);
-    const NavigationAutomaton& a = automata_[automaton_of_[i]];
-    for (const auto& m : a.modes()) r.mode_names.push_back(m.name);
-    for (const auto& e : a.edges()) r.guard_names.push_back(e.guard_name);
+    r.mode_names = agents_[i].controller().mode_names();
+    r.guard_names = agents_[i].controller().guard_names();
     f.reached += r.reached_goal;
     f.collided += r.collided;
     f.deliveries += r.goals_reached;
@@ -315,12 +293,6 @@ FleetResult FleetSimulation::make_result(std::vector<RunResult> runs) const {
              : any_stuck                                   ? RunStatus::Stuck
                                                            : RunStatus::Timeout;
   return f;
-}
-
-FleetResult simulate_fleet(const Scenario& scenario, int threads) {
-  FleetSimulation sim(scenario);
-  sim.run(threads);
-  return sim.take_result();
 }
 
 }  // namespace floornav

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "floornav/kinematics/unicycle.hpp"
 #include "floornav/nav/heading_tracker.hpp"
@@ -15,6 +17,11 @@ constexpr std::size_t kMaxSensorsForMemory = 32;
 // The transition log is reserved for this many switches, so that logging one allocates nothing
 // in the step loop; a run that chatters beyond it grows the log (amortised, rare).
 constexpr std::size_t kReservedTransitions = 1024;
+std::string fmt_decision_error(int mode, int guard, std::size_t modes, std::size_t guards) {
+  return "the controller reported mode " + std::to_string(mode) + " and guard " +
+         std::to_string(guard) + ", but names " + std::to_string(modes) + " modes and " +
+         std::to_string(guards) + " guards";
+}
 // Slack subtracted per step from the clearance lower bound, far above the rounding of a
 // clearance (~1e-15 m) or a step length, so the bound stays a true lower bound.
 constexpr double kClearanceBoundSlack = 1e-9;  // m
@@ -28,17 +35,18 @@ void SensingScratch::fit(std::size_t sensors) {
   points.assign(sensors + ObstacleMemory::kCapacity, Vec2::Zero());
 }
 
-RobotAgent::RobotAgent(const AgentSetup& setup)
+RobotAgent::RobotAgent(AgentSetup setup)
     : world_(setup.world),
-      robot_(setup.robot),
-      goals_(setup.goals),
-      automaton_(setup.automaton),
-      nav_(setup.navigation),
+      robot_(&setup.task->robot),
+      goals_(setup.task->goals),
+      nav_(&setup.task->controller.params),
       sim_(setup.sim),
-      state_(setup.automaton->initial_state()),
+      controller_(std::move(setup.controller)),
       rng_(setup.seed),
-      pose_(setup.start),
+      pose_(setup.task->start),
       log_transitions_(setup.log_transitions) {
+  controller_->reset();
+  mode_ = controller_->mode();
   const std::size_t n_sensors = robot_->sensors.size();
   use_memory_ = nav_->obstacle_memory > 0.0 && n_sensors <= kMaxSensorsForMemory;
   stuck_radius_ = sim_->stuck_radius > 0.0 ? sim_->stuck_radius : robot_->body_radius;
@@ -48,10 +56,10 @@ RobotAgent::RobotAgent(const AgentSetup& setup)
   r.scenario = setup.name;
   r.goal_count = static_cast<int>(goals_.size());
   if (setup.names) {
-    for (const auto& m : automaton_->modes()) r.mode_names.push_back(m.name);
-    for (const auto& e : automaton_->edges()) r.guard_names.push_back(e.guard_name);
+    r.mode_names = controller_->mode_names();
+    r.guard_names = controller_->guard_names();
   }
-  r.mode_time.assign(automaton_->modes().size(), 0.0);
+  r.mode_time.assign(controller_->mode_names().size(), 0.0);
   if (log_transitions_) {
     r.transitions.reserve(kReservedTransitions);
     r.transition_x.reserve(kReservedTransitions);
@@ -67,8 +75,8 @@ RobotAgent::RobotAgent(const AgentSetup& setup)
     const double steps = std::ceil(sim_->t_max / sim_->dt) + 2.0;
     if (setup.reserve_trajectory)
       r.trajectory.reserve(static_cast<std::size_t>(std::min(steps, 2.0e6)));
-    r.trajectory.push_back({0.0, pose_.position.x(), pose_.position.y(), pose_.theta, 0.0, 0.0, 0.0,
-                            0.0, state_.mode});
+    r.trajectory.push_back(
+        {0.0, pose_.position.x(), pose_.position.y(), pose_.theta, 0.0, 0.0, 0.0, 0.0, mode_});
   }
   if (goals_.empty())
     finish(RunStatus::Reached);
@@ -86,8 +94,19 @@ void RobotAgent::finish(RunStatus status) {
   result_.final_x = pose_.position.x();
   result_.final_y = pose_.position.y();
   result_.final_theta = pose_.theta;
-  result_.chatter_episodes = state_.chatter.episodes;
-  result_.first_chatter_time = state_.chatter.first_time;
+  result_.chatter_episodes = chatter_.episodes;
+  result_.first_chatter_time = chatter_.first_time;
+}
+
+void RobotAgent::log_transition(double t, int to, int guard) {
+  RunResult& r = result_;
+  if (log_transitions_) {
+    r.transitions.push_back({t, mode_, to, guard});
+    r.transition_x.push_back(pose_.position.x());
+    r.transition_y.push_back(pose_.position.y());
+  }
+  ++r.mode_switches;
+  chatter_.record(t, nav_->chatter_switches, nav_->chatter_window);
 }
 
 void RobotAgent::collide_with_robot(double gap) {
@@ -97,14 +116,8 @@ void RobotAgent::collide_with_robot(double gap) {
   finish(RunStatus::Collision);
 }
 
-bool RobotAgent::step(SensingScratch& scratch, std::span<const Circle> others) {
-  if (finished_) return false;
+void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others) {
   const RobotSpec& robot = *robot_;
-  const NavigationParams& nav = *nav_;
-  const double dt = sim_->dt;
-  RunResult& r = result_;
-
-  // 1. sense
   // The body disc is clear of every obstacle by at least clearance_bound_, so sensors mounted
   // within it start outside the obstacles: the world need not test that per ray.
   const std::size_t n_sensors = robot.sensors.size();
@@ -113,43 +126,88 @@ bool RobotAgent::step(SensingScratch& scratch, std::span<const Circle> others) {
   compute_sensor_beams(pose_, robot.sensors, beams);
   const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
   sense_ranges(*world_, beams, robot.sensors, robot.sensor_noise, rng_, ranges, free, others);
-  std::size_t n = ranges_to_points(beams, robot.sensors, ranges, scratch.sensed);
-  std::span<const Vec2> points(scratch.sensed.data(), n);
-  if (use_memory_) {
-    n = memory_.update(points, t_, nav.obstacle_memory, 0.25 * robot.body_radius, scratch.points);
-    points = std::span<const Vec2>(scratch.points.data(), n);
-  }
+  scratch.sensed_count = ranges_to_points(beams, robot.sensors, ranges, scratch.sensed);
+  scratch.point_count = scratch.sensed_count;
+  if (use_memory_)
+    scratch.point_count =
+        memory_.update(std::span<const Vec2>(scratch.sensed.data(), scratch.sensed_count), t_,
+                       nav_->obstacle_memory, 0.25 * robot.body_radius, scratch.points);
+}
 
-  // 2. supervise
-  const Vec2 goal = goals_[goal_index_];
-  const BodyShape shape{robot.footprint, pose_.theta};
-  const NavigationInput in =
-      make_navigation_input(pose_.position, goal, points, robot.body_radius, nav, &shape);
-  if (auto tr = automaton_->step(in, state_, t_ + dt, dt)) {
-    if (log_transitions_) {
-      r.transitions.push_back(*tr);
-      r.transition_x.push_back(pose_.position.x());
-      r.transition_y.push_back(pose_.position.y());
-    }
-    ++r.mode_switches;
+Observation RobotAgent::observe(const SensingScratch& scratch) const {
+  const std::size_t n_sensors = robot_->sensors.size();
+  Observation obs;
+  obs.t = t_;
+  obs.dt = sim_->dt;
+  obs.pose = pose_;
+  obs.goal = goals_[std::min(goal_index_, goals_.size() - 1)];
+  obs.goal_index = static_cast<int>(goal_index_);
+  obs.goal_count = static_cast<int>(goals_.size());
+  obs.ranges = std::span<const double>(scratch.ranges.data(), n_sensors);
+  obs.beams = std::span<const SensorBeam>(scratch.beams.data(), n_sensors);
+  obs.sensed = std::span<const Vec2>(scratch.sensed.data(), scratch.sensed_count);
+  obs.points =
+      use_memory_ ? std::span<const Vec2>(scratch.points.data(), scratch.point_count) : obs.sensed;
+  obs.robot = robot_;
+  obs.params = nav_;
+  return obs;
+}
+
+bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
+  if (finished_) return false;
+  const RobotSpec& robot = *robot_;
+  const NavigationParams& nav = *nav_;
+  const double dt = sim_->dt;
+  RunResult& r = result_;
+
+  // 2. decide: the controller's command (a built-in kind steps its automaton here), or the
+  // caller's, for which the goal counts as reached within epsilon.
+  const Observation obs = observe(scratch);
+  Command command = Command::goal_reached();
+  if (external) {
+    if (!(obs.goal_distance() < nav.epsilon)) command = *external;
+  } else {
+    const Decision d = controller_->decide(obs);
+    const auto modes = controller_->mode_names().size();
+    if (d.mode < 0 || static_cast<std::size_t>(d.mode) >= modes ||
+        d.guard >= static_cast<int>(controller_->guard_names().size()) || d.guard < -1)
+      throw std::out_of_range(
+          fmt_decision_error(d.mode, d.guard, modes, controller_->guard_names().size()));
+    if (d.mode != mode_ || d.guard >= 0) log_transition(t_ + dt, d.mode, d.guard);
+    mode_ = d.mode;
+    command = d.command;
   }
-  if (automaton_->is_terminal(state_)) {
+  if (!command.is_finite())
+    throw std::domain_error("the controller's command is not a finite number (NaN or infinity)");
+  if (command.kind() == Command::Kind::GoalReached) {
     // STOP: this goal is reached; go on to the next one, or end the run.
     ++r.goals_reached;
     if (++goal_index_ >= goals_.size()) {
       finish(RunStatus::Reached);
       return false;
     }
-    state_ = automaton_->initial_state();
+    controller_->reset();
+    mode_ = controller_->mode();
     pid_ = {};
     memory_.clear();
     return true;
   }
 
   // 3. control (Fig 5.12), 4. saturate
-  const Vec2 u = automaton_->flow(in, state_);
-  const UnicycleCommand wanted =
-      track_velocity(u, pose_.theta, nav.v0, nav.heading_pid, pid_, dt, nav.slow_when_turning);
+  UnicycleCommand wanted;
+  switch (command.kind()) {
+    case Command::Kind::Velocity:
+      wanted = track_velocity(command.u(), pose_.theta, nav.v0, nav.heading_pid, pid_, dt,
+                              nav.slow_when_turning);
+      break;
+    case Command::Kind::Unicycle:
+      wanted = command.unicycle_command();
+      break;
+    case Command::Kind::Wheels:
+    default:
+      wanted = wheels_to_unicycle(robot.drive, command.wheel_speeds());
+      break;
+  }
   const WheelSpeeds wheels = saturate_wheels(robot.drive, wanted);
   const UnicycleCommand driven = wheels_to_unicycle(robot.drive, wheels);
 
@@ -160,12 +218,12 @@ bool RobotAgent::step(SensingScratch& scratch, std::span<const Circle> others) {
   pose_ = next;
   t_ += dt;
   ++r.steps;
-  r.mode_time[static_cast<std::size_t>(state_.mode)] += dt;
+  r.mode_time[static_cast<std::size_t>(mode_)] += dt;
 
   // 7. record (before the checks, so the final row is the state the run ended in)
   if (sim_->record_trajectory)
     r.trajectory.push_back({t_, pose_.position.x(), pose_.position.y(), pose_.theta, driven.v,
-                            driven.omega, wheels.left, wheels.right, state_.mode});
+                            driven.omega, wheels.left, wheels.right, mode_});
 
   // 6. check. A disc body's clearance changes by at most the distance moved, so while that
   // lower bound stays above min_clearance the exact value could change neither min_clearance

@@ -1,38 +1,59 @@
 #include "floornav/sim/simulation.hpp"
 
+#include <utility>
+
+#include "floornav/nav/navigation_controller.hpp"
+
 namespace floornav {
 
 namespace {
-AgentSetup agent_setup(const Scenario& s, const NavigationAutomaton& automaton) {
+AgentSetup agent_setup(const World& world, const RobotTask& task, const SimConfig& sim,
+                       std::string name) {
   AgentSetup a;
-  a.world = s.world.get();
-  a.robot = &s.robot;
-  a.start = s.start;
-  a.goals = s.goals;
-  a.automaton = &automaton;
-  a.navigation = &s.navigation;
-  a.sim = &s.sim;
-  a.seed = s.sim.seed;
-  a.name = s.name;
+  a.world = &world;
+  a.task = &task;
+  a.sim = &sim;
+  a.controller =
+      ControllerMaker().make(task.controller, {task.robot, task.controller.params, task.name, 0});
+  a.seed = sim.seed;
+  a.name = name.empty() ? task.name : std::move(name);
   return a;
 }
 }  // namespace
 
-Simulation::Simulation(const Scenario& scenario)
-    : automaton_(make_navigation_automaton(scenario.controller, scenario.navigation)),
-      scratch_(scenario.robot.sensors.size()),
-      agent_(agent_setup(scenario, automaton_)) {}
+Simulation::Simulation(const World& world, const RobotTask& task, const SimConfig& sim,
+                       std::string name)
+    : scratch_(task.robot.sensors.size()), agent_(agent_setup(world, task, sim, std::move(name))) {}
+
+void Simulation::sense_once() {
+  if (sensed_) return;
+  agent_.sense(scratch_);
+  sensed_ = true;
+}
+
+bool Simulation::step() {
+  if (agent_.finished()) return false;
+  sense_once();
+  sensed_ = false;
+  return agent_.act(scratch_);
+}
+
+bool Simulation::step(const Command& command) {
+  if (agent_.finished()) return false;
+  sense_once();
+  sensed_ = false;
+  return agent_.act(scratch_, &command);
+}
+
+Observation Simulation::observe() {
+  if (!agent_.finished()) sense_once();
+  return agent_.observe(scratch_);
+}
 
 const RunResult& Simulation::run() {
   while (step()) {
   }
   return result();
-}
-
-RunResult simulate(const Scenario& scenario) {
-  Simulation sim(scenario);
-  sim.run();
-  return sim.result();
 }
 
 }  // namespace floornav

@@ -39,7 +39,7 @@ World::World(WorldDesc desc)
     : bounds_(desc.bounds),
       circles_(std::move(desc.circles)),
       polygons_(std::move(desc.polygons)),
-      grid_(desc.grid) {
+      grid_(std::move(desc.grid)) {
   if (bounds_) {
     const Vec2 a = bounds_->min, c = bounds_->max;
     const Vec2 b(c.x(), a.y()), d(a.x(), c.y());

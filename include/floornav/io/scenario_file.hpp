@@ -9,8 +9,9 @@
 #include <string>
 #include <string_view>
 
-#include "floornav/io/input_error.hpp"
+#include "floornav/core/input_error.hpp"
 #include "floornav/scenario/scenario.hpp"
+#include "floornav/scenario/validate.hpp"
 
 namespace floornav {
 
@@ -21,9 +22,5 @@ Scenario load_scenario_file(const std::filesystem::path& path,
 /// The same from YAML text; `origin` names it in errors and anchors relative paths.
 Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& origin,
                             std::span<const std::string> overrides = {});
-
-/// Checks a scenario built in code or loaded: start and goals in free space, sane step, ...
-/// Throws InputError naming `file` and the key.
-void validate_scenario(const Scenario& s, const std::string& file);
 
 }  // namespace floornav

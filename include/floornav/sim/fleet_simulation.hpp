@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Many robots in one world (a scenario's `robots` list). Every step, each robot senses the world
+/// Many robots in one world. Every step, each robot senses the world
 /// and the bodies of the other robots (discs of their body radius) as they stood at the start of
 /// the step, then decides and moves exactly as a lone robot does (robot_agent.hpp). Then the
 /// robots are checked against each other: bodies that touch end both runs as collisions.
@@ -16,11 +16,12 @@
 #include <string>
 #include <vector>
 
-#include "floornav/nav/navigation_automaton.hpp"
-#include "floornav/scenario/scenario.hpp"
 #include "floornav/sim/robot_agent.hpp"
 #include "floornav/sim/robot_neighbour_grid.hpp"
+#include "floornav/sim/robot_task.hpp"
 #include "floornav/sim/run_result.hpp"
+#include "floornav/sim/sim_config.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 
@@ -49,9 +50,10 @@ struct FleetResult {
 
 class FleetSimulation {
  public:
-  /// `scenario.robots` (or, when empty, the scenario's one robot). The scenario must outlive
-  /// the simulation.
-  explicit FleetSimulation(const Scenario& scenario);
+  /// `robots` in `world`; world, robots and sim must outlive the simulation. `name` names the
+  /// run in its result.
+  FleetSimulation(const World& world, std::span<const RobotTask> robots, const SimConfig& sim,
+                  std::string name = "fleet");
 
   /// Advances every running robot one step on the calling thread; false once all have ended.
   bool step();
@@ -88,11 +90,10 @@ class FleetSimulation {
   /// The fleet's result from each robot's run (in robot order), names filled in.
   FleetResult make_result(std::vector<RunResult> runs) const;
 
-  const Scenario& scenario_;
-  std::vector<RobotTask> own_tasks_;  ///< the lone robot as a fleet of one
+  const World& world_;
   std::span<const RobotTask> tasks_;
-  std::vector<NavigationAutomaton> automata_;  ///< one per distinct controller set-up
-  std::vector<std::uint32_t> automaton_of_;
+  const SimConfig& sim_;
+  std::string name_;
   std::vector<RobotAgent> agents_;
   // The fleet as the robots see it at the start of a step (contiguous, for the grid).
   std::vector<Vec2> positions_;
@@ -110,8 +111,5 @@ class FleetSimulation {
   std::size_t running_{0};
   long long steps_{0};
 };
-
-/// Runs the scenario's fleet to the end on `threads` threads (0: all cores).
-FleetResult simulate_fleet(const Scenario& scenario, int threads = 1);
 
 }  // namespace floornav

@@ -1,11 +1,11 @@
 #pragma once
 /// @file
-/// One robot's run: its state, its supervisor, its metrics, and the step of simulation.hpp
-/// (sense, supervise, control, saturate, integrate, check, record). A Simulation drives one
+/// One robot's run: its state, its controller, its metrics, and the step of simulation.hpp
+/// (sense, decide, control, saturate, integrate, check, record). A Simulation drives one
 /// agent; a FleetSimulation drives many over one world, passing each the other robots it may
 /// see. The agent allocates nothing per step (trajectory recording and a transition log past
-/// its reserve aside); its scratch buffers belong to the caller, so that a fleet needs one set
-/// per thread rather than one per robot.
+/// its reserve aside; a user's controller may); its scratch buffers belong to the caller, so that
+/// a fleet needs one set per thread rather than one per robot.
 
 #include <algorithm>
 #include <cstdint>
@@ -13,14 +13,19 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
+#include "floornav/automaton/hybrid_automaton.hpp"
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/circle.hpp"
-#include "floornav/nav/navigation_automaton.hpp"
+#include "floornav/nav/controller.hpp"
 #include "floornav/nav/pid.hpp"
-#include "floornav/scenario/scenario.hpp"
 #include "floornav/sensing/obstacle_memory.hpp"
 #include "floornav/sensing/range_sensor.hpp"
+#include "floornav/sim/robot_task.hpp"
 #include "floornav/sim/run_result.hpp"
+#include "floornav/sim/sim_config.hpp"
+#include "floornav/world/world.hpp"
 
 namespace floornav {
 
@@ -30,6 +35,8 @@ struct SensingScratch {
   std::vector<double> ranges;
   std::vector<Vec2> sensed;
   std::vector<Vec2> points;
+  std::size_t sensed_count{0};  ///< returns of the last sense(), in `sensed`
+  std::size_t point_count{0};   ///< returns and remembered points, in `points`
 
   explicit SensingScratch(std::size_t sensors = 0) { fit(sensors); }
   /// Makes room for robots with up to `sensors` sensors (allocates only when growing).
@@ -39,16 +46,13 @@ struct SensingScratch {
 /// What an agent needs to know; every reference must outlive it.
 struct AgentSetup {
   const World* world{nullptr};
-  const RobotSpec* robot{nullptr};
-  Pose2 start{};
-  std::span<const Vec2> goals;  ///< visited in order
-  const NavigationAutomaton* automaton{nullptr};
-  const NavigationParams* navigation{nullptr};
+  const RobotTask* task{nullptr};  ///< body, start, route, controller parameters
   const SimConfig* sim{nullptr};
-  std::uint64_t seed{1};       ///< this robot's sensor noise
-  std::string name;            ///< RunResult::scenario
-  bool log_transitions{true};  ///< keep the transition log (fleets keep counts only)
-  bool names{true};            ///< copy mode and guard names into the result (fleets keep one)
+  std::unique_ptr<Controller> controller;  ///< made for this robot (see ControllerConfig)
+  std::uint64_t seed{1};                   ///< this robot's sensor noise
+  std::string name;                        ///< RunResult::scenario
+  bool log_transitions{true};              ///< keep the transition log (fleets keep counts only)
+  bool names{true};  ///< copy mode and guard names into the result (fleets keep one)
   /// Reserve the trajectory for t_max up front when recording (a lone robot: no reallocation in
   /// the step loop). Fleets grow it instead: most robots finish long before t_max.
   bool reserve_trajectory{true};
@@ -56,11 +60,28 @@ struct AgentSetup {
 
 class RobotAgent {
  public:
-  explicit RobotAgent(const AgentSetup& setup);
+  explicit RobotAgent(AgentSetup setup);
 
   /// One step at time `time()`, sensing the world and `others` (the bodies of nearby robots,
-  /// as discs). Returns false once the run has ended (then it does nothing).
-  bool step(SensingScratch& scratch, std::span<const Circle> others = {});
+  /// as discs): sense() then act(). Returns false once the run has ended (then it does nothing).
+  bool step(SensingScratch& scratch, std::span<const Circle> others = {}) {
+    if (finished_) return false;
+    sense(scratch, others);
+    return act(scratch);
+  }
+
+  /// Step 1: casts the sensors at the current pose, turns the returns into world points and adds
+  /// the remembered ones, into `scratch`. Once per step: it draws the sensor noise and updates
+  /// the obstacle memory.
+  void sense(SensingScratch& scratch, std::span<const Circle> others = {});
+  /// What the controller sees, from the sensing in `scratch` (valid while scratch is unchanged).
+  Observation observe(const SensingScratch& scratch) const;
+  /// Steps 2-7 from the sensing in `scratch`. With `external`, that command drives the robot
+  /// instead of the controller's (through the same pipeline and saturation), and the goal counts
+  /// as reached within controller.epsilon. Throws std::domain_error for a command that is not
+  /// finite, std::out_of_range for a mode or guard the controller did not name; a user
+  /// controller's own exceptions pass through. Returns false once the run has ended.
+  bool act(SensingScratch& scratch, const Command* external = nullptr);
 
   /// Ends the run as a collision with another robot at gap `gap` (<= 0).
   void collide_with_robot(double gap);
@@ -72,19 +93,26 @@ class RobotAgent {
   double time() const { return t_; }
   double body_radius() const { return robot_->body_radius; }
   const RobotSpec& robot() const { return *robot_; }
+  const Controller& controller() const { return *controller_; }
+  /// The mode the controller reported last.
+  int mode() const { return mode_; }
+  std::size_t goal_index() const { return goal_index_; }
   const RunResult& result() const { return result_; }
   RunResult& result() { return result_; }
 
  private:
   void finish(RunStatus status);
+  /// Logs a transition of the controller at time t (mode change or a named guard).
+  void log_transition(double t, int to, int guard);
 
   const World* world_;
   const RobotSpec* robot_;
   std::span<const Vec2> goals_;
-  const NavigationAutomaton* automaton_;
   const NavigationParams* nav_;
   const SimConfig* sim_;
-  NavigationAutomaton::State state_;
+  std::unique_ptr<Controller> controller_;
+  int mode_{0};
+  ChatterMonitor chatter_{};
   PidState pid_{};
   Rng rng_;
   ObstacleMemory memory_{};

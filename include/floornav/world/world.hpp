@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -30,10 +31,10 @@ struct Box2 {
 
 /// What a world is made of, as a user describes it. Polygons may wind either way.
 struct WorldDesc {
-  std::optional<Box2> bounds;               ///< walls on all four sides; outside is solid
-  std::vector<Circle> circles;              ///< solid discs (radius 0: a point obstacle)
-  std::vector<std::vector<Vec2>> polygons;  ///< solid simple polygons, convex or concave
-  const OccupancyGrid* grid{nullptr};       ///< optional occupancy map; must outlive the World
+  std::optional<Box2> bounds;                 ///< walls on all four sides; outside is solid
+  std::vector<Circle> circles;                ///< solid discs (radius 0: a point obstacle)
+  std::vector<std::vector<Vec2>> polygons;    ///< solid simple polygons, convex or concave
+  std::shared_ptr<const OccupancyGrid> grid;  ///< optional occupancy map (the World keeps it)
 };
 
 /// Immutable obstacle world. Queries are `const` and thread-safe.
@@ -87,7 +88,8 @@ class World {
   std::span<const Circle> circles() const { return circles_; }
   std::span<const Segment> segments() const { return segments_; }  ///< walls + polygon edges
   const std::vector<std::vector<Vec2>>& polygons() const { return polygons_; }
-  const OccupancyGrid* grid() const { return grid_; }
+  const OccupancyGrid* grid() const { return grid_.get(); }
+  const std::shared_ptr<const OccupancyGrid>& shared_grid() const { return grid_; }
   /// The box that holds every obstacle and the bounds (empty box for an empty world).
   const Box2& extent() const { return extent_; }
   std::size_t edge_count() const { return segments_.size(); }
@@ -128,7 +130,7 @@ class World {
   std::vector<Segment> segments_;
   std::vector<std::vector<Vec2>> polygons_;
   std::vector<Box2> polygon_boxes_;
-  const OccupancyGrid* grid_{nullptr};
+  std::shared_ptr<const OccupancyGrid> grid_;
   Box2 extent_;
   Index index_;
 };

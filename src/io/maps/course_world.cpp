@@ -4,9 +4,9 @@
 
 #include <string>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
-#include "floornav/io/input_error.hpp"
 #include "io/maps/xml_input.hpp"
 
 namespace floornav {

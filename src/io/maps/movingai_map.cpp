@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "floornav/io/input_error.hpp"
+#include "floornav/core/input_error.hpp"
 #include "io/maps/raster_image.hpp"
 #include "io/maps/text_parse.hpp"
 

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "floornav/io/input_error.hpp"
+#include "floornav/core/input_error.hpp"
 #include "io/maps/raster_image.hpp"
 
 namespace floornav::io_detail {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/geometry/angle.hpp"
-#include "floornav/io/input_error.hpp"
 #include "io/maps/raster_image.hpp"
 #include "io/maps/text_parse.hpp"
 

@@ -9,9 +9,9 @@
 #include <string_view>
 #include <vector>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/pose2.hpp"
-#include "floornav/io/input_error.hpp"
 #include "io/maps/text_parse.hpp"
 #include "io/maps/xml_input.hpp"
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "floornav/io/input_error.hpp"
+#include "floornav/core/input_error.hpp"
 #include "io/maps/text_parse.hpp"
 
 namespace floornav::io_detail {

@@ -1,4 +1,4 @@
-#include "floornav/io/input_error.hpp"
+#include "floornav/core/input_error.hpp"
 
 #include <cstddef>
 

@@ -1,0 +1,149 @@
+#pragma once
+/// @file
+/// The controller interface: what a robot's decision-maker sees at each step (an Observation) and
+/// what it may ask for (a Command). The four built-in kinds (navigation_controller.hpp) implement
+/// it; so can anyone, without touching floornav: derive from Controller, or wrap a callable with
+/// `make_controller`, and give the factory to a robot's ControllerConfig.
+///
+/// Whatever the command, the simulator drives the robot through the same pipeline: a velocity u
+/// for the point robot goes through the chapter's differential-drive pipeline (Fig 5.12,
+/// eqs. 5.28-5.31: theta_d = atan2(u_2, u_1), the heading PID, V = |u| capped); a unicycle
+/// (V, omega) and wheel speeds skip the PID; all three then pass the same wheel mapping and
+/// saturation (eqs. 5.10/5.11, "ensure omega").
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "floornav/geometry/pose2.hpp"
+#include "floornav/geometry/vec2.hpp"
+#include "floornav/kinematics/differential_drive.hpp"
+#include "floornav/nav/navigation_params.hpp"
+#include "floornav/robot/robot_spec.hpp"
+#include "floornav/sensing/range_sensor.hpp"
+
+namespace floornav {
+
+/// What a controller sees at one step. The spans point into the simulator's buffers and are
+/// valid only during the call.
+struct Observation {
+  double t{0.0};                      ///< s, time at the start of this step
+  double dt{0.0};                     ///< s, the step
+  Pose2 pose{};                       ///< x, y (m), theta (rad), world frame
+  Vec2 goal{Vec2::Zero()};            ///< m, the current goal
+  int goal_index{0};                  ///< which goal of the route (0-based)
+  int goal_count{0};                  ///< goals in the route
+  std::span<const double> ranges;     ///< m, one per sensor in the robot's order (max: nothing)
+  std::span<const SensorBeam> beams;  ///< each sensor's axis in the world frame at this step
+  std::span<const Vec2> sensed;       ///< m, world frame: this step's returns, one per hit
+  /// m, world frame: the returns plus the remembered ones (controller.obstacle_memory); what the
+  /// built-in behaviours use.
+  std::span<const Vec2> points;
+  const RobotSpec* robot{nullptr};          ///< the robot's base, body and sensors
+  const NavigationParams* params{nullptr};  ///< the controller section's values
+
+  /// |x - x_g|, m.
+  double goal_distance() const { return (goal - pose.position).norm(); }
+};
+
+/// What a controller asks for at one step.
+class Command {
+ public:
+  enum class Kind {
+    Velocity,     ///< u, m/s world frame, for the point robot: through the pipeline of Fig 5.12
+    Unicycle,     ///< (V, omega): m/s, rad/s
+    Wheels,       ///< (w_left, w_right): rad/s
+    GoalReached,  ///< the current goal is reached (STOP): the robot turns to the next one
+  };
+
+  static Command velocity(const Vec2& u) { return {Kind::Velocity, u.x(), u.y()}; }
+  static Command unicycle(double v, double omega) { return {Kind::Unicycle, v, omega}; }
+  static Command wheels(double left, double right) { return {Kind::Wheels, left, right}; }
+  static Command goal_reached() { return {Kind::GoalReached, 0.0, 0.0}; }
+
+  Kind kind() const { return kind_; }
+  Vec2 u() const { return {a_, b_}; }  ///< Velocity
+  UnicycleCommand unicycle_command() const { return {a_, b_}; }
+  WheelSpeeds wheel_speeds() const { return {a_, b_}; }
+  /// No NaN or infinity in it (the simulator refuses commands that have one).
+  bool is_finite() const;
+
+ private:
+  Command(Kind kind, double a, double b) : kind_(kind), a_(a), b_(b) {}
+  Kind kind_;
+  double a_;
+  double b_;
+};
+
+/// A command with the controller's mode (an index into Controller::mode_names()) and, when a
+/// transition fired at this step, the index of its guard (into guard_names(); -1: none). The
+/// simulator logs a transition when the mode changes or a guard is given.
+struct Decision {
+  Decision(Command c, int mode_ = 0, int guard_ = -1)  // NOLINT: a Command is a Decision
+      : command(c), mode(mode_), guard(guard_) {}
+  Command command;
+  int mode;
+  int guard;
+};
+
+/// A robot's decision-maker, called once per step. One instance per robot; it may keep state.
+/// Exceptions thrown by decide() end the simulation and reach the caller (the built-in kinds
+/// never throw).
+class Controller {
+ public:
+  /// `mode_names` name the modes decide() reports (the CSV's mode column, the summary's
+  /// mode_time); `guard_names` the guards it reports.
+  explicit Controller(std::vector<std::string> mode_names = {"drive"},
+                      std::vector<std::string> guard_names = {});
+  virtual ~Controller() = default;
+  Controller(const Controller&) = delete;
+  Controller& operator=(const Controller&) = delete;
+
+  /// One step: what to do given what the robot sees.
+  virtual Decision decide(const Observation& obs) = 0;
+  /// Forget everything: a run, or the next goal of the route, begins.
+  virtual void reset() {}
+  /// The mode the controller is in now (after reset(): the mode it starts in).
+  virtual int mode() const { return 0; }
+
+  const std::vector<std::string>& mode_names() const { return mode_names_; }
+  const std::vector<std::string>& guard_names() const { return guard_names_; }
+
+ private:
+  std::vector<std::string> mode_names_;
+  std::vector<std::string> guard_names_;
+};
+
+/// What a controller factory is told about the robot it makes a controller for.
+struct ControllerContext {
+  const RobotSpec& robot;
+  const NavigationParams& params;  ///< the robot's controller section (preset defaults + file)
+  std::string_view robot_name;
+  std::size_t robot_index{0};  ///< in the fleet (0 for a lone robot)
+};
+
+/// Makes one controller per robot (fleets call it once for each robot).
+using ControllerFactory = std::function<std::unique_ptr<Controller>(const ControllerContext&)>;
+
+/// A controller from a plain function of the observation (one mode, called `mode_name`).
+ControllerFactory make_controller(std::function<Command(const Observation&)> decide,
+                                  std::string mode_name = "drive");
+
+/// A robot's `controller:` section: which controller and its parameters. `params` also holds
+/// what the simulator itself reads for any controller: the pipeline's cruise speed v0, heading
+/// PID and slow_when_turning for velocity commands, and obstacle_memory for the observation.
+struct ControllerConfig {
+  /// hybrid | hard_switch | blended | go_to_goal, or the name of a user's controller.
+  std::string kind{"hybrid"};
+  NavigationParams params{};
+  /// A user's controller; empty: the built-in kind named by `kind`.
+  ControllerFactory factory;
+
+  bool is_builtin() const { return !factory; }
+};
+
+}  // namespace floornav

@@ -1,0 +1,33 @@
+#pragma once
+/// @file
+/// How a run is simulated: the step, the limits, the seed, what is recorded. The simulator's own
+/// settings, so they live with it; a scenario (scenario/scenario.hpp) holds one.
+
+#include <cstdint>
+
+namespace floornav {
+
+/// How a run is simulated.
+struct SimConfig {
+  double dt{0.01};               ///< s, fixed control and integration step
+  double t_max{120.0};           ///< s, then the run ends as `timeout`
+  std::uint64_t seed{1};         ///< the run's random seed (sensor noise)
+  double stuck_window{10.0};     ///< s: a robot that stays within stuck_radius this long is `stuck`
+  double stuck_radius{0.0};      ///< m; 0 means the robot's body radius
+  bool record_trajectory{true};  ///< keep every step (for CSV and SVG); off in big batches
+  bool park_finished{true};      ///< fleets: a robot that is done stays, an obstacle to others
+
+  template <class Archive>
+  void serialize(Archive& a) {
+    a("dt", dt, "fixed time step, s");
+    a("t_max", t_max, "simulated time limit, s");
+    a("seed", seed, "random seed (sensor noise)");
+    a("stuck_window", stuck_window, "a robot that stays within stuck_radius this long is stuck, s");
+    a("stuck_radius", stuck_radius, "m; 0 means the body radius");
+    a("record_trajectory", record_trajectory, "keep every step for the CSV and SVG outputs");
+    a("park_finished", park_finished,
+      "fleets: a robot that has finished stays where it stopped, an obstacle to the others");
+  }
+};
+
+}  // namespace floornav

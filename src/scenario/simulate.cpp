@@ -1,0 +1,32 @@
+#include "floornav/scenario/simulate.hpp"
+
+namespace floornav {
+
+void Scenario::set_controller(std::string kind, ControllerFactory factory) {
+  for (RobotTask& t : robots) {
+    t.controller.kind = kind;
+    t.controller.factory = factory;
+  }
+}
+
+Simulation make_simulation(const Scenario& scenario) {
+  return Simulation(*scenario.world, scenario.robot(), scenario.sim, scenario.name);
+}
+
+RunResult simulate(const Scenario& scenario) {
+  Simulation sim = make_simulation(scenario);
+  sim.run();
+  return sim.result();
+}
+
+FleetSimulation make_fleet_simulation(const Scenario& scenario) {
+  return FleetSimulation(*scenario.world, scenario.robots, scenario.sim, scenario.name);
+}
+
+FleetResult simulate_fleet(const Scenario& scenario, int threads) {
+  FleetSimulation sim = make_fleet_simulation(scenario);
+  sim.run(threads);
+  return sim.take_result();
+}
+
+}  // namespace floornav
