@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "floornav/core/input_error.hpp"
-#include "loader_test_support.hpp"
+#include "support/loader_test_support.hpp"
 
 namespace floornav {
 namespace {

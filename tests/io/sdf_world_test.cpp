@@ -11,7 +11,7 @@
 #include <utility>
 
 #include "floornav/core/input_error.hpp"
-#include "loader_test_support.hpp"
+#include "support/loader_test_support.hpp"
 
 namespace floornav {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "floornav/core/input_error.hpp"
-#include "loader_test_support.hpp"
+#include "support/loader_test_support.hpp"
 
 namespace floornav {
 namespace {
