@@ -185,3 +185,28 @@ TEST(ControllerInterface, FleetsMakeOneControllerPerRobot) {
   for (std::size_t i = 0; i < made.size(); ++i) EXPECT_EQ(made[i], i);
   EXPECT_EQ(f.reached, static_cast<int>(s.robots.size()));
 }
+
+TEST(ControllerInterface, AnExceptionOnAFleetThreadReachesTheCaller) {
+  // 24 lidar robots: two threads' worth of rays, so robots step on a worker thread too.
+  std::string yaml =
+      "world: {bounds: [0, 0, 6, 6]}\n"
+      "robot: {preset: turtlebot3_burger}\n"
+      "sim: {t_max: 3}\n"
+      "robots:\n";
+  for (int i = 0; i < 24; ++i) {
+    const double x = 0.6 + 1.2 * (i % 5), y = 0.6 + 1.2 * (i / 5);
+    yaml += "  - {start: [" + std::to_string(x) + ", " + std::to_string(y) + ", 0], goal: [" +
+            std::to_string(x) + ", " + std::to_string(y + 0.5) + "]}\n";
+  }
+  Scenario s = load_scenario_text(yaml, "lidars.yaml");
+  s.set_controller("last_one_throws", [](const ControllerContext& c) {
+    const bool bad = c.robot_index == 23;  // on the second thread's slice
+    return make_controller([bad](const Observation& obs) -> Command {
+      if (bad && obs.t > 0.5) throw std::runtime_error("robot 23 fails");
+      return Command::unicycle(0.05, 0.0);
+    })(c);
+  });
+  FleetSimulation fleet = make_fleet_simulation(s);
+  ASSERT_EQ(fleet.threads_for(2), 2u);
+  EXPECT_THROW(fleet.run(2), std::runtime_error);
+}
