@@ -33,8 +33,7 @@ add_library(floornav::floornav ALIAS floornav_floornav)
 install(TARGETS floornav_core floornav_io floornav_render floornav_runner floornav_floornav
   EXPORT floornavTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(EXPORT floornavTargets NAMESPACE floornav:: DESTINATION ${FLOORNAV_INSTALL_CMAKEDIR})
 
