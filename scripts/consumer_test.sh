@@ -43,7 +43,13 @@ if grep -rIl -e "$repo" -e "$build" "$prefix/include" "$prefix/lib/cmake" >/dev/
   fail "installed files name the source or build tree: $(grep -rIl -e "$repo" -e "$build" \
     "$prefix/include" "$prefix/lib/cmake" | tr '\n' ' ')"
 fi
-echo "consumer test: $(find "$prefix/include" -name '*.hpp' | wc -l) installed headers include only installed headers"
+# Every module header is named by an umbrella header (floornav/core.hpp, io.hpp, render.hpp,
+# runner.hpp; floornav.hpp includes them all), so `#include <floornav/floornav.hpp>` is everything.
+while IFS= read -r header; do
+  grep -qx "#include \"${header#"$prefix/include/"}\"" "$prefix"/include/floornav/*.hpp ||
+    fail "${header#"$prefix/include/"} is in no umbrella header (include/floornav/*.hpp)"
+done < <(find "$prefix/include/floornav" -mindepth 2 -name '*.hpp')
+echo "consumer test: $(find "$prefix/include" -name '*.hpp' | wc -l) installed headers include only installed headers; the umbrellas name every one"
 
 # 2. The README's program and CMake lines, built outside the repository.
 app=$work/app
