@@ -137,6 +137,15 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others) 
   compute_sensor_beams(pose_, robot.sensors, beams);
   const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
   sense_ranges(*world_, beams, robot.sensors, robot.sensor_noise, rng_, ranges, free, others);
+  if (sim_->record_ranges_every > 0 && result_.steps % sim_->record_ranges_every == 0) {
+    // A step that only switched goals senses again at the same pose: that frame is replaced.
+    if (!result_.range_steps.empty() && result_.range_steps.back() == result_.steps) {
+      result_.range_steps.pop_back();
+      result_.ranges.resize(result_.ranges.size() - n_sensors);
+    }
+    result_.range_steps.push_back(result_.steps);
+    result_.ranges.insert(result_.ranges.end(), ranges.begin(), ranges.end());
+  }
   scratch.sensed_count = ranges_to_points(beams, robot.sensors, ranges, scratch.sensed);
   scratch.point_count = scratch.sensed_count;
   if (use_memory_)
