@@ -9,6 +9,7 @@
 
 #include "legend.hpp"
 #include "picture_layout.hpp"
+#include "run_caption.hpp"
 #include "run_drawing.hpp"
 #include "svg_text.hpp"
 #include "world_drawing.hpp"
@@ -115,23 +116,12 @@ std::string render_tracks(const Scenario& scenario, std::span<const Track> track
   return fmt::to_string(buf);
 }
 
-// "+ 0.0" turns -0 into 0; a clearance that rounds to zero must not print as "-0.000".
-double shown_clearance(double c) {
-  return std::round(c * 1000.0) / 1000.0 + 0.0;
-}
-
 }  // namespace
 
 std::string render_trajectory_svg(const Scenario& s, const RunResult& r) {
-  const std::string title = fmt::format("{} — {} — {} in {:.2f} s", s.name,
-                                        s.robot().controller.kind, to_string(r.status), r.sim_time);
-  std::string numbers = fmt::format(
-      "path {:.2f} m · min clearance {:.3f} m · {} switch{} · {} steps", r.path_length,
-      shown_clearance(r.min_clearance), r.mode_switches, r.mode_switches == 1 ? "" : "es", r.steps);
-  if (r.goal_count > 1) numbers += fmt::format(" · goals {}/{}", r.goals_reached, r.goal_count);
-  if (r.chatter_episodes > 0) numbers += fmt::format(" · chatter ×{}", r.chatter_episodes);
+  const Caption c = run_caption(s, r);
   const Track track{&s.robot(), &r, ""};
-  return render_tracks(s, std::span<const Track>(&track, 1), title, numbers);
+  return render_tracks(s, std::span<const Track>(&track, 1), c.title, c.numbers);
 }
 
 std::string render_fleet_svg(const Scenario& s, const FleetResult& f) {
@@ -140,12 +130,8 @@ std::string render_fleet_svg(const Scenario& s, const FleetResult& f) {
     tracks.push_back({&s.robots[i], &f.robots[i], robot_color(i)});
   // A fleet of one is drawn like a lone robot: its path coloured by mode.
   if (tracks.size() == 1) tracks.front().color.clear();
-  const std::string title = fmt::format("{} — {} robots — {} in {:.2f} s", s.name, f.robots.size(),
-                                        to_string(f.status), f.sim_time);
-  const std::string numbers = fmt::format(
-      "{} reached · {} collided · deliveries {}/{} · min clearance {:.3f} m · {} steps", f.reached,
-      f.collided, f.deliveries, f.delivery_count, shown_clearance(f.min_clearance), f.steps);
-  return render_tracks(s, tracks, title, numbers);
+  const Caption c = fleet_caption(s, f);
+  return render_tracks(s, tracks, c.title, c.numbers);
 }
 
 }  // namespace floornav
