@@ -221,7 +221,7 @@
     if (on && state.t >= duration) state.t = 0;
     state.playing = on;
     state.lastFrame = performance.now();
-    playButton.textContent = on ? '⏸' : '▶';
+    playButton.textContent = on ? '❚❚' : '▶';
     if (!on) writeHash(true);
     state.dirty = true;
   }
