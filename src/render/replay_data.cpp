@@ -100,7 +100,8 @@ Json world_json(const World* world) {
     std::vector<std::uint8_t> cells(static_cast<std::size_t>(bw) * static_cast<std::size_t>(bh), 0);
     for (int iy = 0; iy < g->height(); ++iy)
       for (int ix = 0; ix < g->width(); ++ix) {
-        const std::uint8_t c = g->occupied(ix, iy) ? 1 : g->unknown(ix, iy) ? 2 : 0;
+        // An unknown cell is shown as unknown, whatever the loader's policy made of it.
+        const std::uint8_t c = g->unknown(ix, iy) ? 2 : g->occupied(ix, iy) ? 1 : 0;
         std::uint8_t& b = cells[static_cast<std::size_t>(iy / k) * static_cast<std::size_t>(bw) +
                                 static_cast<std::size_t>(ix / k)];
         if (c == 1 || (c == 2 && b == 0)) b = c;

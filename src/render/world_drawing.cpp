@@ -92,7 +92,8 @@ void draw_grid(SvgOut out, const OccupancyGrid& g, const View& v) {
   bool any_unknown = false;
   for (int iy = 0; iy < g.height(); ++iy)
     for (int ix = 0; ix < g.width(); ++ix) {
-      const std::uint8_t c = g.occupied(ix, iy) ? kOccupied : g.unknown(ix, iy) ? kUnknown : kFree;
+      // An unknown cell is drawn as unknown, whatever the loader's policy made of it.
+      const std::uint8_t c = g.unknown(ix, iy) ? kUnknown : g.occupied(ix, iy) ? kOccupied : kFree;
       std::uint8_t& b = block[static_cast<std::size_t>(iy / k) * static_cast<std::size_t>(w) +
                               static_cast<std::size_t>(ix / k)];
       b = std::max(b, c);

@@ -71,7 +71,9 @@ TEST(RobotColor, FirstColoursDistinctThenGoldenAngleHues) {
   for (std::size_t i = 0; i < colors.size(); ++i) {
     EXPECT_EQ(colors[i].size(), 7u);
     EXPECT_EQ(colors[i][0], '#');
-    if (i > 0) EXPECT_NE(colors[i], colors[i - 1]) << i;
+    if (i > 0) {
+      EXPECT_NE(colors[i], colors[i - 1]) << i;
+    }
   }
   EXPECT_EQ(robot_color(0), "#1b9e77");
   // Index 8 is the first generated hue: h = 0, so HSL(0, 65 %, 42 %) = rgb(177, 37, 37).

@@ -204,10 +204,10 @@
     if (!Number.isFinite(t)) return 0;
     return Math.min(Math.max(t, 0), duration);
   }
+  // Shows time t: drawn at the next frame (state() is right at once).
   function seek(t) {
     state.t = clampTime(Number(t));
     state.dirty = true;
-    draw();
     return state.t;
   }
   function currentRow() {
@@ -931,5 +931,7 @@
   resize();
   readHash();
   draw();
+  // ms from the start of navigation to the first frame drawn: how long the page takes to open.
+  window.floornavReplay.readyMs = performance.now();
   requestAnimationFrame(frame);
 })();
