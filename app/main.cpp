@@ -87,6 +87,7 @@ int main(int argc, char** argv) {
   long batch_limit = -1;
   bool batch_no_timing = false, batch_resume = false, batch_no_optimum = false;
   std::string batch_worlds, batch_barn_paths, batch_shard;
+  std::vector<std::string> batch_pictures;
   auto* batch = app.add_subcommand("batch",
                                    "Run many scenarios in parallel; writes "
                                    "results.jsonl and aggregate.json");
@@ -113,6 +114,12 @@ int main(int argc, char** argv) {
                     "with --worlds: BARN path_N.npy folder, adds optimal_time and the BARN score");
   batch->add_option("--shard", batch_shard,
                     "K/N: run only shard K of N (every N-th case); join shards with merge");
+
+  batch
+      ->add_option(
+          "--pictures", batch_pictures,
+          "failed|all DIR: an SVG and an HTML replay of each failed (or every) case in DIR")
+      ->expected(2);
 
   // merge
   std::vector<std::string> merge_dirs;
@@ -204,6 +211,16 @@ int main(int argc, char** argv) {
       opt.resume = batch_resume;
       opt.optimum = !batch_no_optimum;
       opt.stop = &g_stop;
+      if (!batch_pictures.empty()) {
+        if (batch_pictures[0] == "failed")
+          opt.pictures = BatchPictures::Failed;
+        else if (batch_pictures[0] == "all")
+          opt.pictures = BatchPictures::All;
+        else
+          throw InputError("", "--pictures",
+                           "expected failed or all, got '" + batch_pictures[0] + "'");
+        opt.pictures_dir = batch_pictures[1];
+      }
       const BatchOutcome o = run_batch(cases, opt);
       const auto& a = o.aggregate;
       fmt::print(
