@@ -326,6 +326,7 @@
 
   // ---- drawing the floor -------------------------------------------------------------------------
   function draw() {
+    const started = performance.now();
     state.dirty = false;
     const row = currentRow();
     if (state.follow >= 0) {
@@ -355,6 +356,7 @@
     drawLabels(states);
     drawTimeline();
     updateReadout(states, row);
+    state.drawMs = performance.now() - started;
   }
 
   function drawWorld(px) {
@@ -408,6 +410,15 @@
     const edge = fleet ? robot.color : COLORS.goalEdge;
     robot.goals.forEach(function (g, i) {
       const isCurrent = i === current;
+      if (fleet && !isCurrent) {
+        // A fleet's other goals: a dot each (dashed circles and flags for every stop of every
+        // robot would bury the floor, and cost a frame its time).
+        ctx.globalAlpha = i < current ? 0.3 : 0.7;
+        ctx.fillStyle = color;
+        ctx.fillRect(g[0] - 2 * px, g[1] - 2 * px, 4 * px, 4 * px);
+        ctx.globalAlpha = 1;
+        return;
+      }
       ctx.globalAlpha = i < current ? 0.35 : 1;
       ctx.beginPath();
       ctx.arc(g[0], g[1], Math.max(robot.epsilon, 3 * px), 0, 2 * Math.PI);
@@ -916,6 +927,8 @@
     pause: function () { setPlaying(false); },
     get playing() { return state.playing; },
     get speed() { return state.speed; },
+    /** ms the last frame took to draw. */
+    get drawMs() { return state.drawMs; },
     setSpeed,
     follow: function (name) {
       setFollow(robots.findIndex(function (r) { return r.name === name; }));
