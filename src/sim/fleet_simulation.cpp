@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <barrier>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <mutex>
 #include <thread>
 #include <utility>
 
@@ -226,12 +228,16 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
   // positions, applying contacts) run as the barrier's completion between them.
   bool done = running_ == 0 || max_steps <= 0;
   bool moved = true;  // which phase the barrier is completing
+  // A user's controller may throw on any thread: the first exception is kept, every thread
+  // still meets the barriers until the step ends, then it is rethrown on the calling thread.
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
   auto completion = [&]() noexcept {
     if (moved) {
       prepare_contacts();
     } else {
       apply_gaps();
-      done = running_ == 0 || steps_ - first >= max_steps;
+      done = failure != nullptr || running_ == 0 || steps_ - first >= max_steps;
     }
     moved = !moved;
   };
@@ -240,7 +246,12 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     const std::size_t n = agents_.size();
     const std::size_t begin = n * t / n_threads, end = n * (t + 1) / n_threads;
     while (!done) {
-      step_robots(begin, end, t);
+      try {
+        step_robots(begin, end, t);
+      } catch (...) {
+        const std::lock_guard lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+      }
       sync.arrive_and_wait();
       measure_gaps(begin, end);
       sync.arrive_and_wait();
@@ -251,6 +262,7 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     for (std::size_t t = 1; t < n_threads; ++t) workers.emplace_back(work, t);
     work(0);
   }
+  if (failure) std::rethrow_exception(failure);
   return steps_ - first;
 }
 
