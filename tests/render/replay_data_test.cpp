@@ -132,13 +132,20 @@ RobotTask quickbot_like(const std::string& name) {
   return t;
 }
 
+/// "r<i>" (built by appending: GCC 12 warns, wrongly, on "r" + std::to_string(i) with -Wrestrict).
+std::string robot_name(int i) {
+  std::string name = "r";
+  name += std::to_string(i);
+  return name;
+}
+
 Scenario hall(int robots) {
   Scenario s;
   s.name = "hall";
   WorldDesc desc;
   desc.bounds = Box2{Vec2(-1.0, -1.0), Vec2(20.0, 20.0)};
   s.world = std::make_shared<const World>(std::move(desc));
-  for (int i = 0; i < robots; ++i) s.robots.push_back(quickbot_like("r" + std::to_string(i)));
+  for (int i = 0; i < robots; ++i) s.robots.push_back(quickbot_like(robot_name(i)));
   s.robots_listed = robots > 1;
   return s;
 }
@@ -157,8 +164,7 @@ TEST(TrajectoryHtml, AHundredRobotTwoMinuteFleetStaysUnderFiveMegabytes) {
   const Scenario s = hall(100);
   FleetResult f;
   f.scenario = "hall";
-  for (int i = 0; i < 100; ++i)
-    f.robots.push_back(wiggly_run("r" + std::to_string(i), 12000, 0.19 * i));
+  for (int i = 0; i < 100; ++i) f.robots.push_back(wiggly_run(robot_name(i), 12000, 0.19 * i));
   const std::string html = render_fleet_html(s, f);
   EXPECT_LT(html.size(), 5'000'000u);
   for (const char* name : {"\"name\":\"r0\"", "\"name\":\"r99\""})
