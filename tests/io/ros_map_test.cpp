@@ -87,6 +87,20 @@ TEST_F(RosMapTest, TinyPgmThresholdsAndFlip) {
   EXPECT_EQ(f.occupied_count(), 2u);
 }
 
+TEST_F(RosMapTest, UnknownCellsAreMarkedForPicturesUnderEitherPolicy) {
+  write("m.pgm", tiny_p5());
+  const fs::path yaml = write_yaml("m.yaml", "image: m.pgm\n" + kYamlTail);
+  for (const UnknownPolicy policy : {UnknownPolicy::Occupied, UnknownPolicy::Free}) {
+    const OccupancyGrid g = load_ros_map(yaml, RosMapOptions{.unknown = policy});
+    ASSERT_TRUE(g.has_unknown());
+    for (int iy = 0; iy < 2; ++iy)
+      for (int ix = 0; ix < 3; ++ix) EXPECT_EQ(g.unknown(ix, iy), ix == 2) << ix << " " << iy;
+  }
+  // A map with no unknown pixel carries no layer.
+  write("k.pgm", std::string("P5\n2 1\n255\n") + std::string("\x00\xfe", 2));
+  EXPECT_FALSE(load_ros_map(write_yaml("k.yaml", "image: k.pgm\n" + kYamlTail)).has_unknown());
+}
+
 TEST_F(RosMapTest, Negate) {
   // Negated values 255 - v: top 255 1 50 -> p 0 (free), 0.996, 0.804 (occupied);
   // bottom 0 205 50 -> p 1 (occupied), 0.196 (unknown), 0.804 (occupied).
