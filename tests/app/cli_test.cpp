@@ -1,8 +1,10 @@
 // The command-line contract: files written, exit statuses, one clear message for bad input.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <array>
 #include <cstdio>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -30,7 +32,8 @@ Output floornav(const std::string& args) {
 }
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("floornav_cli_" + name);
+  const fs::path d =
+      fs::temp_directory_path() / ("floornav_cli_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   return d;
 }

@@ -2,8 +2,10 @@
 // --no-html), batch --pictures draws the failed (or all) cases without changing any result.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <array>
 #include <cstdio>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -30,7 +32,8 @@ Output floornav(const std::string& args) {
 }
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("floornav_pictures_" + name);
+  const fs::path d =
+      fs::temp_directory_path() / ("floornav_pictures_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   return d;
 }
