@@ -71,6 +71,13 @@ std::unique_ptr<Controller> ControllerMaker::make(const ControllerConfig& config
   ControllerConfig inner = config;
   inner.params.planner = PlannerParams{};
   inner.params.epsilon = std::min(config.params.epsilon, 0.5 * context.robot.body_radius);
+  // "Clear shot" (eq. 5.27) becomes a free corridor to the subgoal (the clear_shot_corridor
+  // extension): a wall beside the planned way is not in the way, only what lies across it.
+  if (!(inner.params.clear_shot_corridor > 0.0)) {
+    const PlannerParams& pp = config.params.planner;
+    inner.params.clear_shot_corridor =
+        pp.lookahead > 0.0 ? pp.lookahead : 6.0 * context.robot.body_radius;
+  }
   if (!rasters_) rasters_ = std::make_shared<KnownMapRasters>();
   PlannerController::Setup setup;
   setup.inner = make_reactive(inner, context);
