@@ -70,7 +70,8 @@ DwaController::DwaController(const NavigationParams& params, const RobotSpec& ro
   w_max_ = max_turn_rate(d);
   const double r = robot.body_radius;
   range_ = p_.range > 0.0 ? p_.range : v_max_ * p_.horizon + 4.0 * r;
-  cell_ = std::clamp(r / 5.0, 0.01, 0.05);
+  // Cells of a fifth of the body radius, coarser when the map would exceed 1000 cells across.
+  cell_ = std::max(std::clamp(r / 5.0, 0.01, 0.05), 2.0 * range_ / 1000.0);
   side_ = std::max(4, static_cast<int>(std::ceil(2.0 * range_ / cell_)));
   const std::size_t n = static_cast<std::size_t>(side_) * static_cast<std::size_t>(side_);
   dist2_.assign(n, kInf);
@@ -171,6 +172,9 @@ Decision DwaController::decide(const Observation& obs) {
       // The wheels give way to the turn (saturate_wheels): do not ask for more.
       const double v =
           std::max(0.0, std::min(v_want, wheel_v - std::abs(w) * 0.5 * drive.track_width));
+      // Standing still would score best in front of any obstacle on the goal line (the
+      // classic local minimum): a stop is only the fallback below.
+      if (v < 1e-6 && std::abs(w) < 1e-6) continue;
       // Roll out until the first pose closer than the margin to an obstacle.
       double t_hit = kInf;
       for (int k = 1; k <= steps; ++k) {
@@ -187,10 +191,14 @@ Decision DwaController::decide(const Observation& obs) {
       // Eq. 14: admissible only if it can brake to a stop before that pose.
       const double t_brake = std::max(v / a, std::abs(w) / alpha) + dt;
       if (t_hit <= t_brake) continue;
-      const Pose2 end = integrate_unicycle(obs.pose, {v, w}, std::min(t_hit, steps * p_.sim_step));
+      // The heading is judged where the roll-out ends, but after at most a quarter turn: past
+      // that, a spin on the spot would point anywhere by the end of the horizon.
+      const double t_end = std::min(
+          {t_hit, steps * p_.sim_step, std::abs(w) > 0.0 ? 0.5 * kPi / std::abs(w) : kInf});
+      const Pose2 end = integrate_unicycle(obs.pose, {v, w}, t_end);
       const Vec2 to_goal = obs.goal - end.position;
       const double bearing = std::atan2(to_goal.y(), to_goal.x()) - end.theta;
-      const double dist = t_hit == kInf ? kInf : v * t_hit;
+      const double dist = t_hit == kInf ? kInf : v * t_hit;  // the paper's dist(v, omega)
       const double score = dwa_score(p_, bearing, dist, v, v_max_);
       if (score > best) {
         best = score;

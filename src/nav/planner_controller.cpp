@@ -97,8 +97,10 @@ PlannerController::PlannerController(Setup setup)
   backup_distance_ = p_.backup_distance > 0.0 ? p_.backup_distance : r;
   progress_ = ProgressChecker(p_.progress_window, progress_distance_);
   if (p_.map == PlannerMap::Sensed || p_.memory_range > 0.0) {
-    const double cell = p_.cell_size > 0.0 ? p_.cell_size : radius_ / 3.0;
     const double window = p_.window > 0.0 ? p_.window : p_.map == PlannerMap::Sensed ? 20.0 : 4.0;
+    // At most 2000 cells across (validate_scenario refuses finer explicit cells).
+    const double cell =
+        std::max(p_.cell_size > 0.0 ? p_.cell_size : radius_ / 3.0, window / 2000.0);
     grid_.emplace(cell, std::max(4, static_cast<int>(std::ceil(window / cell))), p_.decay);
   }
   points_.resize(robot_->sensors.size() + ObstacleMemory::kCapacity + kMaxRemembered);
@@ -158,10 +160,9 @@ bool PlannerController::plan(const Vec2& from, const Vec2& goal, double t) {
   path_.assign(pulled_);
   path_.project(from, lookahead_);
   const double left = path_.remaining() + tail_;
-  if (had_path)
-    progress_.replanned(t, left);
-  else
-    progress_.reset(t, left);
+  // A new plan that is longer (the way turned out to be blocked) is no progress: if the robot
+  // does not make up for it within the window, that is a stall like any other.
+  if (!had_path) progress_.reset(t, left);
   subgoal_held_ = false;
   return true;
 }

@@ -12,10 +12,12 @@
 ///      every sim_step; `dist` is the arc length driven before the first pose closer than
 ///      `margin` to an obstacle (infinite when none);
 ///   4. admissible: the robot could brake to a stop before that pose (eq. 14 of the paper:
-///      the time to the collision exceeds max(v / a, |omega| / alpha));
+///      the time to it exceeds max(v / a, |omega| / alpha) plus a step);
 ///   5. score (eq. 15): G = alpha heading + beta dist + gamma velocity, each in [0, 1]:
-///      heading = 1 - |angle to the goal at the end of the roll-out| / pi,
-///      dist = min(dist, max_clearance) / max_clearance, velocity = v / v0 (see dwa_score);
+///      heading = 1 - |angle to the goal at the end of the roll-out| / pi (judged after at most
+///      a quarter turn), dist = min(dist, max_clearance) / max_clearance, velocity = v / v0
+///      (see dwa_score). Standing still is not a candidate (it would score best in front of any
+///      obstacle on the goal line);
 ///      the best admissible candidate is driven (a unicycle command). With none admissible it
 ///      brakes and turns towards the goal (mode `dwa_brake`).
 /// Speed is capped at sqrt(2 a d) at distance d from the goal, so it stops there.

@@ -17,11 +17,6 @@ class ProgressChecker {
     anchor_time_ = t;
     best_ = remaining;
   }
-  /// A new plan was made: when it is longer than the best so far (the way turned out to be
-  /// blocked), the window starts again from it; a shorter plan is progress like any other.
-  void replanned(double t, double remaining) {
-    if (remaining > best_) reset(t, remaining);
-  }
   /// One step: true when the window has run out without progress (then call reset).
   bool stalled(double t, double remaining) {
     if (remaining <= best_ - distance_) {
