@@ -163,6 +163,14 @@ Decision DwaController::decide(const Observation& obs) {
   const double wheel_v = drive.wheel_radius * drive.max_wheel_speed;
   const int steps = std::max(1, static_cast<int>(std::ceil(p_.horizon / p_.sim_step)));
 
+  // The footprint's clearance now: a robot already within the margin may still move away.
+  auto footprint_gap = [&](const Pose2& q) {
+    double gap = kInf;
+    for (const Disc& disc : discs_)
+      gap = std::min(gap, distance(q.transform_point(disc.centre)) - disc.radius);
+    return gap;
+  };
+  const double gap_now = footprint_gap(obs.pose);
   double best = -kInf, best_v = 0.0, best_w = 0.0;
   const int nv = std::max(2, p_.v_samples), nw = std::max(2, p_.omega_samples);
   for (int i = 0; i < nv; ++i) {
@@ -179,17 +187,15 @@ Decision DwaController::decide(const Observation& obs) {
       double t_hit = kInf;
       for (int k = 1; k <= steps; ++k) {
         const double t = k * p_.sim_step;
-        const Pose2 q = integrate_unicycle(obs.pose, {v, w}, t);
-        double gap = kInf;
-        for (const Disc& disc : discs_)
-          gap = std::min(gap, distance(q.transform_point(disc.centre)) - disc.radius);
-        if (gap < p_.margin) {
+        const double gap = footprint_gap(integrate_unicycle(obs.pose, {v, w}, t));
+        if (gap < p_.margin && gap < gap_now) {  // too close, and closer than now
           t_hit = t;
           break;
         }
       }
       // Eq. 14: admissible only if it can brake to a stop before that pose.
-      const double t_brake = std::max(v / a, std::abs(w) / alpha) + dt;
+      // (Poses are checked every sim_step: one more step of margin.)
+      const double t_brake = std::max(v / a, std::abs(w) / alpha) + dt + p_.sim_step;
       if (t_hit <= t_brake) continue;
       // The heading is judged where the roll-out ends, but after at most a quarter turn: past
       // that, a spin on the spot would point anywhere by the end of the horizon.
