@@ -255,6 +255,7 @@ int run_bench(const BenchOptions& options) {
              "automaton; plans timed, restarts rebuild the raster untimed)";
          Scenario s = make_floor_scenario(floor50(), 0);
          s.robot().controller.params.planner.kind = PlannerKind::AStar;
+         s.robot().controller.params.planner.cell_size = 0.1;  // 200 x 200 planning cells
          time_stepping(s, budget, r);
        }},
       {"lidar180_50_polygons",

@@ -78,6 +78,7 @@ const Scenario& quickbot_floor_planner() {
   static const Scenario s = [] {
     Scenario p = make_floor_scenario(floor_world(0), 0);
     p.robot().controller.params.planner.kind = PlannerKind::AStar;
+    p.robot().controller.params.planner.cell_size = 0.1;  // 200 x 200 planning cells
     return p;
   }();
   return s;

@@ -55,7 +55,10 @@ std::shared_ptr<const KnownMapRaster> KnownMapRasters::get(const World& world, d
                                                            double cell, const Vec2& from,
                                                            const Vec2& goal) {
   OptimumOptions options;
-  if (cell > 0.0) options.cell_size = cell;
+  if (cell > 0.0) {  // as given (planner.cell_size), not made finer for small robots
+    options.cell_size = cell;
+    options.cell_finer_than_radius = false;
+  }
   const Vec2 goals[] = {goal};
   const auto frame = choose_raster_frame(world, radius, from, goals, options);
   if (!frame) return nullptr;

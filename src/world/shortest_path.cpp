@@ -57,7 +57,9 @@ std::optional<RasterFrame> choose_frame(const World& world, double r, const Vec2
       grow(e.max);
     }
   }
-  double cell = std::min(options.cell_size, r > 0.0 ? r / 2.0 : options.cell_size);
+  double cell = options.cell_finer_than_radius
+                    ? std::min(options.cell_size, r > 0.0 ? r / 2.0 : options.cell_size)
+                    : options.cell_size;
   // Outside unbounded worlds, a margin so that the path can go round the outermost obstacles.
   auto padded = [&](double c) -> Vec2 {
     const double m = world.bounds() ? 0.0 : r + 4.0 * c;

@@ -144,6 +144,9 @@ struct OptimumOptions {
   std::size_t max_cells{4'000'000};  ///< larger rasters are not built: no optimum
   double snap_radius{3.0};           ///< cells: how far a blocked start/goal looks for a free cell
   bool smooth{true};                 ///< string-pull the octile path
+  /// Make the cells no coarser than half the radius (the optimum's accuracy); a planner that
+  /// is given its cell size turns this off.
+  bool cell_finer_than_radius{true};
 };
 
 enum class OptimumStatus {
