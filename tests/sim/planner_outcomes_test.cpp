@@ -84,7 +84,9 @@ TEST(PlannerOutcomes, SameScenarioSameTrajectoryBitForBit) {
 TEST(PlannerOutcomes, DwaReachesASimpleGoal) {
   WorldDesc d;
   d.bounds = Box2{Vec2(0, 0), Vec2(5, 4)};
-  d.circles.push_back({Vec2(2.5, 2.25), 0.4});  // just off the straight line
+  // Beside the straight line: the body passes 0.095 m from it. (Across the line, DWA alone
+  // stops in front of it: the local minimum, see docs/BENCHMARKS.md.)
+  d.circles.push_back({Vec2(2.5, 2.6), 0.4});
   Scenario s = make("turtlebot3_burger", d, {Vec2(0.5, 2.0), 0.0}, Vec2(4.5, 2.0), 60.0);
   s.robot().controller.kind = "dwa";
   const RunResult r = simulate(s);
