@@ -6,10 +6,12 @@
 #include <cmath>
 #include <fstream>
 
+#include "bench_cases.hpp"
 #include "floornav/core/input_error.hpp"
 #include "floornav/io/barn.hpp"
 #include "floornav/io/movingai_map.hpp"
 #include "floornav/io/scenario_file.hpp"
+#include "floornav/scenario/validate.hpp"
 
 namespace floornav {
 
@@ -105,6 +107,34 @@ std::vector<BatchCase> make_world_cases(const std::string& template_file, const 
                             c.scenario.robot().goals.back());
     }
     cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+std::vector<BatchCase> make_floor_cases(const std::string& template_file, int count,
+                                        std::uint64_t first_seed,
+                                        std::span<const std::string> overrides) {
+  if (count < 1 || count > 100000)
+    throw InputError("", "--floors", fmt::format("must be in [1, 100000], got {}", count));
+  const Scenario base = load_scenario_file(template_file, overrides);
+  std::vector<BatchCase> cases;
+  for (int i = 0; i < count; ++i) {
+    const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
+    BenchFloorParams p;
+    p.seed = seed;
+    auto world = std::make_shared<const World>(make_bench_floor(p));
+    // The tour of make_floor_scenario (free start and four goals across the floor) for this seed.
+    const Scenario tour = make_floor_scenario(world, 0, static_cast<int>(seed));
+    Scenario s = base;
+    s.world = world;
+    for (RobotTask& t : s.robots) {
+      t.start = tour.robot().start;
+      t.goals = tour.robot().goals;
+    }
+    s.name = fmt::format("{}-floor{}", base.name, seed);
+    validate_scenario(s, fmt::format("{} (floor {})", template_file, seed));
+    cases.push_back(
+        {std::move(s), fmt::format("floor:{}", seed), static_cast<std::size_t>(i), {}, {}});
   }
   return cases;
 }

@@ -248,6 +248,16 @@ int run_bench(const BenchOptions& options) {
          r.what = "QuickBot, 5 IR (0.3 m), 20 x 20 m floor of 50 random polygons";
          time_stepping(make_floor_scenario(floor50(), 0), budget, r);
        }},
+      {"quickbot_5ir_50_polygons_planner",
+       [&](CaseResult& r) {
+         r.what =
+             "the same QuickBot with the planner (A* on the known floor, a subgoal for the "
+             "automaton; plans timed, restarts rebuild the raster untimed)";
+         Scenario s = make_floor_scenario(floor50(), 0);
+         s.robot().controller.params.planner.kind = PlannerKind::AStar;
+         s.robot().controller.params.planner.cell_size = 0.1;  // 200 x 200 planning cells
+         time_stepping(s, budget, r);
+       }},
       {"lidar180_50_polygons",
        [&](CaseResult& r) {
          r.what = "TurtleBot3 base, 180-beam 360-degree lidar (3.5 m), same floor";

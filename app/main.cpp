@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -110,6 +111,12 @@ int main(int argc, char** argv) {
                   "file gives the optimum");
   batch->add_option("--worlds", batch_worlds,
                     "folder of Gazebo .world/.sdf files: one case per world, on the template");
+  int batch_floors = 0;
+  std::uint64_t batch_floor_seed = 1;
+  batch->add_option("--floors", batch_floors,
+                    "one case per generated factory floor (20 x 20 m, 50 obstacles, a tour of 4 "
+                    "goals): N floors, robot and controller from the template");
+  batch->add_option("--floor-seed", batch_floor_seed, "with --floors: the first floor's seed (1)");
   batch->add_option("--barn-paths", batch_barn_paths,
                     "with --worlds: BARN path_N.npy folder, adds optimal_time and the BARN score");
   batch->add_option("--shard", batch_shard,
@@ -177,7 +184,11 @@ int main(int argc, char** argv) {
     }
     if (*batch) {
       std::vector<BatchCase> cases;
-      if (!batch_worlds.empty()) {
+      if (batch_floors > 0) {
+        if (batch_files.size() != 1)
+          throw InputError("", "--floors", "give exactly one template scenario with --floors");
+        cases = make_floor_cases(batch_files[0], batch_floors, batch_floor_seed, batch_sets);
+      } else if (!batch_worlds.empty()) {
         if (batch_files.size() != 1)
           throw InputError("", "--worlds", "give exactly one template scenario with --worlds");
         cases = make_world_cases(batch_files[0], batch_worlds, batch_barn_paths, batch_sets);

@@ -71,6 +71,32 @@ void BM_Step_QuickBot5Ir_50Polygons(benchmark::State& state) {
 }
 BENCHMARK(BM_Step_QuickBot5Ir_50Polygons);
 
+// The planning layer on the same floor: octile A* on the known floor plan, string-pulled, a
+// subgoal for the automaton; its plans (one per goal of the tour, and the raster at each
+// restart) are inside the timing, amortised over the run.
+const Scenario& quickbot_floor_planner() {
+  static const Scenario s = [] {
+    Scenario p = make_floor_scenario(floor_world(0), 0);
+    p.robot().controller.params.planner.kind = PlannerKind::AStar;
+    p.robot().controller.params.planner.cell_size = 0.1;  // 200 x 200 planning cells
+    return p;
+  }();
+  return s;
+}
+void BM_Step_QuickBot5Ir_50Polygons_Planner(benchmark::State& state) {
+  const Scenario& s = quickbot_floor_planner();
+  std::optional<Simulation> sim(std::in_place, *s.world, s.robot(), s.sim, s.name);
+  std::int64_t restarts = 0;
+  for (auto _ : state)
+    if (!sim->step()) {  // the restart (a new planner, its raster) is timed too
+      sim.emplace(*s.world, s.robot(), s.sim, s.name);
+      ++restarts;
+    }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["restarts"] = static_cast<double>(restarts);
+}
+BENCHMARK(BM_Step_QuickBot5Ir_50Polygons_Planner)->MinTime(3.0);
+
 void BM_Step_Lidar180_50Polygons(benchmark::State& state) {
   step_robot(state, lidar180_floor());
 }

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Reproduces the tables of docs/BENCHMARKS.md. Usage: scripts/benchmarks.sh [chapter|fleet|movingai|ros|barn|all]
+# Reproduces the tables of docs/BENCHMARKS.md. Usage:
+#   scripts/benchmarks.sh [chapter|fleet|movingai|ros|barn|all]
+#   scripts/benchmarks.sh [plan-movingai|plan-barn|plan-floors|plan]   (the planning layer and DWA)
 # Needs ./build (scripts/quickstart.sh) and ../shared/maps beside the repository.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -81,4 +83,62 @@ n = len(rows); s = sum(int(r[1]) for r in rows); c = sum(int(r[2]) for r in rows
 print(f"| DWA baseline (dwa_out.txt, 50 worlds x 10) | {n} | {s/n:.3f} | {c/n:.3f} | {t/n:.3f} | – | "
       f"{sum(float(r[4]) for r in rows if r[1]=='1')/max(s,1):.1f} | – | 0.169 (published) |")
 PY
+fi
+
+# --- The planning layer (docs/BENCHMARKS.md#planning-layer): the chapter alone, the planner
+# stack and DWA on the same worlds. Rows: hybrid (the chapter), hybrid + astar, dwa, dwa + astar.
+plan_rows=("hybrid|" "hybrid+astar|--set controller.planner.kind=astar"
+           "dwa|--set controller.kind=dwa"
+           "dwa+astar|--set controller.kind=dwa --set controller.planner.kind=astar")
+if [[ $what == plan-movingai || $what == plan ]]; then
+  # Held out: random-3, first 50 rows of every map (rooms, warehouses, game maps); t_max 4000 s so
+  # that no run is cut before twice its optimal time. "within 2x" = reached without collision
+  # within 2 x octile optimum / 0.22 m/s (the Burger's top speed).
+  echo "### MovingAI, 9 maps x 50 rows of random-3 (TurtleBot3 Burger, 1 m cells, known map)"
+  echo "| case | runs | within 2x optimal time | success | collision | timeout | stuck | mean time (s) |"
+  echo "|---|---|---|---|---|---|---|---|"
+  for row in "${plan_rows[@]}"; do
+    label=${row%%|*}; sets=${row#*|}
+    for m in room-32-32-4 room-64-64-8 room-64-64-16 warehouse-10-20-10-2-1 warehouse-10-20-10-2-2 \
+             warehouse-20-40-10-2-1 warehouse-20-40-10-2-2 den312d den520d; do
+      $fn batch scenarios/movingai_template.yaml --scen "$maps/movingai-mapf/$m-random-3.scen" \
+        --cell-size 1 --limit 50 --set sim.t_max=4000 $sets --no-timing \
+        --out "$out/plan-movingai-$label/$m" >/dev/null
+    done
+    python3 - "$label" "$out/plan-movingai-$label" <<'PY'
+import glob, json, sys
+rs = [json.loads(l) for f in sorted(glob.glob(sys.argv[2] + "/*/results.jsonl")) for l in open(f)]
+n = len(rs); rate = lambda s: sum(r["status"] == s for r in rs) / n
+ok = sum(r["status"] == "reached" and r["sim_time"] <= 2 * r["optimal_length"] / 0.22 for r in rs)
+t = [r["sim_time"] for r in rs if r["status"] == "reached"]
+print(f"| {sys.argv[1]} | {n} | {ok / n:.3f} ({ok}) | {rate('reached'):.3f} | {rate('collision'):.3f} | "
+      f"{rate('timeout'):.3f} | {rate('stuck'):.3f} | {sum(t) / max(len(t), 1):.1f} |")
+PY
+  done
+fi
+if [[ $what == plan-barn || $what == plan ]]; then
+  worlds=${BARN_WORLDS:-/tmp/floornav-barn-worlds}
+  if [[ ! -f $worlds/world_299.world ]]; then
+    mkdir -p "$worlds" && tar -xJf "$maps/barn/BARN_world_files.tar.xz" -C "$worlds"
+  fi
+  echo "### BARN, 300 worlds, mapless (lidar only; the planner on its rolling grid)"; header
+  for row in "${plan_rows[@]}"; do
+    label=${row%%|*}; sets=${row#*|}
+    [[ $sets == *planner* ]] && sets="$sets --set controller.planner.map=sensed"
+    start=$(date +%s.%N)
+    $fn batch scenarios/barn_template.yaml --worlds "$worlds" --barn-paths "$maps/barn/path_files" \
+      $sets --no-timing --out "$out/plan-barn-$label" >/dev/null
+    echo "$label: $(python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.1f}')" "$start" "$(date +%s.%N)") s wall" >&2
+    row "$label" "$out/plan-barn-$label/aggregate.json"
+  done
+fi
+if [[ $what == plan-floors || $what == plan ]]; then
+  # Held out: floors 1001-1200 (the planner was tried on floors 1-200).
+  echo "### Generated factory floors: 200 floors (seeds 1001-1200), QuickBot with 5 IR, a tour of 4 goals each"; header
+  for row in "${plan_rows[@]}" "hybrid+astar+memory|--set controller.planner.kind=astar --set controller.planner.memory_range=0.2"; do
+    label=${row%%|*}; sets=${row#*|}
+    $fn batch scenarios/floor_template.yaml --floors 200 --floor-seed 1001 $sets --no-timing \
+      --no-optimum --out "$out/plan-floors-$label" >/dev/null
+    row "$label" "$out/plan-floors-$label/aggregate.json"
+  done
 fi

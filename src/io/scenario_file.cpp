@@ -14,6 +14,7 @@
 #include "floornav/automaton/hybrid_automaton.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
+#include "floornav/nav/dwa_controller.hpp"
 #include "floornav/scenario/presets.hpp"
 #include "floornav/scenario/validate.hpp"
 #include "world_map.hpp"
@@ -286,6 +287,8 @@ void read_robot(const std::string& file, MapReader& r, RobotTask& s) {
   positive("wheel_radius", s.robot.drive.wheel_radius);
   positive("track_width", s.robot.drive.track_width);
   positive("max_wheel_speed", s.robot.drive.max_wheel_speed);
+  positive("max_acceleration", s.robot.max_acceleration);
+  positive("max_angular_acceleration", s.robot.max_angular_acceleration);
   if (r.has("min_wheel_speed")) {
     const YAML::Node n = r.get("min_wheel_speed");
     s.robot.drive.min_wheel_speed = read_double(file, n, r.path_of("min_wheel_speed"));
@@ -313,10 +316,10 @@ void read_controller(const std::string& file, MapReader& r, ControllerConfig& c)
     const YAML::Node n = r.get("kind");
     const std::string kind = io_detail::read_string(file, n, r.path_of("kind"));
     const auto k = parse_controller_kind(kind);
-    if (!k)
+    if (!k && kind != kDwaKindName)
       fail(file, n, r.path_of("kind"),
-           fmt::format("unknown controller '{}' (expected hybrid, hard_switch, blended or "
-                       "go_to_goal)",
+           fmt::format("unknown controller '{}' (expected hybrid, hard_switch, blended, "
+                       "go_to_goal or dwa)",
                        kind));
     c.kind = kind;
   }

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <set>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "floornav/core/input_error.hpp"
@@ -54,6 +55,30 @@ class MapReader {
   void operator()(const char* key, int& field, const char* /*doc*/);
   void operator()(const char* key, bool& field, const char* /*doc*/);
   void operator()(const char* key, std::uint64_t& field, const char* /*doc*/);
+  /// An enumeration named by a string; `enum_names(E{})` (found by ADL) lists the names.
+  template <class E>
+  requires std::is_enum_v<E>
+  void operator()(const char* key, E& field, const char* /*doc*/) {
+    if (!has(key)) {
+      known_.insert(key);
+      return;
+    }
+    const YAML::Node n = get(key);
+    const std::string text = read_string(file_, n, path_of(key));
+    std::string expected;
+    const auto names = enum_names(E{});
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (names[i].second == text) {
+        field = names[i].first;
+        return;
+      }
+      expected += (i == 0                  ? ""
+                   : i + 1 == names.size() ? " or "
+                                           : ", ") +
+                  std::string(names[i].second);
+    }
+    fail(file_, n, path_of(key), "unknown value '" + text + "' (expected " + expected + ")");
+  }
   template <class T>
   void section(const char* key, T& sub) {
     if (!has(key)) return;

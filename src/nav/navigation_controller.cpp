@@ -1,6 +1,10 @@
 #include "floornav/nav/navigation_controller.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+
+#include "floornav/nav/dwa_controller.hpp"
+#include "floornav/nav/planner_controller.hpp"
 
 namespace floornav {
 
@@ -47,14 +51,47 @@ ControllerKind builtin_kind(const ControllerConfig& config) {
 }  // namespace
 
 std::unique_ptr<Controller> make_builtin_controller(const ControllerConfig& config) {
+  if (config.kind == kDwaKindName)
+    throw std::invalid_argument("the dwa controller needs its robot: use ControllerMaker");
   return std::make_unique<NavigationController>(
       std::make_shared<const NavigationAutomaton>(
           make_navigation_automaton(builtin_kind(config), config.params)),
       config.params);
 }
 
+ControllerMaker::ControllerMaker() = default;
+ControllerMaker::~ControllerMaker() = default;
+
 std::unique_ptr<Controller> ControllerMaker::make(const ControllerConfig& config,
                                                   const ControllerContext& context) {
+  if (config.params.planner.kind == PlannerKind::None || config.factory)
+    return make_reactive(config, context);
+  // The planning layer over the reactive kind. The inner automaton's goal radius shrinks: its
+  // goals are subgoals, and the planner itself stops at the real goal's epsilon.
+  ControllerConfig inner = config;
+  inner.params.planner = PlannerParams{};
+  inner.params.epsilon = std::min(config.params.epsilon, 0.5 * context.robot.body_radius);
+  // "Clear shot" (eq. 5.27) becomes a free corridor to the subgoal (the clear_shot_corridor
+  // extension): a wall beside the planned way is not in the way, only what lies across it.
+  if (!(inner.params.clear_shot_corridor > 0.0)) {
+    const PlannerParams& pp = config.params.planner;
+    inner.params.clear_shot_corridor =
+        pp.lookahead > 0.0 ? pp.lookahead : 6.0 * context.robot.body_radius;
+  }
+  if (!rasters_) rasters_ = std::make_shared<KnownMapRasters>();
+  PlannerController::Setup setup;
+  setup.inner = make_reactive(inner, context);
+  setup.params = config.params;
+  setup.robot = &context.robot;
+  setup.map = context.map;
+  setup.rasters = rasters_;
+  return std::make_unique<PlannerController>(std::move(setup));
+}
+
+std::unique_ptr<Controller> ControllerMaker::make_reactive(const ControllerConfig& config,
+                                                           const ControllerContext& context) {
+  if (config.kind == kDwaKindName && !config.factory)
+    return std::make_unique<DwaController>(config.params, context.robot);
   if (config.factory) {
     auto controller = config.factory(context);
     if (!controller)

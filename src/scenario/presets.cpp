@@ -42,6 +42,9 @@ RobotSpec quickbot() {
              .min_wheel_speed = 0.0};
   r.body_radius = 0.075;
   r.sensors = ring(kIr, 0.04, 0.30);
+  // Acceleration limits: our choice (no published figure), for the dwa kind.
+  r.max_acceleration = 1.0;
+  r.max_angular_acceleration = 10.0;
   return r;
 }
 
@@ -58,6 +61,9 @@ RobotSpec khepera3() {
              .min_wheel_speed = 0.0};
   r.body_radius = 0.0704;
   r.sensors = ring(kIr, 0.02, 0.20);
+  // Acceleration limits: our choice (no published figure), for the dwa kind.
+  r.max_acceleration = 1.0;
+  r.max_angular_acceleration = 10.0;
   return r;
 }
 
@@ -76,6 +82,9 @@ RobotSpec pioneer_p3dx() {
              .min_wheel_speed = 0.0};
   r.body_radius = 0.26;
   r.sensors = ring(kSonar, 0.1, 5.0, 15.0, 3);
+  // Acceleration limits: ARIA's defaults, 300 mm/s^2 and 100 deg/s^2.
+  r.max_acceleration = 0.3;
+  r.max_angular_acceleration = 1.745;
   return r;
 }
 
@@ -88,6 +97,9 @@ RobotSpec turtlebot3_burger() {
              .min_wheel_speed = 0.0};
   r.body_radius = 0.105;
   r.sensors = make_lidar(360, 2.0 * kPi, 0.12, 3.5, {Vec2(-0.032, 0.0), 0.0});
+  // Acceleration limits: ROBOTIS's DWA configuration for the Burger.
+  r.max_acceleration = 2.5;
+  r.max_angular_acceleration = 3.2;
   return r;
 }
 
@@ -102,6 +114,9 @@ RobotSpec jackal() {
   // BARN's passages are sized for the Jackal's rectangular footprint, 0.508 x 0.430 m.
   r.footprint = {{-0.254, -0.215}, {0.254, -0.215}, {0.254, 0.215}, {-0.254, 0.215}};
   r.sensors = make_lidar(720, deg_to_rad(270.0), 0.1, 30.0, {Vec2(0.12, 0.0), 0.0});
+  // Acceleration limits: our choice (no manufacturer figure checked).
+  r.max_acceleration = 2.0;
+  r.max_angular_acceleration = 3.0;
   return r;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "floornav/automaton/hybrid_automaton.hpp"
+#include "floornav/geometry/angle.hpp"
 #include "floornav/kinematics/differential_drive.hpp"
 #include "floornav/nav/navigation_params.hpp"
 #include "floornav/robot/body_clearance.hpp"
@@ -54,6 +55,55 @@ void validate_sim(const SimConfig& sim, const std::string& file) {
         fmt::format("must not be negative, got {}", sim.record_ranges_every));
 }
 
+// controller.planner: lengths and times that are 0 (derived from the robot) or positive.
+void validate_planner(const PlannerParams& p, const RobotKeys& k) {
+  auto bad = [&](const char* key, const std::string& what) {
+    k.fail(k.controller(std::string("planner.") + key), what);
+  };
+  auto length = [&](const char* key, double v, double max) {
+    if (!(v >= 0.0 && v <= max))
+      bad(key, fmt::format("must be in [0, {}] (0: derived from the robot), got {}", max, v));
+  };
+  length("radius", p.radius, 100.0);
+  length("inflation", p.inflation, 100.0);
+  length("cell_size", p.cell_size, 10.0);
+  length("lookahead", p.lookahead, 1000.0);
+  length("progress_distance", p.progress_distance, 1000.0);
+  length("backup_distance", p.backup_distance, 100.0);
+  length("window", p.window, 1000.0);
+  length("sense_range", p.sense_range, 1e6);
+  length("memory_range", p.memory_range, 100.0);
+  if (!(p.replan_period > 0.0)) bad("replan_period", "must be positive");
+  if (!(p.progress_window > 0.0)) bad("progress_window", "must be positive");
+  if (!(p.recovery_turn >= 0.0 && p.recovery_turn <= 2.0 * kPi))
+    bad("recovery_turn", fmt::format("must be in [0, 2 pi] rad, got {}", p.recovery_turn));
+  if (p.max_recoveries < 0 || p.max_recoveries > 1000)
+    bad("max_recoveries", fmt::format("must be in [0, 1000], got {}", p.max_recoveries));
+  if (!(p.decay > 0.0)) bad("decay", "must be positive");
+  if (p.cell_size > 0.0 && p.window > 0.0 && p.window / p.cell_size > 2000.0)
+    bad("window",
+        fmt::format("{} m of {} m cells is more than 2000 cells across", p.window, p.cell_size));
+}
+
+// controller.dwa: a sampled window and a roll-out of at least one step.
+void validate_dwa(const DwaParams& p, const RobotKeys& k) {
+  auto bad = [&](const char* key, const std::string& what) {
+    k.fail(k.controller(std::string("dwa.") + key), what);
+  };
+  if (!(p.horizon > 0.0 && p.horizon <= 60.0)) bad("horizon", "must be in (0, 60] s");
+  if (!(p.sim_step > 0.0 && p.sim_step <= p.horizon))
+    bad("sim_step", fmt::format("must be in (0, horizon = {}] s", p.horizon));
+  if (p.horizon / p.sim_step > 1000.0) bad("sim_step", "more than 1000 poses per roll-out");
+  if (p.v_samples < 2 || p.v_samples > 200) bad("v_samples", "must be in [2, 200]");
+  if (p.omega_samples < 2 || p.omega_samples > 200) bad("omega_samples", "must be in [2, 200]");
+  if (!(p.heading >= 0.0)) bad("heading", "must not be negative");
+  if (!(p.clearance >= 0.0)) bad("clearance", "must not be negative");
+  if (!(p.velocity >= 0.0)) bad("velocity", "must not be negative");
+  if (!(p.max_clearance > 0.0)) bad("max_clearance", "must be positive");
+  if (!(p.margin >= 0.0)) bad("margin", "must not be negative");
+  if (!(p.range >= 0.0 && p.range <= 100.0)) bad("range", "must be in [0, 100] m (0: derived)");
+}
+
 // The controller section: the guards of Fig 5.11 need d_unsafe < d_fb < d_o, ...
 void validate_controller(const NavigationParams& n, const RobotKeys& k) {
   auto bad = [&](const char* key, const std::string& what) { k.fail(k.controller(key), what); };
@@ -78,6 +128,8 @@ void validate_controller(const NavigationParams& n, const RobotKeys& k) {
     bad("chatter_switches", fmt::format("must be between 2 and {}", ChatterMonitor::kCapacity));
   if (!(n.chatter_window > 0.0)) bad("chatter_window", "must be positive");
   if (n.heading_pid.integral_limit < 0.0) bad("pid.integral_limit", "must not be negative");
+  validate_planner(n.planner, k);
+  validate_dwa(n.dwa, k);
 }
 
 void validate_robot(const RobotTask& t, const World& w, const SimConfig& sim, const RobotKeys& k) {
@@ -96,6 +148,9 @@ void validate_robot(const RobotTask& t, const World& w, const SimConfig& sim, co
              fmt::format("sensor {}: need 0 <= min_range < max_range, got {} and {}", i,
                          sp.min_range, sp.max_range));
   }
+  if (!(r.max_acceleration > 0.0)) k.fail(k.robot("max_acceleration"), "must be positive");
+  if (!(r.max_angular_acceleration > 0.0))
+    k.fail(k.robot("max_angular_acceleration"), "must be positive");
   validate_controller(t.controller.params, k);
 
   // Without bounds a map is the whole world: off the map is unknown space, not free floor.

@@ -199,6 +199,10 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
   }
   if (!command.is_finite())
     throw std::domain_error("the controller's command is not a finite number (NaN or infinity)");
+  if (command.kind() == Command::Kind::Stuck) {  // the controller gave up
+    finish(RunStatus::Stuck);
+    return false;
+  }
   if (command.kind() == Command::Kind::GoalReached) {
     // STOP: this goal is reached; go on to the next one, or end the run.
     ++r.goals_reached;

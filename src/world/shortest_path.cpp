@@ -4,8 +4,6 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <queue>
-#include <tuple>
 #include <utility>
 
 #include "floornav/world/occupancy_grid.hpp"
@@ -28,20 +26,6 @@ double polyline_length(std::span<const Vec2> points) {
   for (std::size_t i = 1; i < points.size(); ++i) sum += (points[i] - points[i - 1]).norm();
   return sum;
 }
-
-/// Where the raster lies in the world: cell (ix, iy) covers [ix, ix + 1) x [iy, iy + 1) times
-/// `cell` in the frame `origin`.
-struct RasterFrame {
-  Pose2 origin{};
-  double cell{1.0};
-  int width{0};
-  int height{0};
-
-  Vec2 to_cells(const Vec2& world) const {
-    return rotate(world - origin.position, -origin.theta) / cell;
-  }
-  Vec2 to_world(const Vec2& cells) const { return origin.transform_point(cells * cell); }
-};
 
 /// The frame of the raster for `world`, or nullopt when it would be too large.
 std::optional<RasterFrame> choose_frame(const World& world, double r, const Vec2& start,
@@ -73,7 +57,9 @@ std::optional<RasterFrame> choose_frame(const World& world, double r, const Vec2
       grow(e.max);
     }
   }
-  double cell = std::min(options.cell_size, r > 0.0 ? r / 2.0 : options.cell_size);
+  double cell = options.cell_finer_than_radius
+                    ? std::min(options.cell_size, r > 0.0 ? r / 2.0 : options.cell_size)
+                    : options.cell_size;
   // Outside unbounded worlds, a margin so that the path can go round the outermost obstacles.
   auto padded = [&](double c) -> Vec2 {
     const double m = world.bounds() ? 0.0 : r + 4.0 * c;
@@ -134,9 +120,9 @@ FreeRaster rasterise(const World& world, double r, const RasterFrame& f) {
   return raster;
 }
 
-/// The free cell whose centre is nearest to `p` (cell units) within `radius` cells, ties to the
-/// lowest row then column.
-std::optional<GridCell> snap(const FreeRaster& raster, const Vec2& p, double radius) {
+}  // namespace
+
+std::optional<GridCell> snap_to_free(const FreeRaster& raster, const Vec2& p, double radius) {
   const int cx = static_cast<int>(std::floor(std::clamp(p.x(), -1e9, 1e9)));
   const int cy = static_cast<int>(std::floor(std::clamp(p.y(), -1e9, 1e9)));
   if (raster.is_free(cx, cy)) return GridCell{cx, cy};
@@ -152,7 +138,19 @@ std::optional<GridCell> snap(const FreeRaster& raster, const Vec2& p, double rad
   return best;
 }
 
-}  // namespace
+FreeRaster free_cells(const World& world, double body_radius, const RasterFrame& frame) {
+  if (frame.width <= 0 || frame.height <= 0 || !(frame.cell > 0.0)) return {};
+  return rasterise(world, body_radius, frame);
+}
+
+std::optional<RasterFrame> choose_raster_frame(const World& world, double body_radius,
+                                               const Vec2& start, std::span<const Vec2> goals,
+                                               const OptimumOptions& options) {
+  if (!is_finite(start) || !std::isfinite(body_radius) || body_radius < 0.0 ||
+      !(options.cell_size > 0.0))
+    return std::nullopt;
+  return choose_frame(world, body_radius, start, goals, options);
+}
 
 FreeRaster free_cells(const World& world, double body_radius, const Pose2& origin, double cell,
                       int width, int height) {
@@ -161,31 +159,63 @@ FreeRaster free_cells(const World& world, double body_radius, const Pose2& origi
 }
 
 std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, GridCell goal) {
-  if (!raster.is_free(start.x, start.y) || !raster.is_free(goal.x, goal.y)) return std::nullopt;
+  GridSearch search;
+  GridPath path;
+  if (!search.search(raster, start, goal, path)) return std::nullopt;
+  return path;
+}
+
+void GridSearch::fit(std::size_t cells) {
+  if (g_.size() < cells) {
+    g_.resize(cells);
+    parent_.resize(cells);
+    seen_.resize(cells, 0);
+    closed_.resize(cells, 0);
+  }
+  if (++generation_ == 0) {  // wrapped round: old stamps could look current
+    std::fill(seen_.begin(), seen_.end(), 0);
+    std::fill(closed_.begin(), closed_.end(), 0);
+    generation_ = 1;
+  }
+  open_.clear();
+}
+
+bool GridSearch::search(const FreeRaster& raster, GridCell start, GridCell goal, GridPath& path) {
+  path.length = 0.0;
+  path.cells.clear();
+  expanded_ = 0;
+  if (!raster.is_free(start.x, start.y) || !raster.is_free(goal.x, goal.y)) return false;
   const std::size_t w = static_cast<std::size_t>(raster.width);
-  const std::size_t n = w * static_cast<std::size_t>(raster.height);
+  fit(w * static_cast<std::size_t>(raster.height));
+  const std::uint32_t gen = generation_;
   auto index = [w](int x, int y) {
     return static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x);
   };
-  std::vector<double> g(n, kInf);
-  std::vector<std::int32_t> parent(n, -1);
-  std::vector<std::uint8_t> closed(n, 0);
+  auto g_of = [&](std::size_t v) { return seen_[v] == gen ? g_[v] : kInf; };
   // (f, -g, index): lowest f first; among equal f the deepest node, then the lowest index, so
-  // the order (and the path) is deterministic.
-  using Entry = std::tuple<double, double, std::size_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  // the order (and the path) is deterministic. A binary heap on a kept vector.
+  const auto later = std::greater<Entry>();
+  auto push = [&](Entry e) {
+    open_.push_back(e);
+    std::push_heap(open_.begin(), open_.end(), later);
+  };
   const std::size_t s = index(start.x, start.y), t = index(goal.x, goal.y);
-  g[s] = 0.0;
-  open.emplace(octile_distance(goal.x - start.x, goal.y - start.y), -0.0, s);
+  g_[s] = 0.0;
+  parent_[s] = -1;
+  seen_[s] = gen;
+  push({octile_distance(goal.x - start.x, goal.y - start.y), -0.0, s});
   constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
   constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
-  while (!open.empty()) {
-    const auto [f, neg_g, u] = open.top();
-    open.pop();
-    if (closed[u]) continue;
-    closed[u] = 1;
+  while (!open_.empty()) {
+    std::pop_heap(open_.begin(), open_.end(), later);
+    const std::size_t u = open_.back().index;
+    open_.pop_back();
+    if (closed_[u] == gen) continue;
+    closed_[u] = gen;
+    ++expanded_;
     if (u == t) break;
     const int ux = static_cast<int>(u % w), uy = static_cast<int>(u / w);
+    const double gu = g_[u];
     for (int k = 0; k < 8; ++k) {
       const int vx = ux + kDx[k], vy = uy + kDy[k];
       if (!raster.is_free(vx, vy)) continue;
@@ -193,24 +223,24 @@ std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, G
       if (diagonal && (!raster.is_free(ux + kDx[k], uy) || !raster.is_free(ux, uy + kDy[k])))
         continue;  // no corner cutting
       const std::size_t v = index(vx, vy);
-      if (closed[v]) continue;
-      const double gv = g[u] + (diagonal ? kSqrt2 : 1.0);
-      if (gv < g[v]) {
-        g[v] = gv;
-        parent[v] = static_cast<std::int32_t>(u);
-        open.emplace(gv + octile_distance(goal.x - vx, goal.y - vy), -gv, v);
+      if (closed_[v] == gen) continue;
+      const double gv = gu + (diagonal ? kSqrt2 : 1.0);
+      if (gv < g_of(v)) {
+        g_[v] = gv;
+        parent_[v] = static_cast<std::int32_t>(u);
+        seen_[v] = gen;
+        push({gv + octile_distance(goal.x - vx, goal.y - vy), -gv, v});
       }
     }
   }
-  if (!closed[t]) return std::nullopt;
-  GridPath path;
-  path.length = g[t];
+  if (closed_[t] != gen) return false;
+  path.length = g_[t];
   for (std::int64_t v = static_cast<std::int64_t>(t); v >= 0;
-       v = parent[static_cast<std::size_t>(v)])
+       v = parent_[static_cast<std::size_t>(v)])
     path.cells.push_back({static_cast<int>(static_cast<std::size_t>(v) % w),
                           static_cast<int>(static_cast<std::size_t>(v) / w)});
   std::reverse(path.cells.begin(), path.cells.end());
-  return path;
+  return true;
 }
 
 bool line_of_sight(const FreeRaster& raster, const Vec2& a, const Vec2& b) {
@@ -285,10 +315,10 @@ Optimum scenario_optimum(const World& world, double body_radius, const Vec2& sta
   double length = 0.0, octile = 0.0;
   std::vector<Vec2> route;
   Vec2 from = frame->to_cells(start);
-  auto from_cell = snap(raster, from, options.snap_radius);
+  auto from_cell = snap_to_free(raster, from, options.snap_radius);
   for (const Vec2& goal_world : goals) {
     const Vec2 to = frame->to_cells(goal_world);
-    const auto to_cell = snap(raster, to, options.snap_radius);
+    const auto to_cell = snap_to_free(raster, to, options.snap_radius);
     if (!from_cell || !to_cell) {
       out.status = OptimumStatus::NoFreeCell;
       return out;

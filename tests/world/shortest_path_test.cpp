@@ -110,6 +110,53 @@ TEST(OctileAstar, MatchesTheOctileDistanceInOpenSpaceAndIsDeterministic) {
   EXPECT_EQ(a->cells, b->cells);
 }
 
+// GridSearch keeps its buffers between searches; every search must be the one a fresh search
+// makes, whatever came before it (a larger raster, a failed search, a blocked goal).
+TEST(GridSearch, ReusedSearchEqualsAFreshOneEveryTime) {
+  const FreeRaster big = raster(40, 30, {{10, 0}, {10, 1}, {10, 2}, {10, 3}, {10, 4}, {10, 5}});
+  const FreeRaster wall = raster(5, 3, {{2, 0}, {2, 1}, {2, 2}});
+  const FreeRaster small = raster(6, 6, {{2, 2}, {3, 2}, {2, 3}});
+  GridSearch search;
+  GridPath path;
+  struct Case {
+    const FreeRaster* r;
+    GridCell s, g;
+  };
+  const Case cases[] = {{&big, {0, 0}, {39, 29}}, {&small, {0, 0}, {5, 5}}, {&wall, {0, 0}, {4, 0}},
+                        {&big, {3, 4}, {37, 11}}, {&small, {5, 0}, {0, 5}}, {&big, {0, 0}, {12, 0}},
+                        {&wall, {0, 0}, {2, 0}},  {&small, {0, 0}, {5, 5}}};
+  for (const Case& c : cases) {
+    const auto fresh = octile_astar(*c.r, c.s, c.g);
+    const bool found = search.search(*c.r, c.s, c.g, path);
+    ASSERT_EQ(found, fresh.has_value());
+    if (!found) {
+      EXPECT_TRUE(path.cells.empty());
+      continue;
+    }
+    EXPECT_EQ(path.cells, fresh->cells);
+    EXPECT_EQ(path.length, fresh->length);
+    expect_valid_path(*c.r, path);
+    EXPECT_GT(search.expanded(), 0u);
+  }
+}
+
+// Greedy string pulling with any line-of-sight test: the pulled path keeps exactly the vertices
+// the test cannot see past.
+TEST(PullString, WithAnyLineOfSightTest) {
+  const std::vector<Vec2> pts{{0, 0}, {1, 0}, {2, 0}, {2, 1}, {2, 2}};
+  std::vector<Vec2> out;
+  pull_string(
+      pts, [](const Vec2&, const Vec2&) { return true; }, out);
+  EXPECT_EQ(out, (std::vector<Vec2>{{0, 0}, {2, 2}}));
+  pull_string(
+      pts, [](const Vec2&, const Vec2&) { return false; }, out);
+  EXPECT_EQ(out, pts);
+  // Sight only along an axis: the corner (2, 0) stays, the points on the legs go.
+  pull_string(
+      pts, [](const Vec2& a, const Vec2& b) { return a.x() == b.x() || a.y() == b.y(); }, out);
+  EXPECT_EQ(out, (std::vector<Vec2>{{0, 0}, {2, 0}, {2, 2}}));
+}
+
 // The MovingAI benchmark's own optima (octile, no corner cutting), row by row: octile_astar on the
 // map's cells, and scenario_optimum's octile length on the map as a world (1 m cells, r = 0.1 m, so
 // every free cell's centre is free: its clearance is at least half a cell).

@@ -28,6 +28,8 @@
 
 namespace floornav {
 
+class World;
+
 /// What a controller sees at one step. The spans point into the simulator's buffers and are
 /// valid only during the call.
 struct Observation {
@@ -58,12 +60,14 @@ class Command {
     Unicycle,     ///< (V, omega): m/s, rad/s
     Wheels,       ///< (w_left, w_right): rad/s
     GoalReached,  ///< the current goal is reached (STOP): the robot turns to the next one
+    Stuck,        ///< the controller gives up (nothing it tried helped): the run ends `stuck`
   };
 
   static Command velocity(const Vec2& u) { return {Kind::Velocity, u.x(), u.y()}; }
   static Command unicycle(double v, double omega) { return {Kind::Unicycle, v, omega}; }
   static Command wheels(double left, double right) { return {Kind::Wheels, left, right}; }
   static Command goal_reached() { return {Kind::GoalReached, 0.0, 0.0}; }
+  static Command stuck() { return {Kind::Stuck, 0.0, 0.0}; }
 
   Kind kind() const { return kind_; }
   Vec2 u() const { return {a_, b_}; }  ///< Velocity
@@ -124,6 +128,9 @@ struct ControllerContext {
   const NavigationParams& params;  ///< the robot's controller section (preset defaults + file)
   std::string_view robot_name;
   std::size_t robot_index{0};  ///< in the fleet (0 for a lone robot)
+  /// The map known in advance (the simulator passes its world), for planners that plan on one
+  /// (controller.planner.map: known); nullptr when there is none. Reactive kinds ignore it.
+  const World* map{nullptr};
 };
 
 /// Makes one controller per robot (fleets call it once for each robot).

@@ -35,14 +35,24 @@ class NavigationController final : public Controller {
 /// The built-in controller of `config.kind` (which must name one: see parse_controller_kind).
 std::unique_ptr<Controller> make_builtin_controller(const ControllerConfig& config);
 
+class KnownMapRasters;
+
 /// Makes the controllers of many robots: a user's factory is called per robot; robots of one
 /// built-in kind with equal parameters share one automaton (100,000 robots, one automaton).
+/// `dwa` makes a DwaController; a `planner.kind` other than none wraps the reactive controller
+/// in a PlannerController (planner_controller.hpp), and robots planning on one known map share
+/// its raster.
 class ControllerMaker {
  public:
+  ControllerMaker();
+  ~ControllerMaker();
   std::unique_ptr<Controller> make(const ControllerConfig& config,
                                    const ControllerContext& context);
 
  private:
+  std::unique_ptr<Controller> make_reactive(const ControllerConfig& config,
+                                            const ControllerContext& context);
+  std::shared_ptr<KnownMapRasters> rasters_;
   struct Built {
     ControllerKind kind;
     NavigationParams params;

@@ -7,7 +7,9 @@
 #include <optional>
 #include <string_view>
 
+#include "floornav/nav/dwa_params.hpp"
 #include "floornav/nav/pid.hpp"
+#include "floornav/nav/planner_params.hpp"
 
 namespace floornav {
 
@@ -47,6 +49,10 @@ struct NavigationParams {
   int chatter_switches{8};       ///< this many switches ...
   double chatter_window{2.0};    ///< ... within this many seconds is a chatter (Zeno) episode
   PidGains heading_pid{};        ///< eqs. 5.12-5.15
+  /// The planning layer over the automaton (nav/planner_controller.hpp); `kind: none` (the
+  /// default) is the chapter alone.
+  PlannerParams planner{};
+  DwaParams dwa{};  ///< the `dwa` controller kind (nav/dwa_controller.hpp)
 
   bool operator==(const NavigationParams&) const = default;
 
@@ -75,6 +81,8 @@ struct NavigationParams {
     a("chatter_switches", chatter_switches, "switches within chatter_window that count as chatter");
     a("chatter_window", chatter_window, "window of the chatter (Zeno) detector, s");
     a.section("pid", heading_pid);
+    a.section("planner", planner);
+    a.section("dwa", dwa);
   }
 };
 

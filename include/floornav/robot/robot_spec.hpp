@@ -20,6 +20,11 @@ struct RobotSpec {
   std::vector<Vec2> footprint;           ///< robot-frame polygon for collision; empty: the disc
   std::vector<RangeSensorSpec> sensors;  ///< in the robot frame
   double sensor_noise{0.0};              ///< m: std. dev. of Gaussian range noise
+  /// m/s^2 and rad/s^2: how fast the base can change its forward speed and turn rate. The
+  /// simulator's kinematic model does not enforce them (commands act at once, as in the
+  /// chapter); the `dwa` controller builds its dynamic window from them.
+  double max_acceleration{1.0};
+  double max_angular_acceleration{5.0};
 };
 
 /// `beams` single-beam sensors spread evenly over `fov` radians centred on the mount's heading

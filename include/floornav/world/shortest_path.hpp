@@ -54,7 +54,45 @@ struct GridPath {
 /// Octile A* from `start` to `goal`: moves to the 8 neighbours, a diagonal move only when both
 /// cells it passes between are free (no corner cutting). Empty when either cell is blocked or
 /// outside the raster, or the goal is unreachable. Deterministic; iterative; O(n log n).
+/// (One search with a fresh GridSearch.)
 std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, GridCell goal);
+
+/// The octile A* of `octile_astar` with its working memory (costs, parents, open list) kept from
+/// one search to the next: a planner that searches again and again on rasters of one size
+/// allocates nothing after its first search (the cells of the path aside). Entries are
+/// invalidated by a generation count, not by clearing the buffers.
+class GridSearch {
+ public:
+  /// The same path as `octile_astar(raster, start, goal)`, into `path` (its cells vector is
+  /// reused). False, with `path` empty, when there is none.
+  bool search(const FreeRaster& raster, GridCell start, GridCell goal, GridPath& path);
+  /// Cells expanded by the last search (for benchmarks and tests).
+  std::size_t expanded() const { return expanded_; }
+
+ private:
+  struct Entry {
+    double f;
+    double neg_g;
+    std::size_t index;
+    bool operator>(const Entry& o) const {
+      if (f != o.f) return f > o.f;
+      if (neg_g != o.neg_g) return neg_g > o.neg_g;
+      return index > o.index;
+    }
+  };
+  void fit(std::size_t cells);
+  std::vector<double> g_;
+  std::vector<std::int32_t> parent_;
+  std::vector<std::uint32_t> seen_;    ///< == generation_: g_ and parent_ are this search's
+  std::vector<std::uint32_t> closed_;  ///< == generation_: expanded in this search
+  std::vector<Entry> open_;
+  std::uint32_t generation_{0};
+  std::size_t expanded_{0};
+};
+
+/// The free cell whose centre is nearest to `p` (cell units) within `radius` cells (`p`'s own cell
+/// when it is free), ties to the lowest row then column; nullopt when there is none.
+std::optional<GridCell> snap_to_free(const FreeRaster& raster, const Vec2& p, double radius);
 
 /// True when every cell whose closed square the segment a-b (cell units) touches is free: a
 /// segment along a cell border needs the cells on both sides, one through a corner all four.
@@ -65,11 +103,40 @@ bool line_of_sight(const FreeRaster& raster, const Vec2& a, const Vec2& b);
 /// segments cross only free cells when the input's do.
 std::vector<Vec2> pull_string(const FreeRaster& raster, std::span<const Vec2> points);
 
+/// The same greedy string pulling with any line-of-sight test `clear(a, b)` (a planner's test
+/// on the world's clearance, say), in whatever frame the points are. Written to `out`.
+template <class LineOfSight>
+void pull_string(std::span<const Vec2> points, LineOfSight&& clear, std::vector<Vec2>& out) {
+  out.clear();
+  if (points.empty()) return;
+  out.push_back(points[0]);
+  for (std::size_t i = 1; i + 1 < points.size(); ++i)
+    if (!clear(out.back(), points[i + 1])) out.push_back(points[i]);
+  if (points.size() > 1) out.push_back(points.back());
+}
+
+/// Where a raster lies in the world: cell (ix, iy) covers [ix, ix + 1) x [iy, iy + 1) times
+/// `cell` metres in the frame `origin`.
+struct RasterFrame {
+  Pose2 origin{};
+  double cell{1.0};  ///< m
+  int width{0};
+  int height{0};
+
+  Vec2 to_cells(const Vec2& world) const {
+    return rotate(world - origin.position, -origin.theta) / cell;
+  }
+  Vec2 to_world(const Vec2& cells) const { return origin.transform_point(cells * cell); }
+};
+
 /// The configuration space of a disc robot on a raster: cell (ix, iy), covering
 /// [ix, ix + 1) x [iy, iy + 1) times `cell` in the frame `origin`, is free when
 /// `world.clearance` at its centre exceeds `body_radius`. Empty for a non-positive size.
 FreeRaster free_cells(const World& world, double body_radius, const Pose2& origin, double cell,
                       int width, int height);
+
+/// `free_cells` over `frame`.
+FreeRaster free_cells(const World& world, double body_radius, const RasterFrame& frame);
 
 /// How the optimum of a scenario is computed.
 struct OptimumOptions {
@@ -77,6 +144,9 @@ struct OptimumOptions {
   std::size_t max_cells{4'000'000};  ///< larger rasters are not built: no optimum
   double snap_radius{3.0};           ///< cells: how far a blocked start/goal looks for a free cell
   bool smooth{true};                 ///< string-pull the octile path
+  /// Make the cells no coarser than half the radius (the optimum's accuracy); a planner that
+  /// is given its cell size turns this off.
+  bool cell_finer_than_radius{true};
 };
 
 enum class OptimumStatus {
@@ -99,6 +169,14 @@ struct Optimum {
   std::vector<Vec2>
       path;  ///< world frame: start, the kept vertices, every goal; empty unless Found
 };
+
+/// The raster `scenario_optimum` uses for a disc of radius `body_radius` (see there): the
+/// occupancy grid's own cells, or square cells over the bounds (or the obstacles, start and goals
+/// with a margin). nullopt when it would exceed `options.max_cells` (or need cells coarser than
+/// the radius). A planner on the known map plans on the same raster.
+std::optional<RasterFrame> choose_raster_frame(const World& world, double body_radius,
+                                               const Vec2& start, std::span<const Vec2> goals,
+                                               const OptimumOptions& options = {});
 
 /// The shortest collision-free path length for a disc robot of radius `body_radius` from `start`
 /// through every goal in order, on a raster of `world`: the occupancy grid's own cells when the

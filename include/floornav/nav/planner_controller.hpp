@@ -1,0 +1,155 @@
+#pragma once
+/// @file
+/// The planning layer over a reactive controller (the chapter's three levels: a plan, the
+/// reactive automaton, execution). A planner finds a path to the goal on a map, string-pulls it,
+/// and hands the inner controller (the automaton of Fig 5.11, or DWA) a subgoal `lookahead`
+/// metres along it as the goal of its Observation; the automaton keeps doing what the plan could
+/// not know (avoid, follow a boundary). GoalReached is reported only at the real goal.
+///
+/// One step:
+///   1. map: with the sensed map (or the memory on), the rolling grid takes this step's ranges;
+///   2. goal: within epsilon of the real goal -> GoalReached;
+///   3. plan: when there is no path yet, on the sensed map every replan_period, when the robot
+///      has strayed from the path, or after a recovery: octile A* on the raster inflated by
+///      radius + inflation (then by the radius alone if that finds nothing), string-pulled;
+///   4. progress: the path left must shrink by progress_distance within progress_window, else a
+///      recovery: back up backup_distance, turn towards the new plan, replan. After
+///      max_recoveries without progress in between (or when the known map has no path at all),
+///      the command is Command::stuck() and the run ends `stuck`;
+///   5. follow: the subgoal (frozen while the automaton follows a boundary or avoids, so that its
+///      progress guard, eq. 5.26, measures against a fixed point) goes to the inner controller,
+///      with the remembered obstacle points added to what the sensors see now.
+///
+/// Mode names: the inner controller's, then recovery_back_up, recovery_turn, stuck. Guard
+/// names: the inner's, then progress_stalled, no_path, recovered.
+
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include "floornav/nav/controller.hpp"
+#include "floornav/nav/planned_path.hpp"
+#include "floornav/nav/progress_checker.hpp"
+#include "floornav/nav/rolling_grid.hpp"
+#include "floornav/world/shortest_path.hpp"
+
+namespace floornav {
+
+/// The planning raster of a known map, for one planning radius: built once and shared by every
+/// robot that plans on it (a fleet on one floor, say).
+struct KnownMapRaster {
+  RasterFrame frame;
+  FreeRaster raster;
+  double radius{0.0};  ///< m the raster is inflated by
+};
+
+/// Where planners find the rasters of known maps: one per (world, radius, frame), built on first
+/// use. Thread-safe (robots of a fleet plan on their own threads).
+class KnownMapRasters {
+ public:
+  /// The raster of `world` for a disc of `radius` over the frame that scenario_optimum would
+  /// use for `from` -> `goal` with cells of `cell` m; nullptr when that raster would be too large.
+  std::shared_ptr<const KnownMapRaster> get(const World& world, double radius, double cell,
+                                            const Vec2& from, const Vec2& goal);
+
+ private:
+  struct Entry {
+    const World* world;
+    std::shared_ptr<const KnownMapRaster> raster;
+  };
+  std::mutex mutex_;
+  std::vector<Entry> entries_;
+};
+
+class PlannerController final : public Controller {
+ public:
+  struct Setup {
+    std::unique_ptr<Controller> inner;         ///< the reactive controller that drives
+    NavigationParams params;                   ///< the robot's controller section (planner inside)
+    const RobotSpec* robot{nullptr};           ///< must outlive the controller
+    const World* map{nullptr};                 ///< the known map (planner.map: known)
+    std::shared_ptr<KnownMapRasters> rasters;  ///< shared raster cache; made when null
+  };
+  /// Throws std::invalid_argument when the known map is asked for and not given.
+  explicit PlannerController(Setup setup);
+
+  Decision decide(const Observation& obs) override;
+  void reset() override;
+  int mode() const override { return mode_; }
+
+  // What the planner is doing, for tests and pictures.
+  const PlannedPath& path() const { return path_; }
+  Vec2 subgoal() const { return subgoal_; }
+  int plans() const { return plans_; }
+  int recoveries() const { return recoveries_total_; }
+  /// The rolling grid (nullptr unless the map is sensed or the memory is on).
+  const RollingGrid* grid() const { return grid_ ? &*grid_ : nullptr; }
+  /// The planning radius and lookahead in use (the 0 defaults resolved), m.
+  double plan_radius() const { return radius_; }
+  double lookahead() const { return lookahead_; }
+
+ private:
+  enum class Phase { Follow, BackUp, Turn, Stuck };
+  Decision follow(const Observation& obs);
+  Decision recover(const Observation& obs);
+  Decision give_up(int guard);
+  /// Starts a recovery (or gives up when there were too many); `guard` says why.
+  Decision begin_recovery(const Observation& obs, int guard);
+  /// Plans from `from` to `goal`; false when there is no path. Updates path_ and the checker.
+  bool plan(const Vec2& from, const Vec2& goal, double t);
+  bool plan_known(const Vec2& from, const Vec2& goal);
+  bool plan_sensed(const Vec2& from, const Vec2& goal, double t);
+  /// Fills points_ with the observation's points and the remembered ones; the span over them.
+  std::span<const Vec2> points_with_memory(const Observation& obs);
+  int own_mode(Phase p) const;
+
+  std::unique_ptr<Controller> inner_;
+  NavigationParams nav_;
+  PlannerParams p_;
+  const RobotSpec* robot_;
+  const World* map_;
+  std::shared_ptr<KnownMapRasters> rasters_;
+  int inner_modes_{0};
+  int inner_guards_{0};
+  std::vector<bool> holds_subgoal_;  ///< per inner mode: a boundary-following episode
+
+  // Resolved parameters (the zero defaults made concrete), m.
+  double radius_{0.0};
+  double lookahead_{0.0};
+  double corner_{0.0};
+  double progress_distance_{0.0};
+  double backup_distance_{0.0};
+
+  // Working memory, sized once.
+  std::optional<RollingGrid> grid_;
+  GridSearch search_;
+  GridPath cells_;
+  FreeRaster raster_;  ///< sensed map: the inflated window; known: the tight fallback
+  std::shared_ptr<const KnownMapRaster> known_;
+  std::vector<Vec2> polyline_;  ///< the octile path before pulling
+  std::vector<Vec2> pulled_;
+  std::vector<Vec2> points_;  ///< observation points plus remembered ones
+  std::vector<Vec2> remembered_;
+
+  // State.
+  PlannedPath path_;
+  Vec2 plan_goal_{Vec2::Zero()};  ///< the goal the path leads to (the real one, or clamped)
+  double tail_{0.0};              ///< m from the path's end to the real goal (sensed map)
+  Vec2 subgoal_{Vec2::Zero()};
+  bool subgoal_held_{false};
+  ProgressChecker progress_;
+  double last_plan_time_{-1e300};
+  double last_t_{-1e300};
+  bool planned_{false};
+  Phase phase_{Phase::Follow};
+  double phase_start_{0.0};
+  Pose2 phase_pose_{};
+  double turn_target_{0.0};
+  int recoveries_{0};  ///< since the last progress
+  int recoveries_total_{0};
+  int plans_{0};
+  int mode_{0};
+};
+
+}  // namespace floornav

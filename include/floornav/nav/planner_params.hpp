@@ -1,0 +1,88 @@
+#pragma once
+/// @file
+/// The planning layer's parameters (`controller.planner` in a scenario): which planner feeds the
+/// chapter's automaton subgoals, on which map, and how it replans, recovers and gives up.
+/// A length of 0 means "derived from the robot" (see each field); every default leaves the
+/// chapter alone (`kind: none`).
+
+#include <array>
+#include <span>
+#include <string_view>
+#include <utility>
+
+namespace floornav {
+
+/// Which planner (`planner.kind`).
+enum class PlannerKind {
+  None,   ///< the chapter alone: the automaton drives straight for the goal
+  AStar,  ///< octile A* on the inflated raster, string-pulled (world/shortest_path.hpp)
+};
+
+/// Which map the planner plans on (`planner.map`).
+enum class PlannerMap {
+  Known,   ///< the world itself (ControllerContext::map): a floor plan known in advance
+  Sensed,  ///< a rolling occupancy grid built from the robot's own range readings (no prior map)
+};
+
+inline std::span<const std::pair<PlannerKind, std::string_view>> enum_names(PlannerKind) {
+  static constexpr std::array<std::pair<PlannerKind, std::string_view>, 2> kNames{
+      {{PlannerKind::None, "none"}, {PlannerKind::AStar, "astar"}}};
+  return kNames;
+}
+inline std::span<const std::pair<PlannerMap, std::string_view>> enum_names(PlannerMap) {
+  static constexpr std::array<std::pair<PlannerMap, std::string_view>, 2> kNames{
+      {{PlannerMap::Known, "known"}, {PlannerMap::Sensed, "sensed"}}};
+  return kNames;
+}
+
+struct PlannerParams {
+  PlannerKind kind{PlannerKind::None};
+  PlannerMap map{PlannerMap::Known};
+  /// m: the disc the plan is made for; 0: the body radius. (A footprint robot may plan as the
+  /// disc of its half-width and leave the corners to the automaton's footprint clearance.)
+  double radius{0.0};
+  double inflation{0.05};  ///< m kept beyond `radius` from obstacles, where there is room
+  /// m: planning cells; 0: the occupancy grid's own cells on a known grid map, else radius / 3.
+  double cell_size{0.0};
+  double lookahead{0.0};          ///< m along the path to the subgoal; 0: 6 x the body radius
+  double replan_period{1.0};      ///< s between plans on the sensed map (the map keeps changing)
+  double progress_window{8.0};    ///< s: the progress checker's window ...
+  double progress_distance{0.0};  ///< ... in which the path left must shrink this much (m; 0: r)
+  double backup_distance{0.0};    ///< m a recovery backs up; 0: the body radius
+  double recovery_turn{1.5708};   ///< rad a recovery then turns on the spot (towards the path)
+  int max_recoveries{3};  ///< recoveries without progress in between, then the run is `stuck`
+  /// Rolling grid (the sensed map, and the memory below): side of the square window that moves
+  /// with the robot, m; 0: 20 m.
+  double window{0.0};
+  double decay{30.0};       ///< s after which a cell not seen again fades by one step (of 4)
+  double sense_range{0.0};  ///< m of each beam entered into the grid; 0: the sensor's own range
+  /// m of clearance: remembered occupied cells this close to the body are given to the automaton
+  /// as obstacle points, besides what the sensors see now (sparse IR rings); 0: off.
+  double memory_range{0.0};
+
+  bool operator==(const PlannerParams&) const = default;
+
+  template <class Archive>
+  void serialize(Archive& a) {
+    a("kind", kind, "none (the chapter alone) | astar");
+    a("map", map, "known (the world's map) | sensed (a rolling grid from the robot's ranges)");
+    a("radius", radius, "disc the plan is made for, m (0: the body radius)");
+    a("inflation", inflation, "margin the plan keeps beyond the radius, m");
+    a("cell_size", cell_size, "planning cell, m (0: the map's cells, or radius / 3)");
+    a("lookahead", lookahead, "subgoal distance along the path, m (0: 6 x body radius)");
+    a("replan_period", replan_period, "s between plans on the sensed map");
+    a("progress_window", progress_window, "progress checker window, s");
+    a("progress_distance", progress_distance,
+      "path length that must be gained within the window, m (0: the body radius)");
+    a("backup_distance", backup_distance, "recovery back-up, m (0: the body radius)");
+    a("recovery_turn", recovery_turn, "recovery turn on the spot, rad");
+    a("max_recoveries", max_recoveries, "recoveries without progress before `stuck`");
+    a("window", window, "rolling grid side, m (0: 20)");
+    a("decay", decay, "s after which an unseen rolling-grid cell fades by one step");
+    a("sense_range", sense_range, "m of each beam entered in the rolling grid (0: sensor range)");
+    a("memory_range", memory_range,
+      "remembered cells within this clearance are obstacle points for the automaton, m (0: off)");
+  }
+};
+
+}  // namespace floornav

@@ -1,0 +1,342 @@
+#include "floornav/nav/planner_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "floornav/geometry/angle.hpp"
+#include "floornav/kinematics/differential_drive.hpp"
+#include "floornav/nav/navigation_automaton.hpp"
+#include "floornav/sensing/obstacle_memory.hpp"
+#include "floornav/world/world.hpp"
+
+namespace floornav {
+
+namespace {
+constexpr double kNever = -1e300;
+// Remembered points handed to the automaton per step, at most (the nearest cells come first in
+// a small radius, so this is far more than a ring of IR sensors needs).
+constexpr std::size_t kMaxRemembered = 1024;
+// A segment of a known-map path may come this much closer than the planning radius (rounding of
+// the clearance queries; the raster already judged the cells).
+constexpr double kClearanceTolerance = 1e-3;  // m
+
+std::vector<std::string> with(std::vector<std::string> names,
+                              std::initializer_list<const char*> more) {
+  for (const char* m : more) names.emplace_back(m);
+  return names;
+}
+
+// No obstacle within `r` of the segment a-b, by sphere tracing the world's clearance (exact,
+// 1-Lipschitz: a query answering c clears the next c metres).
+bool segment_clear(const World& world, const Vec2& a, const Vec2& b, double r) {
+  const Vec2 d = b - a;
+  const double len = d.norm();
+  double s = 0.0;
+  for (int k = 0; k < 100000; ++k) {
+    const Vec2 p = len > 0.0 ? Vec2(a + d * (s / len)) : a;
+    const double c = world.clearance(p) - r;
+    if (!(c >= kClearanceTolerance)) return false;
+    if (s >= len) return true;
+    s = std::min(len, s + c);
+  }
+  return false;
+}
+
+bool same_frame(const RasterFrame& a, const RasterFrame& b) {
+  return a.origin.position == b.origin.position && a.origin.theta == b.origin.theta &&
+         a.cell == b.cell && a.width == b.width && a.height == b.height;
+}
+}  // namespace
+
+std::shared_ptr<const KnownMapRaster> KnownMapRasters::get(const World& world, double radius,
+                                                           double cell, const Vec2& from,
+                                                           const Vec2& goal) {
+  OptimumOptions options;
+  if (cell > 0.0) {  // as given (planner.cell_size), not made finer for small robots
+    options.cell_size = cell;
+    options.cell_finer_than_radius = false;
+  }
+  const Vec2 goals[] = {goal};
+  const auto frame = choose_raster_frame(world, radius, from, goals, options);
+  if (!frame) return nullptr;
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (const Entry& e : entries_)
+    if (e.world == &world && e.raster->radius == radius && same_frame(e.raster->frame, *frame))
+      return e.raster;
+  auto built = std::make_shared<KnownMapRaster>();
+  built->frame = *frame;
+  built->radius = radius;
+  built->raster = free_cells(world, radius, *frame);
+  entries_.push_back({&world, built});
+  return built;
+}
+
+PlannerController::PlannerController(Setup setup)
+    : Controller(with(setup.inner->mode_names(), {"recovery_back_up", "recovery_turn", "stuck"}),
+                 with(setup.inner->guard_names(), {"progress_stalled", "no_path", "recovered"})),
+      inner_(std::move(setup.inner)),
+      nav_(setup.params),
+      p_(setup.params.planner),
+      robot_(setup.robot),
+      map_(setup.map),
+      rasters_(setup.rasters ? setup.rasters : std::make_shared<KnownMapRasters>()),
+      progress_(setup.params.planner.progress_window, 0.0) {
+  if (!robot_) throw std::invalid_argument("planner: no robot");
+  if (p_.map == PlannerMap::Known && !map_)
+    throw std::invalid_argument("planner.map is 'known', but no map was given to the planner");
+  inner_modes_ = static_cast<int>(inner_->mode_names().size());
+  inner_guards_ = static_cast<int>(inner_->guard_names().size());
+  for (const std::string& name : inner_->mode_names())
+    holds_subgoal_.push_back(name == mode_names::kFollowCw || name == mode_names::kFollowCcw ||
+                             name == mode_names::kAvoidObstacle);
+  const double r = robot_->body_radius;
+  radius_ = p_.radius > 0.0 ? p_.radius : r;
+  lookahead_ = p_.lookahead > 0.0 ? p_.lookahead : 6.0 * r;
+  corner_ = 0.5 * lookahead_;
+  progress_distance_ = p_.progress_distance > 0.0 ? p_.progress_distance : r;
+  backup_distance_ = p_.backup_distance > 0.0 ? p_.backup_distance : r;
+  progress_ = ProgressChecker(p_.progress_window, progress_distance_);
+  if (p_.map == PlannerMap::Sensed || p_.memory_range > 0.0) {
+    const double window = p_.window > 0.0 ? p_.window : p_.map == PlannerMap::Sensed ? 20.0 : 4.0;
+    // At most 2000 cells across (validate_scenario refuses finer explicit cells).
+    const double cell =
+        std::max(p_.cell_size > 0.0 ? p_.cell_size : radius_ / 3.0, window / 2000.0);
+    grid_.emplace(cell, std::max(4, static_cast<int>(std::ceil(window / cell))), p_.decay);
+  }
+  points_.resize(robot_->sensors.size() + ObstacleMemory::kCapacity + kMaxRemembered);
+  reset();
+}
+
+void PlannerController::reset() {
+  inner_->reset();
+  phase_ = Phase::Follow;
+  planned_ = false;
+  path_.clear();
+  tail_ = 0.0;
+  recoveries_ = 0;
+  subgoal_held_ = false;
+  last_plan_time_ = kNever;
+  mode_ = inner_->mode();
+}
+
+int PlannerController::own_mode(Phase p) const {
+  switch (p) {
+    case Phase::BackUp:
+      return inner_modes_;
+    case Phase::Turn:
+      return inner_modes_ + 1;
+    case Phase::Stuck:
+      return inner_modes_ + 2;
+    case Phase::Follow:
+      break;
+  }
+  return inner_->mode();
+}
+
+Decision PlannerController::decide(const Observation& obs) {
+  if (obs.t < last_t_ && grid_) grid_->clear();  // a new run with the same controller
+  last_t_ = obs.t;
+  const Vec2 x = obs.pose.position;
+  if (grid_) {
+    grid_->follow(x);
+    const double reach = p_.sense_range > 0.0 ? p_.sense_range : 1e9;
+    grid_->update(obs.beams, obs.ranges, robot_->sensors, reach, obs.t);
+  }
+  if (phase_ == Phase::Stuck) return {Command::stuck(), mode_};
+  if (obs.goal_distance() < nav_.epsilon) return {Command::goal_reached(), mode_};
+  if (phase_ != Phase::Follow) return recover(obs);
+  return follow(obs);
+}
+
+bool PlannerController::plan(const Vec2& from, const Vec2& goal, double t) {
+  ++plans_;
+  last_plan_time_ = t;
+  const bool had_path = planned_;
+  planned_ = p_.map == PlannerMap::Known ? plan_known(from, goal) : plan_sensed(from, goal, t);
+  if (!planned_) {
+    path_.clear();
+    return false;
+  }
+  path_.assign(pulled_);
+  path_.project(from, lookahead_);
+  const double left = path_.remaining() + tail_;
+  // A new plan that is longer (the way turned out to be blocked) is no progress: if the robot
+  // does not make up for it within the window, that is a stall like any other.
+  if (!had_path) progress_.reset(t, left);
+  subgoal_held_ = false;
+  return true;
+}
+
+bool PlannerController::plan_known(const Vec2& from, const Vec2& goal) {
+  tail_ = 0.0;
+  const double r_plan = radius_ + p_.inflation;
+  if (!known_ || !map_->bounds()) known_ = rasters_->get(*map_, r_plan, p_.cell_size, from, goal);
+  if (!known_) {  // a map too large to rasterise: the automaton alone, straight for the goal
+    pulled_.assign({from, goal});
+    return true;
+  }
+  const RasterFrame& f = known_->frame;
+  auto attempt = [&](const FreeRaster& raster, double r) {
+    const double snap = r / f.cell + 2.0;
+    const auto s = snap_to_free(raster, f.to_cells(from), snap);
+    const auto g = snap_to_free(raster, f.to_cells(goal), snap);
+    if (!s || !g || !search_.search(raster, *s, *g, cells_)) return false;
+    polyline_.clear();
+    polyline_.push_back(from);
+    for (const GridCell& c : cells_.cells)
+      polyline_.push_back(f.to_world(Vec2(c.x + 0.5, c.y + 0.5)));
+    polyline_.push_back(goal);
+    pull_string(
+        polyline_, [&](const Vec2& a, const Vec2& b) { return segment_clear(*map_, a, b, r); },
+        pulled_);
+    return true;
+  };
+  if (attempt(known_->raster, r_plan)) return true;
+  if (p_.inflation <= 0.0) return false;
+  // No path with the margin: perhaps there is one for the radius alone.
+  raster_ = free_cells(*map_, radius_, f);
+  return attempt(raster_, radius_);
+}
+
+bool PlannerController::plan_sensed(const Vec2& from, const Vec2& goal, double t) {
+  const RollingGrid& grid = *grid_;
+  const double c = grid.cell();
+  const GridCell o = grid.origin();
+  const RasterFrame f{Pose2{Vec2(o.x * c, o.y * c), 0.0}, c, grid.side(), grid.side()};
+  // A goal beyond the window: plan to the nearest point inside it, the rest is a straight tail.
+  const Vec2 lo = f.origin.position + Vec2(c, c);
+  const Vec2 hi = f.origin.position + Vec2((grid.side() - 1) * c, (grid.side() - 1) * c);
+  plan_goal_ = goal.cwiseMax(lo).cwiseMin(hi);
+  tail_ = (goal - plan_goal_).norm();
+  auto attempt = [&](double r) {
+    grid.inflate(r, t, raster_);
+    const double snap = r / c + 2.0;
+    const auto s = snap_to_free(raster_, f.to_cells(from), snap);
+    const auto g = snap_to_free(raster_, f.to_cells(plan_goal_), snap);
+    if (!s || !g || !search_.search(raster_, *s, *g, cells_)) return false;
+    polyline_.clear();
+    polyline_.push_back(from);
+    for (const GridCell& cell : cells_.cells)
+      polyline_.push_back(f.to_world(Vec2(cell.x + 0.5, cell.y + 0.5)));
+    polyline_.push_back(plan_goal_);
+    pull_string(
+        polyline_,
+        [&](const Vec2& a, const Vec2& b) {
+          return line_of_sight(raster_, f.to_cells(a), f.to_cells(b));
+        },
+        pulled_);
+    return true;
+  };
+  return attempt(radius_ + p_.inflation) || (p_.inflation > 0.0 && attempt(radius_));
+}
+
+std::span<const Vec2> PlannerController::points_with_memory(const Observation& obs) {
+  if (!grid_ || !(p_.memory_range > 0.0)) return obs.points;
+  const std::size_t n = std::min(obs.points.size(), points_.size());
+  std::copy(obs.points.begin(), obs.points.begin() + static_cast<std::ptrdiff_t>(n),
+            points_.begin());
+  const std::size_t m =
+      grid_->remembered_points(obs.pose.position, robot_->body_radius + p_.memory_range, obs.t,
+                               std::span<Vec2>(points_.data() + n, points_.size() - n));
+  return std::span<const Vec2>(points_.data(), n + m);
+}
+
+Decision PlannerController::follow(const Observation& obs) {
+  const Vec2 x = obs.pose.position;
+  bool replan = !planned_;
+  if (planned_ && p_.map == PlannerMap::Sensed && obs.t - last_plan_time_ >= p_.replan_period)
+    replan = true;
+  if (planned_ && path_.project(x, lookahead_ + corner_) > std::max(lookahead_, 4.0 * radius_))
+    replan = true;  // strayed from the path (a long boundary-following episode)
+  if (replan && !plan(x, obs.goal, obs.t)) {
+    if (p_.map == PlannerMap::Known) return give_up(inner_guards_ + 1);  // nothing will change
+    return begin_recovery(obs, inner_guards_ + 1);
+  }
+  const double before = progress_.anchor_time();
+  if (progress_.stalled(obs.t, path_.remaining() + tail_))
+    return begin_recovery(obs, inner_guards_);
+  if (progress_.anchor_time() != before) recoveries_ = 0;  // progress: a fresh budget
+
+  if (!subgoal_held_) subgoal_ = path_.subgoal(x, lookahead_, corner_);
+  Observation in = obs;
+  in.goal = subgoal_;
+  in.points = points_with_memory(obs);
+  Decision d = inner_->decide(in);
+  if (d.command.kind() == Command::Kind::GoalReached) {
+    // The inner controller reached the subgoal (the end of a path short of the goal, or a held
+    // subgoal): let go of it and plan on.
+    inner_->reset();
+    subgoal_held_ = false;
+    last_plan_time_ = kNever;
+    planned_ = false;
+    mode_ = inner_->mode();
+    return {Command::unicycle(0.0, 0.0), mode_, d.guard};
+  }
+  if (d.command.kind() == Command::Kind::Stuck) return give_up(d.guard);
+  subgoal_held_ =
+      d.mode >= 0 && d.mode < inner_modes_ && holds_subgoal_[static_cast<std::size_t>(d.mode)];
+  mode_ = d.mode;
+  return d;
+}
+
+Decision PlannerController::begin_recovery(const Observation& obs, int guard) {
+  progress_.reset(obs.t, path_.remaining() + tail_);
+  if (recoveries_ >= p_.max_recoveries) return give_up(guard);
+  ++recoveries_;
+  ++recoveries_total_;
+  phase_ = Phase::BackUp;
+  phase_start_ = obs.t;
+  phase_pose_ = obs.pose;
+  mode_ = own_mode(phase_);
+  return {Command::unicycle(-0.5 * nav_.v0, 0.0), mode_, guard};
+}
+
+Decision PlannerController::give_up(int guard) {
+  phase_ = Phase::Stuck;
+  mode_ = own_mode(phase_);
+  return {Command::stuck(), mode_, guard};
+}
+
+Decision PlannerController::recover(const Observation& obs) {
+  const Vec2 x = obs.pose.position;
+  const double v_back = 0.5 * nav_.v0;
+  if (phase_ == Phase::BackUp) {
+    const Vec2 h = obs.pose.heading();
+    bool blocked = false;  // something right behind: backing further would hit it
+    const double near = robot_->body_radius + std::max(nav_.d_unsafe, 0.02);
+    for (const Vec2& q : obs.points)
+      if ((q - x).dot(h) < 0.0 && (q - x).squaredNorm() < near * near) blocked = true;
+    const bool done = (x - phase_pose_.position).norm() >= backup_distance_ ||
+                      obs.t - phase_start_ >= backup_distance_ / v_back + 1.0;
+    if (!blocked && !done) return {Command::unicycle(-v_back, 0.0), mode_};
+    // Backed up: plan again from here and turn towards the new path.
+    plan(x, obs.goal, obs.t);
+    const Vec2 towards = (planned_ ? path_.subgoal(x, lookahead_, corner_) : obs.goal) - x;
+    const double want = towards.squaredNorm() > 0.0
+                            ? wrap_angle(std::atan2(towards.y(), towards.x()) - obs.pose.theta)
+                            : 0.0;
+    turn_target_ =
+        wrap_angle(obs.pose.theta + std::clamp(want, -p_.recovery_turn, p_.recovery_turn));
+    phase_ = Phase::Turn;
+    phase_start_ = obs.t;
+    mode_ = own_mode(phase_);
+  }
+  const double omega = std::min(1.0, 0.5 * max_turn_rate(robot_->drive));
+  const double err = wrap_angle(turn_target_ - obs.pose.theta);
+  if (std::abs(err) > 0.1 && obs.t - phase_start_ < p_.recovery_turn / omega + 1.0)
+    return {Command::unicycle(0.0, err > 0.0 ? omega : -omega), mode_};
+  // Recovered: follow the (new) path again.
+  phase_ = Phase::Follow;
+  inner_->reset();
+  subgoal_held_ = false;
+  if (!planned_) last_plan_time_ = kNever;
+  progress_.reset(obs.t, path_.remaining() + tail_);
+  Decision d = follow(obs);
+  if (d.guard < 0 && phase_ == Phase::Follow) d.guard = inner_guards_ + 2;
+  return d;
+}
+
+}  // namespace floornav

@@ -1,0 +1,373 @@
+// The planning layer's pieces on hand-worked cases: the path follower's projection and
+// lookahead, the progress checker, the rolling grid's evidence, decay and inflation, the
+// planner's recovery and `stuck`, and DWA's objective and window.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "floornav/geometry/angle.hpp"
+#include "floornav/nav/dwa_controller.hpp"
+#include "floornav/nav/navigation_controller.hpp"
+#include "floornav/nav/planned_path.hpp"
+#include "floornav/nav/planner_controller.hpp"
+#include "floornav/nav/progress_checker.hpp"
+#include "floornav/nav/rolling_grid.hpp"
+#include "floornav/scenario/presets.hpp"
+#include "floornav/world/world.hpp"
+
+namespace floornav {
+namespace {
+
+// --- PlannedPath: projection and lookahead ------------------------------------------------------
+
+// An L: (0, 0) -> (4, 0) -> (4, 4), 8 m long.
+PlannedPath l_path() {
+  PlannedPath p;
+  const std::vector<Vec2> pts{{0, 0}, {4, 0}, {4, 4}};
+  p.assign(pts);
+  return p;
+}
+
+TEST(PlannedPath, ProjectsOntoTheNearestSegmentAndCountsWhatIsLeft) {
+  PlannedPath p = l_path();
+  EXPECT_DOUBLE_EQ(p.length(), 8.0);
+  EXPECT_NEAR(p.project(Vec2(1.0, 0.2), 10.0), 0.2, 1e-12);
+  EXPECT_DOUBLE_EQ(p.progress(), 1.0);
+  EXPECT_DOUBLE_EQ(p.remaining(), 7.0);
+  EXPECT_EQ(p.segment(), 0u);
+  // Past the corner, on the second leg.
+  EXPECT_NEAR(p.project(Vec2(4.3, 2.0), 10.0), 0.3, 1e-12);
+  EXPECT_DOUBLE_EQ(p.progress(), 6.0);
+  EXPECT_EQ(p.segment(), 1u);
+}
+
+TEST(PlannedPath, NeverProjectsBackwards) {
+  PlannedPath p = l_path();
+  p.project(Vec2(3.0, 0.0), 10.0);
+  p.project(Vec2(0.5, 0.0), 10.0);  // the robot was pushed back: the projection stays
+  EXPECT_DOUBLE_EQ(p.progress(), 3.0);
+}
+
+TEST(PlannedPath, LooksOnlyAsFarAheadAsAsked) {
+  // A U whose far leg passes close to the start: with a short horizon the projection does not
+  // jump to it.
+  PlannedPath p;
+  const std::vector<Vec2> pts{{0, 0}, {4, 0}, {4, 1}, {0, 1}};
+  p.assign(pts);
+  p.project(Vec2(0.5, 0.6), 2.0);
+  EXPECT_EQ(p.segment(), 0u);
+  EXPECT_DOUBLE_EQ(p.progress(), 0.5);
+}
+
+TEST(PlannedPath, SubgoalStopsAtTheCornerUntilTheRobotIsNearIt) {
+  PlannedPath p = l_path();
+  // 2.5 m along: 2 m ahead would be round the corner, but the corner is 1.5 m away (> 1).
+  p.project(Vec2(2.5, 0.0), 10.0);
+  const Vec2 a = p.subgoal(Vec2(2.5, 0.0), 2.0, 1.0);
+  EXPECT_NEAR(a.x(), 4.0, 1e-12);
+  EXPECT_NEAR(a.y(), 0.0, 1e-12);
+  // 3.5 m along, 0.5 m from the corner: the subgoal goes round it, 2 m on (5.5 m along).
+  p.project(Vec2(3.5, 0.1), 10.0);
+  const Vec2 b = p.subgoal(Vec2(3.5, 0.1), 2.0, 1.0);
+  EXPECT_NEAR(b.x(), 4.0, 1e-12);
+  EXPECT_NEAR(b.y(), 1.5, 1e-12);
+  // On a straight stretch: lookahead metres ahead; near the end: the end.
+  p.project(Vec2(4.0, 1.0), 10.0);
+  EXPECT_NEAR(p.subgoal(Vec2(4.0, 1.0), 2.0, 1.0).y(), 3.0, 1e-12);
+  p.project(Vec2(4.0, 3.5), 10.0);
+  EXPECT_NEAR(p.subgoal(Vec2(4.0, 3.5), 2.0, 1.0).y(), 4.0, 1e-12);
+}
+
+// --- ProgressChecker -----------------------------------------------------------------------------
+
+TEST(ProgressChecker, StallIsTooLittleProgressWithinTheWindow) {
+  ProgressChecker c(8.0, 0.5);
+  c.reset(0.0, 10.0);
+  EXPECT_FALSE(c.stalled(4.0, 9.7));  // 0.3 m: not yet progress, window not over
+  EXPECT_TRUE(c.stalled(8.0, 9.6));   // 0.4 m in 8 s: a stall
+  c.reset(8.0, 9.6);
+  EXPECT_FALSE(c.stalled(9.0, 9.0));  // 0.6 m: progress, the window starts again at 9 s
+  EXPECT_DOUBLE_EQ(c.anchor_time(), 9.0);
+  EXPECT_DOUBLE_EQ(c.best(), 9.0);
+  EXPECT_FALSE(c.stalled(16.9, 8.8));
+  EXPECT_TRUE(c.stalled(17.0, 8.8));
+  // Going backwards (a longer plan) is no progress either.
+  c.reset(20.0, 5.0);
+  EXPECT_FALSE(c.stalled(27.0, 6.5));
+  EXPECT_TRUE(c.stalled(28.0, 6.5));
+}
+
+// --- RollingGrid: evidence, decay, memory, inflation ---------------------------------------------
+
+// One sensor at (0.05, 0.05) looking along +x, 1 m range, in a grid of 0.1 m cells.
+struct OneBeam {
+  std::vector<RangeSensorSpec> sensors{RangeSensorSpec{{Vec2::Zero(), 0.0}, 0.0, 1.0, 0.0, 1}};
+  std::vector<SensorBeam> beams{SensorBeam{Vec2(0.05, 0.05), Vec2(1.0, 0.0), 0.0}};
+  void scan(RollingGrid& g, double range, double t) {
+    const double r[] = {range};
+    g.update(beams, r, sensors, 100.0, t);
+  }
+};
+
+TEST(RollingGrid, AReturnMarksItsCellTheBeamClearsTheCellsBefore) {
+  RollingGrid g(0.1, 40, 5.0, Vec2::Zero());
+  OneBeam s;
+  s.scan(g, 0.5, 0.0);  // return at x = 0.55: cell 5
+  for (int x = 0; x < 5; ++x) EXPECT_EQ(g.evidence({x, 0}, 0.0), -1) << x;
+  EXPECT_EQ(g.evidence({5, 0}, 0.0), 2);
+  EXPECT_TRUE(g.occupied({5, 0}, 0.0));
+  EXPECT_EQ(g.evidence({6, 0}, 0.0), 0) << "beyond the return: unknown";
+  EXPECT_EQ(g.evidence({5, 1}, 0.0), 0);
+  s.scan(g, 0.5, 0.1);  // seen again
+  EXPECT_EQ(g.evidence({5, 0}, 0.1), 4);
+  EXPECT_EQ(g.evidence({2, 0}, 0.1), -2);
+  // The obstacle is gone: each scan through it takes one off; occupied while >= 2.
+  s.scan(g, 1.0, 0.2);
+  EXPECT_EQ(g.evidence({5, 0}, 0.2), 3);
+  s.scan(g, 1.0, 0.3);
+  EXPECT_EQ(g.evidence({5, 0}, 0.3), 2);
+  EXPECT_TRUE(g.occupied({5, 0}, 0.3));
+  s.scan(g, 1.0, 0.4);
+  EXPECT_EQ(g.evidence({5, 0}, 0.4), 1);
+  EXPECT_FALSE(g.occupied({5, 0}, 0.4));
+  // A max-range reading marks nothing at its end.
+  EXPECT_EQ(g.evidence({10, 0}, 0.4), 0);
+  EXPECT_EQ(g.evidence({9, 0}, 0.4), -2) << "three clear beams: down to the floor, -2";
+}
+
+TEST(RollingGrid, UnseenCellsFadeOneStepPerDecayPeriod) {
+  RollingGrid g(0.1, 40, 5.0, Vec2::Zero());
+  OneBeam s;
+  s.scan(g, 0.5, 0.0);
+  s.scan(g, 0.5, 0.0);  // the same scan time twice: evidence 4, updated at t = 0
+  EXPECT_EQ(g.evidence({5, 0}, 4.9), 4);
+  EXPECT_EQ(g.evidence({5, 0}, 5.0), 3);
+  EXPECT_EQ(g.evidence({5, 0}, 10.0), 2);
+  EXPECT_TRUE(g.occupied({5, 0}, 14.9));
+  EXPECT_EQ(g.evidence({5, 0}, 15.0), 1);
+  EXPECT_FALSE(g.occupied({5, 0}, 15.0));
+  EXPECT_EQ(g.evidence({2, 0}, 10.0), 0) << "free evidence fades too";
+}
+
+TEST(RollingGrid, RemembersTheExactReturnPoint) {
+  RollingGrid g(0.1, 40, 5.0, Vec2::Zero());
+  OneBeam s;
+  s.scan(g, 0.47, 0.0);  // x = 0.52, in cell 5
+  std::vector<Vec2> out(8);
+  ASSERT_EQ(g.remembered_points(Vec2(0.05, 0.05), 0.6, 1.0, out), 1u);
+  EXPECT_NEAR(out[0].x(), 0.52, 1e-6);
+  EXPECT_NEAR(out[0].y(), 0.05, 1e-6);
+  EXPECT_EQ(g.remembered_points(Vec2(0.05, 0.05), 0.4, 1.0, out), 0u) << "0.47 m away";
+  EXPECT_EQ(g.remembered_points(Vec2(0.05, 0.05), 0.6, 20.0, out), 0u) << "faded";
+}
+
+TEST(RollingGrid, InflationBlocksCellsWhoseCentreIsNearAReturn) {
+  RollingGrid g(0.1, 40, 5.0, Vec2::Zero());
+  OneBeam s;
+  s.scan(g, 0.5, 0.0);  // return at (0.55, 0.05)
+  FreeRaster r;
+  g.inflate(0.15, 0.0, r);
+  ASSERT_EQ(r.width, 40);
+  const GridCell o = g.origin();
+  auto free_at = [&](int gx, int gy) { return r.is_free(gx - o.x, gy - o.y); };
+  EXPECT_FALSE(free_at(5, 0));  // 0 m
+  EXPECT_FALSE(free_at(4, 0));  // 0.1 m
+  EXPECT_FALSE(free_at(6, 1));  // 0.141 m
+  EXPECT_TRUE(free_at(3, 0));   // 0.2 m
+  EXPECT_TRUE(free_at(5, 2));   // 0.2 m
+  EXPECT_TRUE(free_at(2, 0)) << "cleared cells are free, not blocked";
+}
+
+TEST(RollingGrid, MovingTheWindowForgetsOnlyWhatLeavesIt) {
+  RollingGrid g(0.1, 40, 5.0, Vec2::Zero());  // cells -20 .. 19
+  OneBeam s;
+  s.scan(g, 0.5, 0.0);
+  g.follow(Vec2(0.5, 0.0));  // 5 cells: within a quarter window, nothing moves
+  EXPECT_EQ(g.origin().x, -20);
+  g.follow(Vec2(1.5, 0.0));  // 15 cells: the window recentres on cell 15 (origin -5)
+  EXPECT_EQ(g.origin().x, -5);
+  EXPECT_TRUE(g.occupied({5, 0}, 0.0)) << "still inside: kept";
+  EXPECT_EQ(g.evidence({-10, 0}, 0.0), 0) << "outside: unknown";
+  g.follow(Vec2(3.0, 0.0));  // origin 10: cell 5 left the window
+  EXPECT_FALSE(g.in_window({5, 0}));
+  g.follow(Vec2(0.0, 0.0));  // back: cell 5 is in the window again, but forgotten
+  EXPECT_EQ(g.evidence({5, 0}, 0.0), 0);
+}
+
+// --- PlannerController: recovery and stuck -------------------------------------------------------
+
+// A QuickBot-sized robot planning on a known, empty 4 x 4 m room; the observations are made
+// by hand, so the robot can be held still to stall it.
+struct PlannerRig {
+  RobotSpec robot = find_robot_preset("quickbot")->robot;
+  NavigationParams nav = find_robot_preset("quickbot")->navigation;
+  std::shared_ptr<World> world;
+  std::unique_ptr<Controller> c;
+
+  explicit PlannerRig(WorldDesc desc = {}) {
+    if (!desc.bounds) desc.bounds = Box2{Vec2(0, 0), Vec2(4, 4)};
+    world = std::make_shared<World>(std::move(desc));
+    nav.planner.kind = PlannerKind::AStar;
+    nav.planner.progress_window = 2.0;
+    nav.planner.max_recoveries = 2;
+    ControllerConfig cfg;
+    cfg.params = nav;
+    c = ControllerMaker().make(cfg, {robot, nav, "r", 0, world.get()});
+  }
+  Decision at(const Pose2& pose, double t, const Vec2& goal = Vec2(3.5, 2.0)) {
+    Observation o;
+    o.t = t;
+    o.dt = 0.01;
+    o.pose = pose;
+    o.goal = goal;
+    o.goal_count = 1;
+    o.robot = &robot;
+    o.params = &nav;
+    return c->decide(o);
+  }
+  std::string mode(const Decision& d) const {
+    return c->mode_names()[static_cast<std::size_t>(d.mode)];
+  }
+};
+
+TEST(PlannerController, NamesTheAutomatonsModesAndItsOwn) {
+  PlannerRig rig;
+  const auto& m = rig.c->mode_names();
+  ASSERT_GE(m.size(), 8u);
+  EXPECT_EQ(m[0], "go_to_goal");
+  EXPECT_EQ(m[m.size() - 3], "recovery_back_up");
+  EXPECT_EQ(m[m.size() - 2], "recovery_turn");
+  EXPECT_EQ(m[m.size() - 1], "stuck");
+  const auto& g = rig.c->guard_names();
+  EXPECT_EQ(g[g.size() - 3], "progress_stalled");
+}
+
+TEST(PlannerController, AStalledRobotBacksUpTurnsThenGivesUp) {
+  PlannerRig rig;
+  const Pose2 held{Vec2(0.5, 2.0), 0.0};
+  Decision d = rig.at(held, 0.0);
+  EXPECT_EQ(rig.mode(d), "go_to_goal");
+  EXPECT_EQ(d.command.kind(), Command::Kind::Velocity);
+  // Held still for the whole window: a stall, and the first recovery backs up at v0 / 2.
+  for (double t = 0.01; t < 2.0; t += 0.01) d = rig.at(held, t);
+  d = rig.at(held, 2.0);
+  EXPECT_EQ(rig.mode(d), "recovery_back_up");
+  EXPECT_EQ(d.command.kind(), Command::Kind::Unicycle);
+  EXPECT_DOUBLE_EQ(d.command.unicycle_command().v, -0.5 * rig.nav.v0);
+  EXPECT_DOUBLE_EQ(d.command.unicycle_command().omega, 0.0);
+  EXPECT_EQ(rig.c->guard_names()[static_cast<std::size_t>(d.guard)], "progress_stalled");
+  // Backed up by the body radius (0.075 m): it turns towards the new path (here ahead: it is
+  // already facing it, so it goes straight back to following).
+  d = rig.at({Vec2(0.42, 2.0), 0.0}, 2.5);
+  EXPECT_NE(rig.mode(d), "recovery_back_up");
+  EXPECT_NE(d.command.kind(), Command::Kind::Stuck);
+  // Two more stalls: the second recovery, then (max_recoveries = 2) stuck.
+  double t = 2.5;
+  int recoveries = 1;
+  while (d.command.kind() != Command::Kind::Stuck && t < 30.0) {
+    t += 0.01;
+    const std::string before = rig.mode(d);
+    d = rig.at({Vec2(0.42, 2.0), 0.0}, t);
+    if (rig.mode(d) == "recovery_back_up" && before != "recovery_back_up") ++recoveries;
+  }
+  EXPECT_EQ(d.command.kind(), Command::Kind::Stuck);
+  EXPECT_EQ(rig.mode(d), "stuck");
+  EXPECT_EQ(recoveries, 2);
+  EXPECT_LT(t, 10.0) << "two windows and two short recoveries";
+}
+
+TEST(PlannerController, TurnsTowardsThePathAfterBackingUp) {
+  PlannerRig rig;
+  // Facing away from the goal, held: stall, back up, then turn left or right towards it.
+  const Pose2 held{Vec2(0.5, 2.0), kPi};
+  Decision d = rig.at(held, 0.0);
+  for (double t = 0.01; t <= 2.0 + 1e-9; t += 0.01) d = rig.at(held, t);
+  ASSERT_EQ(rig.mode(d), "recovery_back_up");
+  d = rig.at({Vec2(0.6, 2.0), kPi}, 2.2);  // 0.1 m back (towards +x)
+  EXPECT_EQ(rig.mode(d), "recovery_turn");
+  const double w = d.command.unicycle_command().omega;
+  EXPECT_NE(w, 0.0);
+  EXPECT_DOUBLE_EQ(d.command.unicycle_command().v, 0.0);
+}
+
+TEST(PlannerController, NoPathOnTheKnownMapIsStuckAtOnce) {
+  // The goal stands inside a closed square ring of walls.
+  WorldDesc desc;
+  desc.bounds = Box2{Vec2(0, 0), Vec2(4, 4)};
+  desc.polygons.push_back({{2.5, 1.5}, {3.9, 1.5}, {3.9, 1.6}, {2.5, 1.6}});
+  desc.polygons.push_back({{2.5, 2.4}, {3.9, 2.4}, {3.9, 2.5}, {2.5, 2.5}});
+  desc.polygons.push_back({{2.5, 1.5}, {2.6, 1.5}, {2.6, 2.5}, {2.5, 2.5}});
+  desc.polygons.push_back({{3.8, 1.5}, {3.9, 1.5}, {3.9, 2.5}, {3.8, 2.5}});
+  PlannerRig rig(desc);
+  const Decision d = rig.at({Vec2(0.5, 2.0), 0.0}, 0.0, Vec2(3.2, 2.0));
+  EXPECT_EQ(d.command.kind(), Command::Kind::Stuck);
+  EXPECT_EQ(rig.c->guard_names()[static_cast<std::size_t>(d.guard)], "no_path");
+}
+
+TEST(PlannerController, ReportsGoalReachedOnlyAtTheRealGoal) {
+  PlannerRig rig;
+  // Far from the goal, the subgoal is on the way; within epsilon of the goal: STOP.
+  EXPECT_NE(rig.at({Vec2(0.5, 2.0), 0.0}, 0.0).command.kind(), Command::Kind::GoalReached);
+  EXPECT_EQ(rig.at({Vec2(3.48, 2.0), 0.0}, 0.01).command.kind(), Command::Kind::GoalReached);
+}
+
+// --- DWA -----------------------------------------------------------------------------------------
+
+TEST(Dwa, ObjectiveByHand) {
+  DwaParams p;  // alpha 1, beta 0.4, gamma 0.3, max_clearance 1 m
+  // Goal 90 degrees off at the end, 0.5 m driven before a collision, half speed:
+  // 1 (1 - 0.5) + 0.4 (0.5 / 1) + 0.3 (0.5 / 1) = 0.5 + 0.2 + 0.15.
+  EXPECT_NEAR(dwa_score(p, kPi / 2, 0.5, 0.5, 1.0), 0.85, 1e-12);
+  // No obstacle on the arc scores the cap; facing the goal scores 1: 1 + 0.4 + 0.3.
+  EXPECT_NEAR(dwa_score(p, 0.0, std::numeric_limits<double>::infinity(), 1.0, 1.0), 1.7, 1e-12);
+  // Facing away: heading 0; dist beyond the cap is the cap; standing still: no velocity.
+  EXPECT_NEAR(dwa_score(p, kPi, 2.0, 0.0, 1.0), 0.4, 1e-12);
+  EXPECT_NEAR(dwa_score(p, -3.0, 0.3, 0.2, 1.0), dwa_score(p, 2.0 * kPi - 3.0, 0.3, 0.2, 1.0),
+              1e-12);
+}
+
+Observation dwa_obs(const RobotSpec& robot, const NavigationParams& nav, const Pose2& pose,
+                    const Vec2& goal, std::span<const Vec2> points) {
+  Observation o;
+  o.dt = 0.05;
+  o.pose = pose;
+  o.goal = goal;
+  o.points = points;
+  o.sensed = points;
+  o.robot = &robot;
+  o.params = &nav;
+  return o;
+}
+
+TEST(Dwa, AcceleratesWithinTheWindowTowardsAGoalAhead) {
+  RobotSpec robot = find_robot_preset("turtlebot3_burger")->robot;
+  NavigationParams nav = find_robot_preset("turtlebot3_burger")->navigation;
+  DwaController c(nav, robot);
+  const Decision d = c.decide(dwa_obs(robot, nav, {Vec2::Zero(), 0.0}, Vec2(5, 0), {}));
+  ASSERT_EQ(d.command.kind(), Command::Kind::Unicycle);
+  // From rest, one step of 0.05 s at 2.5 m/s^2: at most 0.125 m/s, and straight ahead.
+  EXPECT_NEAR(d.command.unicycle_command().v, 0.125, 1e-12);
+  EXPECT_NEAR(d.command.unicycle_command().omega, 0.0, 1e-12);
+  EXPECT_EQ(c.mode_names()[static_cast<std::size_t>(d.mode)], "dwa");
+}
+
+TEST(Dwa, NeverDrivesAtAWallItCannotStopBefore) {
+  RobotSpec robot = find_robot_preset("turtlebot3_burger")->robot;
+  NavigationParams nav = find_robot_preset("turtlebot3_burger")->navigation;
+  DwaController c(nav, robot);
+  // A wall of points 0.15 m ahead of the body, across the way to the goal.
+  std::vector<Vec2> wall;
+  for (double y = -1.0; y <= 1.0; y += 0.02) wall.emplace_back(0.105 + 0.15, y);
+  for (int k = 0; k < 20; ++k) {
+    const Decision d = c.decide(dwa_obs(robot, nav, {Vec2::Zero(), 0.0}, Vec2(5, 0), wall));
+    const UnicycleCommand u = d.command.unicycle_command();
+    // Whatever it chooses, driving it for the braking time keeps the body off the wall.
+    const double t_brake = u.v / robot.max_acceleration;
+    EXPECT_LT(u.v * t_brake, 0.15) << k;
+  }
+}
+
+}  // namespace
+}  // namespace floornav
