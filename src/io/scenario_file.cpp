@@ -320,6 +320,15 @@ void read_controller(const std::string& file, MapReader& r, ControllerConfig& c)
                        kind));
     c.kind = kind;
   }
+  if (r.has("robot_avoidance")) {
+    const YAML::Node n = r.get("robot_avoidance");
+    const std::string name = io_detail::read_string(file, n, r.path_of("robot_avoidance"));
+    const auto a = parse_robot_avoidance(name);
+    if (!a)
+      fail(file, n, r.path_of("robot_avoidance"),
+           fmt::format("unknown robot avoidance '{}' (expected none or orca)", name));
+    c.params.robot_avoidance = *a;
+  }
   c.params.serialize(r);
   r.finish();
 }

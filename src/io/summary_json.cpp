@@ -58,6 +58,7 @@ nlohmann::ordered_json summary_to_json(const RunResult& r) {
   j["first_chatter_time"] =
       r.first_chatter_time < 0.0 ? Json(nullptr) : number(r.first_chatter_time);
   j["final_pose"] = Json::array({number(r.final_x), number(r.final_y), number(r.final_theta)});
+  j["wait_time"] = number(r.wait_time);
 
   const std::size_t shown = std::min(r.transitions.size(), kSummaryMaxTransitions);
   Json transitions = Json::array();

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "floornav/nav/robot_avoidance.hpp"
+
 namespace floornav {
 
 namespace {
@@ -55,6 +57,14 @@ std::unique_ptr<Controller> make_builtin_controller(const ControllerConfig& conf
 
 std::unique_ptr<Controller> ControllerMaker::make(const ControllerConfig& config,
                                                   const ControllerContext& context) {
+  auto controller = make_bare(config, context);
+  if (config.params.robot_avoidance == RobotAvoidance::Orca)
+    return make_orca_layer(std::move(controller), context.robot);
+  return controller;
+}
+
+std::unique_ptr<Controller> ControllerMaker::make_bare(const ControllerConfig& config,
+                                                       const ControllerContext& context) {
   if (config.factory) {
     auto controller = config.factory(context);
     if (!controller)

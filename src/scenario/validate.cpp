@@ -75,6 +75,10 @@ void validate_controller(const NavigationParams& n, const RobotKeys& k) {
     bad("chatter_switches", fmt::format("must be between 2 and {}", ChatterMonitor::kCapacity));
   if (!(n.chatter_window > 0.0)) bad("chatter_window", "must be positive");
   if (n.heading_pid.integral_limit < 0.0) bad("pid.integral_limit", "must not be negative");
+  if (!(n.avoidance_range > 0.0) || n.avoidance_range > 1000.0)
+    bad("avoidance_range", "must be in (0, 1000] m");
+  if (!(n.avoidance_horizon > 0.0)) bad("avoidance_horizon", "must be positive");
+  if (!(n.avoidance_margin >= 0.0)) bad("avoidance_margin", "must not be negative");
 }
 
 void validate_robot(const RobotTask& t, const World& w, const SimConfig& sim, const RobotKeys& k) {

@@ -60,10 +60,18 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     max_radius_ = std::max(max_radius_, radius_[i]);
     max_reach = std::max(max_reach, reach_[i]);
     max_sensors = std::max(max_sensors, t.robot.sensors.size());
+    if (t.controller.params.robot_avoidance != RobotAvoidance::None) {
+      tell_range_.resize(n, 0.0);
+      tell_range_[i] = t.controller.params.avoidance_range;
+    }
     for (const RangeSensorSpec& sensor : t.robot.sensors)
       rays_per_step_ += static_cast<std::size_t>(std::max(sensor.cone_rays, 1));
   }
   scratch_.emplace_back(max_sensors);
+  if (!tell_range_.empty()) {
+    scratch_.back().robots.resize(n);
+    velocities_.assign(n, Vec2::Zero());
+  }
   others_.emplace_back();
   others_.back().reserve(n);
 
@@ -119,13 +127,29 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
       const double r = reach + radius_[j];
       if ((positions_[j] - p).squaredNorm() < r * r) others.push_back({positions_[j], radius_[j]});
     });
+    if (!tell_range_.empty()) tell_nearby(i, scratch);
     agents_[i].step(scratch, others);
   }
+}
+
+void FleetSimulation::tell_nearby(std::size_t i, SensingScratch& scratch) const {
+  scratch.robot_count = 0;
+  const double range = tell_range_[i];
+  if (range <= 0.0) return;
+  const Vec2 p = positions_[i];
+  grid_.for_each_near(p, range, [&](std::size_t j) {
+    if (j == i || (positions_[j] - p).squaredNorm() >= range * range) return;
+    scratch.robots[scratch.robot_count++] = {positions_[j], velocities_[j], radius_[j],
+                                             moving_[j] != 0};
+  });
 }
 
 void FleetSimulation::prepare_contacts() {
   ++steps_;
   for (std::size_t i = 0; i < agents_.size(); ++i) positions_[i] = agents_[i].pose().position;
+  if (!velocities_.empty())
+    for (std::size_t i = 0; i < agents_.size(); ++i)
+      velocities_[i] = agents_[i].finished() ? Vec2::Zero() : agents_[i].velocity();
   grid_.build(positions_, present_);
 }
 
@@ -215,6 +239,7 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
   }
   while (scratch_.size() < n_threads) {
     scratch_.emplace_back(scratch_.front().beams.size());
+    scratch_.back().robots.resize(scratch_.front().robots.size());
     others_.emplace_back();
     others_.back().reserve(agents_.size());
   }

@@ -25,6 +25,8 @@ std::string fmt_decision_error(int mode, int guard, std::size_t modes, std::size
 // Slack subtracted per step from the clearance lower bound, far above the rounding of a
 // clearance (~1e-15 m) or a step length, so the bound stays a true lower bound.
 constexpr double kClearanceBoundSlack = 1e-9;  // m
+// m/s: a robot slower than this is waiting (RunResult::wait_time).
+constexpr double kStillSpeed = 0.01;
 }  // namespace
 
 void SensingScratch::fit(std::size_t sensors) {
@@ -148,6 +150,8 @@ Observation RobotAgent::observe(const SensingScratch& scratch) const {
   obs.sensed = std::span<const Vec2>(scratch.sensed.data(), scratch.sensed_count);
   obs.points =
       use_memory_ ? std::span<const Vec2>(scratch.points.data(), scratch.point_count) : obs.sensed;
+  obs.robots = std::span<const NearbyRobot>(scratch.robots.data(), scratch.robot_count);
+  obs.velocity = velocity_;
   obs.robot = robot_;
   obs.params = nav_;
   return obs;
@@ -214,7 +218,9 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
   // 5. integrate
   const Pose2 next = integrate_unicycle(pose_, driven, dt);
   const double moved = (next.position - pose_.position).norm();
+  velocity_ = (next.position - pose_.position) / dt;
   r.path_length += moved;
+  if (moved < kStillSpeed * dt) r.wait_time += dt;
   pose_ = next;
   t_ += dt;
   ++r.steps;

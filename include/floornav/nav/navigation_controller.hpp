@@ -37,12 +37,16 @@ std::unique_ptr<Controller> make_builtin_controller(const ControllerConfig& conf
 
 /// Makes the controllers of many robots: a user's factory is called per robot; robots of one
 /// built-in kind with equal parameters share one automaton (100,000 robots, one automaton).
+/// With `params.robot_avoidance` set, the controller is wrapped in that layer
+/// (robot_avoidance.hpp).
 class ControllerMaker {
  public:
   std::unique_ptr<Controller> make(const ControllerConfig& config,
                                    const ControllerContext& context);
 
  private:
+  std::unique_ptr<Controller> make_bare(const ControllerConfig& config,
+                                        const ControllerContext& context);
   struct Built {
     ControllerKind kind;
     NavigationParams params;

@@ -87,6 +87,8 @@ class FleetSimulation {
   void apply_gaps();
   void after_step();
   void update_snapshot();
+  /// Robots that use robot avoidance are told of the robots near them (Observation::robots).
+  void tell_nearby(std::size_t i, SensingScratch& scratch) const;
   /// The fleet's result from each robot's run (in robot order), names filled in.
   FleetResult make_result(std::vector<RunResult> runs) const;
 
@@ -102,6 +104,10 @@ class FleetSimulation {
   std::vector<double> radius_;
   std::vector<double> gap_;    ///< m to the nearest other body after the move (moving robots)
   std::vector<double> reach_;  ///< m from the centre: the farthest a sensor of robot i sees
+  // Robot avoidance (nav/robot_avoidance.hpp): who is told of the others, how far, and the
+  // velocities they are told (start of the step). Empty when no robot uses it.
+  std::vector<double> tell_range_;  ///< m; 0: not told
+  std::vector<Vec2> velocities_;
   double max_radius_{0.0};
   std::size_t rays_per_step_{0};  ///< over all robots: the work of a step, to size the threads
   RobotNeighbourGrid grid_;

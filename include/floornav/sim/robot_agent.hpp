@@ -37,6 +37,10 @@ struct SensingScratch {
   std::vector<Vec2> points;
   std::size_t sensed_count{0};  ///< returns of the last sense(), in `sensed`
   std::size_t point_count{0};   ///< returns and remembered points, in `points`
+  /// The other robots this robot is told of (Observation::robots), written by the fleet before
+  /// the step; robot_count is 0 for a lone robot and for robots without robot avoidance.
+  std::vector<NearbyRobot> robots;
+  std::size_t robot_count{0};
 
   explicit SensingScratch(std::size_t sensors = 0) { fit(sensors); }
   /// Makes room for robots with up to `sensors` sensors (allocates only when growing).
@@ -90,6 +94,8 @@ class RobotAgent {
 
   bool finished() const { return finished_; }
   const Pose2& pose() const { return pose_; }
+  /// m/s, world frame: the last step's displacement over dt (zero before the first step).
+  const Vec2& velocity() const { return velocity_; }
   double time() const { return t_; }
   double body_radius() const { return robot_->body_radius; }
   const RobotSpec& robot() const { return *robot_; }
@@ -117,6 +123,7 @@ class RobotAgent {
   Rng rng_;
   ObstacleMemory memory_{};
   Pose2 pose_{};
+  Vec2 velocity_{Vec2::Zero()};
   double t_{0.0};
   std::size_t goal_index_{0};
   bool finished_{false};
