@@ -11,6 +11,7 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "crowd_file.hpp"
 #include "floornav/automaton/hybrid_automaton.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
@@ -481,6 +482,7 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
     }
     w.finish();
   }
+  io_detail::read_crowd(file, top, origin, s.crowd);
   top.finish();
   s.world = std::make_shared<const World>(std::move(desc));
   validate_scenario(s, file);

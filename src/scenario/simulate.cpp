@@ -20,7 +20,8 @@ RunResult simulate(const Scenario& scenario) {
 }
 
 FleetSimulation make_fleet_simulation(const Scenario& scenario) {
-  return FleetSimulation(*scenario.world, scenario.robots, scenario.sim, scenario.name);
+  return FleetSimulation(*scenario.world, scenario.robots, scenario.sim, scenario.name,
+                         &scenario.crowd);
 }
 
 FleetResult simulate_fleet(const Scenario& scenario, int threads) {

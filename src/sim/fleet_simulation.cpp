@@ -32,8 +32,22 @@ constexpr std::size_t kRaysPerThread = 2000;
 
 }  // namespace
 
+std::string_view to_string(ContactKind kind) {
+  switch (kind) {
+    case ContactKind::World:
+      return "world";
+    case ContactKind::Robot:
+      return "robot";
+    case ContactKind::Person:
+      return "person";
+    case ContactKind::Forklift:
+      return "forklift";
+  }
+  return "unknown";
+}
+
 FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> robots,
-                                 const SimConfig& sim, std::string name)
+                                 const SimConfig& sim, std::string name, const CrowdSpec* crowd)
     : world_(world), tasks_(robots), sim_(sim), name_(std::move(name)) {
   const std::size_t n = tasks_.size();
   ControllerMaker controllers;  // robots of one built-in kind share one automaton
@@ -68,10 +82,8 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
       rays_per_step_ += static_cast<std::size_t>(std::max(sensor.cone_rays, 1));
   }
   scratch_.emplace_back(max_sensors);
-  if (!tell_range_.empty()) {
-    scratch_.back().robots.resize(n);
-    velocities_.assign(n, Vec2::Zero());
-  }
+  if (!tell_range_.empty()) scratch_.back().robots.resize(n);
+  if (!tell_range_.empty() || (crowd && !crowd->empty())) velocities_.assign(n, Vec2::Zero());
   others_.emplace_back();
   others_.back().reserve(n);
 
@@ -95,6 +107,11 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
   // Robots that start touching each other have collided before the first step.
   after_step();
   steps_ = 0;
+  // The crowd starts after that check (validation keeps robots clear of people and forklifts).
+  if (crowd && !crowd->empty()) {
+    crowd_ = std::make_unique<Crowd>(*crowd, world_, n, sim_.record_trajectory);
+    others_.back().reserve(n + crowd->people.size());
+  }
 }
 
 void FleetSimulation::update_snapshot() {
@@ -128,6 +145,11 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
       if ((positions_[j] - p).squaredNorm() < r * r) others.push_back({positions_[j], radius_[j]});
     });
     if (!tell_range_.empty()) tell_nearby(i, scratch);
+    if (crowd_) {
+      crowd_->people_near(p, reach, others);
+      agents_[i].step(scratch, others, crowd_->forklifts());
+      continue;
+    }
     agents_[i].step(scratch, others);
   }
 }
@@ -151,6 +173,7 @@ void FleetSimulation::prepare_contacts() {
     for (std::size_t i = 0; i < agents_.size(); ++i)
       velocities_[i] = agents_[i].finished() ? Vec2::Zero() : agents_[i].velocity();
   grid_.build(positions_, present_);
+  if (crowd_) crowd_->step(static_cast<double>(steps_ - 1) * sim_.dt, sim_.dt, bodies());
 }
 
 double FleetSimulation::nearest_gap(std::size_t i) const {
@@ -174,7 +197,7 @@ void FleetSimulation::apply_gaps() {
   // World collisions of this step (robot contacts are not applied yet).
   for (std::size_t i = 0; i < agents_.size(); ++i)
     if (moving_[i] && agents_[i].result().collided)
-      collisions_.push_back({agents_[i].time(), static_cast<int>(i), -1});
+      collisions_.push_back({agents_[i].time(), static_cast<int>(i), -1, ContactKind::World});
   // Contacts between bodies at the positions after the move. Robots that stopped or left this
   // step still count: they were there while the others moved.
   for (std::size_t i = 0; i < agents_.size(); ++i) {
@@ -191,11 +214,31 @@ void FleetSimulation::apply_gaps() {
     grid_.for_each_near(p, radius_[i] + max_radius_, [&](std::size_t j) {
       if (j == i || (moving_[j] && j < i)) return;
       if ((positions_[j] - p).norm() - radius_[i] - radius_[j] <= 0.0)
-        collisions_.push_back({a.time(), static_cast<int>(i), static_cast<int>(j)});
+        collisions_.push_back(
+            {a.time(), static_cast<int>(i), static_cast<int>(j), ContactKind::Robot});
     });
     a.collide_with_robot(gap);
   }
+  if (crowd_) apply_crowd_contacts();
   update_snapshot();
+}
+
+void FleetSimulation::apply_crowd_contacts() {
+  crowd_contacts_.clear();
+  crowd_->check(sim_.dt, bodies(), crowd_contacts_);
+  for (std::size_t i = 0; i < agents_.size(); ++i) {
+    const double gap = crowd_->nearest_gap(i);
+    if (moving_[i] && gap < std::numeric_limits<double>::infinity()) agents_[i].note_robot_gap(gap);
+  }
+  // A running robot that touched a person or a forklift ends its run as a collision (one that
+  // had stopped, or ended this step otherwise, is counted in the crowd's metrics only).
+  for (const CrowdContact& c : crowd_contacts_) {
+    RobotAgent& a = agents_[c.robot];
+    if (!moving_[c.robot] || a.finished()) continue;
+    collisions_.push_back({a.time(), static_cast<int>(c.robot), static_cast<int>(c.other),
+                           c.forklift ? ContactKind::Forklift : ContactKind::Person});
+    a.collide_with_robot(c.gap);
+  }
 }
 
 void FleetSimulation::after_step() {
@@ -296,6 +339,7 @@ FleetResult FleetSimulation::make_result(std::vector<RunResult> runs) const {
   f.scenario = name_;
   f.collisions = collisions_;
   f.steps = steps_;
+  if (crowd_) f.crowd = crowd_->result();
   f.min_clearance = std::numeric_limits<double>::infinity();
   bool any_collision = false, any_stuck = false;
   for (std::size_t i = 0; i < agents_.size(); ++i) {

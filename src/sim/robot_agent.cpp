@@ -118,7 +118,8 @@ void RobotAgent::collide_with_robot(double gap) {
   finish(RunStatus::Collision);
 }
 
-void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others) {
+void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others,
+                       std::span<const OrientedBox> boxes) {
   const RobotSpec& robot = *robot_;
   // The body disc is clear of every obstacle by at least clearance_bound_, so sensors mounted
   // within it start outside the obstacles: the world need not test that per ray.
@@ -127,7 +128,8 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others) 
   const std::span<double> ranges(scratch.ranges.data(), n_sensors);
   compute_sensor_beams(pose_, robot.sensors, beams);
   const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
-  sense_ranges(*world_, beams, robot.sensors, robot.sensor_noise, rng_, ranges, free, others);
+  sense_ranges(*world_, beams, robot.sensors, robot.sensor_noise, rng_, ranges, free, others,
+               boxes);
   scratch.sensed_count = ranges_to_points(beams, robot.sensors, ranges, scratch.sensed);
   scratch.point_count = scratch.sensed_count;
   if (use_memory_)

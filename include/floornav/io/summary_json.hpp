@@ -30,8 +30,12 @@ inline constexpr std::size_t kSummaryMaxCollisions = 1000;
 /// finished), path_length and mode_switches (sums), min_clearance (smallest), mode_time (sums
 /// by mode name), steps (world steps), wall_time. Then `fleet` {robots, reached, collided,
 /// timeout, stuck, deliveries, delivery_count, deliveries_per_minute, robot_steps,
-/// robot_collisions, world_collisions}, `collisions` [{t, robot, other}] (names; other is null
-/// for the world; the first kSummaryMaxCollisions) and `robots`: each robot's own summary.
+/// robot_collisions, world_collisions, (with people or forklifts) person_collisions,
+/// forklift_collisions, wait_time (summed)}, with people or forklifts `crowd` {people, forklifts,
+/// person_contacts, forklift_contacts, intrusions, intrusion_time, personal_space, min_person_gap,
+/// people_blocked_time, forklift_stopped_time}, `collisions` [{t, robot, other, kind}] (names;
+/// other is null for the world; kind world, robot, person or forklift; the first
+/// kSummaryMaxCollisions) and `robots`: each robot's own summary.
 nlohmann::ordered_json fleet_summary_to_json(const FleetResult& result);
 
 }  // namespace floornav

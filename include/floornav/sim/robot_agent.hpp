@@ -66,18 +66,21 @@ class RobotAgent {
  public:
   explicit RobotAgent(AgentSetup setup);
 
-  /// One step at time `time()`, sensing the world and `others` (the bodies of nearby robots,
-  /// as discs): sense() then act(). Returns false once the run has ended (then it does nothing).
-  bool step(SensingScratch& scratch, std::span<const Circle> others = {}) {
+  /// One step at time `time()`, sensing the world, `others` (the bodies of nearby robots and
+  /// people, as discs) and `boxes` (moving rectangles: forklifts): sense() then act(). Returns
+  /// false once the run has ended (then it does nothing).
+  bool step(SensingScratch& scratch, std::span<const Circle> others = {},
+            std::span<const OrientedBox> boxes = {}) {
     if (finished_) return false;
-    sense(scratch, others);
+    sense(scratch, others, boxes);
     return act(scratch);
   }
 
   /// Step 1: casts the sensors at the current pose, turns the returns into world points and adds
   /// the remembered ones, into `scratch`. Once per step: it draws the sensor noise and updates
   /// the obstacle memory.
-  void sense(SensingScratch& scratch, std::span<const Circle> others = {});
+  void sense(SensingScratch& scratch, std::span<const Circle> others = {},
+             std::span<const OrientedBox> boxes = {});
   /// What the controller sees, from the sensing in `scratch` (valid while scratch is unchanged).
   Observation observe(const SensingScratch& scratch) const;
   /// Steps 2-7 from the sensing in `scratch`. With `external`, that command drives the robot
