@@ -664,10 +664,54 @@ std::string_view mode_color(std::string_view name, int fallback_index) {
 
 namespace {
 
+constexpr const char* kPersonColor = "#7b3fa0";
+constexpr const char* kForkliftColor = "#b35900";
+constexpr std::size_t kMaxCrowdPathPoints = 1500;  ///< per person or forklift
+
+/// People's paths (thin purple) with their bodies where they ended, forklifts' paths (brown,
+/// dashed) with their footprints where they ended.
+void draw_crowd(Out out, const CrowdResult& c, const View& v) {
+  auto path = [&](const CrowdTrack& t, const char* color, const char* extra) {
+    if (t.samples.size() < 2) return;
+    const std::size_t every = std::max<std::size_t>(1, t.samples.size() / kMaxCrowdPathPoints);
+    fmt::format_to(out,
+                   R"(<polyline fill="none" stroke="{}" stroke-width="1.2" )"
+                   R"(stroke-opacity="0.55" {}points=")",
+                   color, extra);
+    for (std::size_t k = 0; k < t.samples.size(); k += every)
+      fmt::format_to(out, "{},{} ", Px{v.x(t.samples[k].x)}, Px{v.y(t.samples[k].y)});
+    fmt::format_to(out, "{},{}\"/>\n", Px{v.x(t.samples.back().x)}, Px{v.y(t.samples.back().y)});
+  };
+  for (const CrowdTrack& t : c.forklifts) path(t, kForkliftColor, R"(stroke-dasharray="6 4" )");
+  for (const CrowdTrack& t : c.people) path(t, kPersonColor, "");
+  for (const CrowdTrack& t : c.forklifts) {
+    if (t.samples.empty()) continue;
+    const CrowdSample& e = t.samples.back();
+    const auto corners = OrientedBox::make(Vec2(e.x, e.y), t.size, e.theta).corners();
+    fmt::format_to(out,
+                   R"(<polygon fill="{}" fill-opacity="0.35" stroke="{}" stroke-width="1.5" )"
+                   R"(points=")",
+                   kForkliftColor, kForkliftColor);
+    for (const Vec2& q : corners) fmt::format_to(out, "{},{} ", Px{v.x(q.x())}, Px{v.y(q.y())});
+    fmt::format_to(out, "\"/>\n");
+  }
+  for (const CrowdTrack& t : c.people) {
+    if (t.samples.empty()) continue;
+    const CrowdSample& e = t.samples.back();
+    fmt::format_to(out,
+                   R"(<circle cx="{}" cy="{}" r="{}" fill="{}" fill-opacity="0.45" stroke="{}" )"
+                   R"(stroke-width="1.2"/>)"
+                   "\n",
+                   Px{v.x(e.x)}, Px{v.y(e.y)}, Px{std::max(0.5 * t.size.x() * v.scale, 3.0)},
+                   kPersonColor, kPersonColor);
+  }
+}
+
 /// The picture of one or more robots in one world: `world_s` gives the world, `tracks` the
 /// robots; `title` and `numbers` the two lines of text at the top.
 std::string render_tracks(const Scenario& world_s, std::span<const Track> tracks,
-                          const std::string& title, const std::string& numbers) {
+                          const std::string& title, const std::string& numbers,
+                          const CrowdResult* crowd = nullptr) {
   const Extent e = picture_extent(world_s, tracks);
   const double w_m = e.xmax - e.xmin;
   const double h_m = e.ymax - e.ymin;
@@ -708,6 +752,7 @@ std::string render_tracks(const Scenario& world_s, std::span<const Track> tracks
   if (const OccupancyGrid* g = grid_of(world_s)) draw_grid(out, *g, v);
   if (world_s.world) draw_obstacles(out, *world_s.world, v);
   draw_walls(out, world_s, v);
+  if (crowd) draw_crowd(out, *crowd, v);
   for (const Track& t : tracks) draw_goal_areas(out, *t.task, v);
   for (const Track& t : tracks) draw_path(out, *t.r, v, max_points);
   for (const Track& t : tracks) draw_switches(out, *t.r, v);
@@ -797,7 +842,14 @@ std::string render_fleet_svg(const Scenario& s, const FleetResult& f) {
   const std::string numbers = fmt::format(
       "{} reached · {} collided · deliveries {}/{} · min clearance {:.3f} m · {} steps", f.reached,
       f.collided, f.deliveries, f.delivery_count, shown_clearance(f.min_clearance), f.steps);
-  return render_tracks(s, tracks, title, numbers);
+  if (f.crowd.empty()) return render_tracks(s, tracks, title, numbers);
+  // People (purple) and forklifts (brown) are drawn under the robots.
+  const CrowdMetrics& m = f.crowd.metrics;
+  const std::string crowd_numbers =
+      fmt::format("{} · {} people, {} forklifts · contacts {} / {} · {} intrusions", numbers,
+                  f.crowd.people.size(), f.crowd.forklifts.size(), m.person_contacts,
+                  m.forklift_contacts, m.intrusions);
+  return render_tracks(s, tracks, title, crowd_numbers, &f.crowd);
 }
 
 }  // namespace floornav

@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "floornav/io/atomic_file.hpp"
+#include "floornav/io/crowd_csv.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
 #include "floornav/render/trajectory_svg.hpp"
@@ -52,6 +53,9 @@ void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scena
                             trajectory_csv_pieces(result, sink);
                           });
   if (which.svg) write_file_atomically(dir / "trajectory.svg", render_fleet_svg(scenario, result));
+  // People and forklifts: their tracks beside the robots'.
+  if (which.csv && !result.crowd.empty())
+    write_file_atomically(dir / "crowd.csv", crowd_to_csv(result.crowd));
 }
 
 std::string describe_fleet(const FleetResult& f) {
