@@ -19,6 +19,8 @@ constexpr double kGradientStep = 1e-3;
 constexpr double kBlockedSpeed = 0.1;
 // rad/s: how fast a forklift turns on the spot at a corner of its route.
 constexpr double kForkliftTurnRate = 1.0;
+// m: a forklift turns only while nobody is this close to the disc its turn sweeps.
+constexpr double kTurnMargin = 0.3;
 
 // Unit vector up the gradient of f at p (central differences), zero where f is flat.
 template <class F>
@@ -196,13 +198,16 @@ void Crowd::move_forklifts(double dt, const RobotBodies& robots) {
     const Vec2 dir = normalized_or_zero(to - from);
     const double turn = std::atan2(cross(box.axis, dir), box.axis.dot(dir));
     // At a corner it turns on the spot first, sweeping the disc round its centre: it waits
-    // while a body is in that disc widened by stop_distance; on a straight, while one is in the
-    // zone ahead.
+    // while a body is within kTurnMargin of that disc; on a straight, while one is in the zone
+    // stop_distance ahead. With stop_distance 0 it never waits.
     const bool turning = std::abs(turn) > 1e-9;
     const bool blocked =
         !driving_[k] ||
-        (turning ? disc_occupied(box.center, box.bounding_radius() + f.stop_distance, robots)
-                 : f.stop_distance > 0.0 && zone_occupied(box, f.stop_distance, robots));
+        (f.stop_distance > 0.0 &&
+         (turning ? disc_occupied(box.center,
+                                  box.bounding_radius() + std::min(f.stop_distance, kTurnMargin),
+                                  robots)
+                  : zone_occupied(box, f.stop_distance, robots)));
     if (blocked) {
       track.still_time += dt;
       metrics_.forklift_stopped_time += dt;

@@ -10,7 +10,7 @@
 ///   - Forklifts drive scripted routes (polylines, at a fixed speed, turning on the spot at the
 ///     corners at 1 rad/s), their footprints rectangles along the route; each stops while a robot
 ///     or a person stands in the zone `stop_distance` ahead of it (a safety scanner), and turns
-///     only while nobody is within that distance of the disc its turn sweeps.
+///     only while nobody is within 0.3 m of the disc its turn sweeps.
 /// A step moves everyone from the state at its start (people do not depend on each other's order),
 /// serially: the same scenario gives the same crowd, bit for bit, whatever the robots' threads.
 /// With no people and no forklifts a fleet has no Crowd at all.
