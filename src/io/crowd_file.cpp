@@ -169,6 +169,9 @@ void read_crowd(const std::string& file, MapReader& top, const std::filesystem::
     const YAML::Node n = top.get("people_file");
     std::filesystem::path agents = read_string(file, n, "people_file");
     if (agents.is_relative()) agents = origin.parent_path() / agents;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(agents, ec))
+      fail(file, n, "people_file", fmt::format("no such file: {}", agents.string()));
     crowd.people = load_hunav_agents(agents);
   }
   if (top.has("people")) {
