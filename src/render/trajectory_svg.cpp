@@ -666,7 +666,7 @@ namespace {
 
 constexpr const char* kPersonColor = "#7b3fa0";
 constexpr const char* kForkliftColor = "#b35900";
-constexpr std::size_t kMaxCrowdPathPoints = 1500;  ///< per person or forklift
+constexpr std::size_t kMaxCrowdPathPoints = 500;  ///< per person or forklift
 
 /// People's paths (thin purple) with their bodies where they ended, forklifts' paths (brown,
 /// dashed) with their footprints where they ended.
