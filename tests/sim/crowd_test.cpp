@@ -138,10 +138,10 @@ TEST(CrowdSensing, BeamsStopAtForkliftsAndFansAgreeWithSingleBeams) {
   EXPECT_DOUBLE_EQ(r[0], 1.5);
 }
 
-// A person alone walks to its waypoint (reached within 0.3 m) and stops there (not cyclic), coasting
-// at most v0 tau = 0.6 m on; one that meets a robot standing near its line goes round it without
-// touching. (Exactly on the line, the model's forces cancel and it stands in front of the robot:
-// the social force model has no way round a head-on block.)
+// A person alone walks to its waypoint (reached within 0.3 m) and stops there (not cyclic),
+// coasting at most v0 tau = 0.6 m on; one that meets a robot standing near its line goes round it
+// without touching. (Exactly on the line, the model's forces cancel and it stands in front of the
+// robot: the social force model has no way round a head-on block.)
 TEST(Crowd, APersonWalksToItsWaypointRoundARobot) {
   const World w = room(6, 3);
   CrowdSpec spec;
@@ -320,6 +320,28 @@ TEST(CrowdFleet, AnyNumberOfThreadsGivesTheSameResult) {
   }
   EXPECT_EQ(a.crowd.forklifts[0].samples.back().x, b.crowd.forklifts[0].samples.back().x);
   EXPECT_GT(a.crowd.people[0].path_length, 5.0);  // they did walk
+}
+
+// A robot's wait_time counts the steps its body moved slower than 1 cm/s: one facing its goal
+// drives off at once (0 s); one facing away turns on the spot first (V = v0 cos e stays under
+// 1 cm/s until the heading error is below 86 degrees: a fraction of a second at the QuickBot's
+// turn rate), then drives.
+TEST(RobotWaitTime, CountsTheTimeTheBodyStandsStill) {
+  const std::string yaml =
+      "world: {bounds: [-1, -1, 3, 1]}\nrobot: {start: [0, 0, THETA]}\n"
+      "goal: [2, 0]\n";
+  auto run = [&](const std::string& theta) {
+    std::string y = yaml;
+    y.replace(y.find("THETA"), 5, theta);
+    return simulate(load_scenario_text(y, "wait.yaml"));
+  };
+  const RunResult ahead = run("0");
+  EXPECT_EQ(ahead.status, RunStatus::Reached);
+  EXPECT_EQ(ahead.wait_time, 0.0);
+  const RunResult behind = run("3.14159");
+  EXPECT_EQ(behind.status, RunStatus::Reached);
+  EXPECT_GT(behind.wait_time, 0.05);
+  EXPECT_LT(behind.wait_time, 0.6);
 }
 
 // HuNavSim's factory agents: four people, init_pose and named goals in order, max_vel as speed.
