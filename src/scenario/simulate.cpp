@@ -1,5 +1,7 @@
 #include "floornav/scenario/simulate.hpp"
 
+#include <stdexcept>
+
 namespace floornav {
 
 void Scenario::set_controller(std::string kind, ControllerFactory factory) {
@@ -10,6 +12,11 @@ void Scenario::set_controller(std::string kind, ControllerFactory factory) {
 }
 
 Simulation make_simulation(const Scenario& scenario) {
+  // A lone robot's simulation has no crowd: ignoring the people would be a silent wrong answer.
+  if (!scenario.crowd.empty())
+    throw std::invalid_argument("scenario '" + scenario.name +
+                                "' has people or forklifts: only a fleet simulation "
+                                "(make_fleet_simulation, simulate_fleet) moves them");
   return Simulation(*scenario.world, scenario.robot(), scenario.sim, scenario.name);
 }
 

@@ -385,3 +385,14 @@ TEST(CrowdFleet, FactoryFloorWithPeopleAndForklifts) {
   EXPECT_GT(f.crowd.metrics.intrusions, 0);
   EXPECT_GT(f.crowd.metrics.forklift_stopped_time, 0.0);
 }
+
+// A lone robot's simulation has no crowd: asking for one with people is an error, not a run
+// without them.
+TEST(CrowdFleet, ALoneSimulationRefusesPeople) {
+  const Scenario s = load_scenario_text(
+      "world: {bounds: [0, 0, 4, 3]}\nrobot: {start: [1, 1, 0]}\ngoal: [3, 1]\n"
+      "people: [{start: [2, 2.5], waypoints: [[3, 2.5]]}]\n",
+      "lone.yaml");
+  EXPECT_THROW(make_simulation(s), std::invalid_argument);
+  EXPECT_EQ(simulate_fleet(s).robots.size(), 1u);
+}
