@@ -64,6 +64,10 @@ std::string describe_fleet(const FleetResult& f) {
       "{:.3f} m",
       f.scenario, f.robots.size(), f.reached, f.collided, f.deliveries, f.delivery_count,
       f.sim_time, f.min_clearance);
+  if (!f.crowd.empty())
+    out += fmt::format(", {} people, {} forklifts: {} person and {} forklift contacts",
+                       f.crowd.people.size(), f.crowd.forklifts.size(),
+                       f.crowd.metrics.person_contacts, f.crowd.metrics.forklift_contacts);
   return out;
 }
 
