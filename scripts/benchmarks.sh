@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reproduces the tables of docs/BENCHMARKS.md. Usage:
-#   scripts/benchmarks.sh [chapter|fleet|movingai|ros|barn|all]
+#   scripts/benchmarks.sh [chapter|fleet|avoidance|crowd|movingai|ros|barn|all]
 #   scripts/benchmarks.sh [plan-movingai|plan-barn|plan-floors|plan]   (the planning layer and DWA)
 # Needs ./build (scripts/quickstart.sh) and ../shared/maps beside the repository.
 set -euo pipefail
@@ -48,6 +48,70 @@ for line in open(sys.argv[2]):
           f"{f['robot_collisions']} | {f['deliveries']}/{f['delivery_count']} | {r['sim_time']:.1f} | "
           f"{r['min_clearance']:.3f} |")
 PY
+  done
+fi
+fleet_rows() {  # label results.jsonl
+  python3 - "$1" "$2" <<'PY'
+import json, sys
+for line in open(sys.argv[2]):
+    r = json.loads(line); f = r["fleet"]; c = r.get("crowd")
+    crowd = (f" {c['person_contacts']} | {c['forklift_contacts']} | {c['intrusions']} | "
+             f"{c['min_person_gap']:.3f} | {f['wait_time']:.0f} | {c['people_blocked_time']:.0f} |"
+             if c else "")
+    print(f"| {r['scenario']} | {sys.argv[1]} | {f['robots']} | {f['reached']} | "
+          f"{f['robot_collisions']} | {f['world_collisions']} | {f['deliveries']}/{f['delivery_count']} | "
+          f"{r['sim_time']:.1f} | {r['min_clearance']:.3f} |{crowd}")
+PY
+}
+variants_row() {  # label results.jsonl
+  python3 - "$1" "$2" <<'PY'
+import json, sys
+rs = [json.loads(l) for l in open(sys.argv[2])]
+d = sum(r["fleet"]["deliveries"] for r in rs); n = sum(r["fleet"]["delivery_count"] for r in rs)
+rr = sum(r["fleet"]["robot_collisions"] for r in rs); w = sum(r["fleet"]["world_collisions"] for r in rs)
+full = sum(r["fleet"]["deliveries"] == r["fleet"]["delivery_count"] for r in rs)
+c = [r["crowd"] for r in rs if "crowd" in r]
+people = (f" {sum(x['person_contacts'] for x in c)} | {sum(x['forklift_contacts'] for x in c)} |"
+          if c else "")
+print(f"| {sys.argv[1]} | {len(rs)} | {full} | {d}/{n} ({100 * d / n:.1f} %) | {rr} | {w} |{people}")
+PY
+}
+if [[ $what == avoidance || $what == all ]]; then
+  echo "### Robot avoidance (hybrid; scenarios/fleet_*.yaml)"
+  echo "| scenario | robot_avoidance | robots | reached | robot-robot collisions | world collisions | deliveries | time (s) | min clearance (m) |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+  for a in none orca; do
+    $fn batch scenarios/fleet_*.yaml --set controller.robot_avoidance=$a --no-timing \
+      --out "$out/avoid-$a" >/dev/null
+    fleet_rows "$a" "$out/avoid-$a/results.jsonl"
+  done
+  echo "### Generated warehouses (scripts/fleet_variants.py warehouse, seeds 1-10)"
+  echo "| robot_avoidance | floors | all deliveries | deliveries | robot-robot collisions | world collisions |"
+  echo "|---|---|---|---|---|---|"
+  python3 scripts/fleet_variants.py warehouse "$out/warehouses"
+  for a in none orca; do
+    $fn batch "$out"/warehouses/*.yaml --set controller.robot_avoidance=$a --no-timing \
+      --out "$out/warehouses-$a" >/dev/null
+    variants_row "$a" "$out/warehouses-$a/results.jsonl"
+  done
+fi
+if [[ $what == crowd || $what == all ]]; then
+  echo "### People and forklifts (scenarios/crowd/*.yaml)"
+  echo "| scenario | robot_avoidance | robots | reached | robot-robot collisions | world collisions | deliveries | time (s) | min clearance (m) | person contacts | forklift contacts | intrusions | min person gap (m) | robot wait (s) | people blocked (s) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  for a in none orca; do
+    $fn batch scenarios/crowd/*.yaml --set controller.robot_avoidance=$a --no-timing \
+      --out "$out/crowd-$a" >/dev/null
+    fleet_rows "$a" "$out/crowd-$a/results.jsonl"
+  done
+  echo "### Generated factory floors (scripts/fleet_variants.py factory, seeds 1-10)"
+  echo "| robot_avoidance | floors | all deliveries | deliveries | robot-robot collisions | world collisions | person contacts | forklift contacts |"
+  echo "|---|---|---|---|---|---|---|---|"
+  python3 scripts/fleet_variants.py factory "$out/factories"
+  for a in none orca; do
+    $fn batch "$out"/factories/*.yaml --set controller.robot_avoidance=$a --no-timing \
+      --out "$out/factories-$a" >/dev/null
+    variants_row "$a" "$out/factories-$a/results.jsonl"
   done
 fi
 if [[ $what == movingai || $what == all ]]; then

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "crowd_file.hpp"
 #include "floornav/automaton/hybrid_automaton.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
@@ -323,6 +324,15 @@ void read_controller(const std::string& file, MapReader& r, ControllerConfig& c)
                        kind));
     c.kind = kind;
   }
+  if (r.has("robot_avoidance")) {
+    const YAML::Node n = r.get("robot_avoidance");
+    const std::string name = io_detail::read_string(file, n, r.path_of("robot_avoidance"));
+    const auto a = parse_robot_avoidance(name);
+    if (!a)
+      fail(file, n, r.path_of("robot_avoidance"),
+           fmt::format("unknown robot avoidance '{}' (expected none or orca)", name));
+    c.params.robot_avoidance = *a;
+  }
   c.params.serialize(r);
   r.finish();
 }
@@ -475,6 +485,7 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
     }
     w.finish();
   }
+  io_detail::read_crowd(file, top, origin, s.crowd);
   top.finish();
   s.world = std::make_shared<const World>(std::move(desc));
   validate_scenario(s, file);

@@ -58,6 +58,7 @@ nlohmann::ordered_json summary_to_json(const RunResult& r) {
   j["first_chatter_time"] =
       r.first_chatter_time < 0.0 ? Json(nullptr) : number(r.first_chatter_time);
   j["final_pose"] = Json::array({number(r.final_x), number(r.final_y), number(r.final_theta)});
+  j["wait_time"] = number(r.wait_time);
 
   const std::size_t shown = std::min(r.transitions.size(), kSummaryMaxTransitions);
   Json transitions = Json::array();
@@ -112,12 +113,27 @@ nlohmann::ordered_json fleet_summary_to_json(const FleetResult& f) {
   j["wall_time"] = number(f.wall_time);
 
   int timeouts = 0, stuck = 0, robot_collisions = 0, world_collisions = 0;
+  int person_collisions = 0, forklift_collisions = 0;
   for (const RunResult& r : f.robots) {
     timeouts += r.status == RunStatus::Timeout;
     stuck += r.status == RunStatus::Stuck;
   }
-  for (const FleetCollision& c : f.collisions)
-    (c.other < 0 ? world_collisions : robot_collisions)++;
+  for (const FleetCollision& c : f.collisions) {
+    switch (c.kind) {
+      case ContactKind::World:
+        ++world_collisions;
+        break;
+      case ContactKind::Robot:
+        ++robot_collisions;
+        break;
+      case ContactKind::Person:
+        ++person_collisions;
+        break;
+      case ContactKind::Forklift:
+        ++forklift_collisions;
+        break;
+    }
+  }
   Json fleet = Json::object();
   fleet["robots"] = f.robots.size();
   fleet["reached"] = f.reached;
@@ -131,7 +147,29 @@ nlohmann::ordered_json fleet_summary_to_json(const FleetResult& f) {
   fleet["robot_steps"] = f.robot_steps;
   fleet["robot_collisions"] = robot_collisions;
   fleet["world_collisions"] = world_collisions;
+  if (!f.crowd.empty()) {
+    fleet["person_collisions"] = person_collisions;
+    fleet["forklift_collisions"] = forklift_collisions;
+  }
+  double wait = 0.0;
+  for (const RunResult& r : f.robots) wait += r.wait_time;
+  fleet["wait_time"] = number(wait);
   j["fleet"] = std::move(fleet);
+  if (!f.crowd.empty()) {
+    const CrowdMetrics& m = f.crowd.metrics;
+    Json crowd = Json::object();
+    crowd["people"] = f.crowd.people.size();
+    crowd["forklifts"] = f.crowd.forklifts.size();
+    crowd["person_contacts"] = m.person_contacts;
+    crowd["forklift_contacts"] = m.forklift_contacts;
+    crowd["intrusions"] = m.intrusions;
+    crowd["intrusion_time"] = number(m.intrusion_time);
+    crowd["personal_space"] = kPersonalSpace;
+    crowd["min_person_gap"] = number(m.min_person_gap);
+    crowd["people_blocked_time"] = number(m.people_blocked_time);
+    crowd["forklift_stopped_time"] = number(m.forklift_stopped_time);
+    j["crowd"] = std::move(crowd);
+  }
 
   auto robot_name = [&](int i) {
     return i >= 0 && static_cast<std::size_t>(i) < f.robots.size()
@@ -145,7 +183,15 @@ nlohmann::ordered_json fleet_summary_to_json(const FleetResult& f) {
     Json e = Json::object();
     e["t"] = number(c.time);
     e["robot"] = robot_name(c.robot);
-    e["other"] = robot_name(c.other);
+    e["other"] = c.kind == ContactKind::Person && c.other >= 0 &&
+                         static_cast<std::size_t>(c.other) < f.crowd.people.size()
+                     ? Json(f.crowd.people[static_cast<std::size_t>(c.other)].name)
+                 : c.kind == ContactKind::Forklift && c.other >= 0 &&
+                         static_cast<std::size_t>(c.other) < f.crowd.forklifts.size()
+                     ? Json(f.crowd.forklifts[static_cast<std::size_t>(c.other)].name)
+                 : c.kind == ContactKind::Robot ? robot_name(c.other)
+                                                : Json(nullptr);
+    e["kind"] = std::string(to_string(c.kind));
     collisions.push_back(std::move(e));
   }
   j["collisions"] = std::move(collisions);

@@ -5,6 +5,7 @@
 
 #include "floornav/nav/dwa_controller.hpp"
 #include "floornav/nav/planner_controller.hpp"
+#include "floornav/nav/robot_avoidance.hpp"
 
 namespace floornav {
 
@@ -64,6 +65,15 @@ ControllerMaker::~ControllerMaker() = default;
 
 std::unique_ptr<Controller> ControllerMaker::make(const ControllerConfig& config,
                                                   const ControllerContext& context) {
+  auto controller = make_planned(config, context);
+  // Robot avoidance is the outermost layer: it bends whatever velocity the controller wants.
+  if (config.params.robot_avoidance == RobotAvoidance::Orca)
+    return make_orca_layer(std::move(controller), context.robot);
+  return controller;
+}
+
+std::unique_ptr<Controller> ControllerMaker::make_planned(const ControllerConfig& config,
+                                                          const ControllerContext& context) {
   if (config.params.planner.kind == PlannerKind::None || config.factory)
     return make_reactive(config, context);
   // The planning layer over the reactive kind. The inner automaton's goal radius shrinks: its

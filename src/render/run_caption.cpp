@@ -34,6 +34,12 @@ Caption fleet_caption(const Scenario& s, const FleetResult& f) {
   c.numbers = fmt::format(
       "{} reached · {} collided · deliveries {}/{} · min clearance {:.3f} m · {} steps", f.reached,
       f.collided, f.deliveries, f.delivery_count, shown_clearance(f.min_clearance), f.steps);
+  if (!f.crowd.empty()) {
+    const CrowdMetrics& m = f.crowd.metrics;
+    c.numbers += fmt::format(" · {} people, {} forklifts · contacts {} / {} · {} intrusions",
+                             f.crowd.people.size(), f.crowd.forklifts.size(), m.person_contacts,
+                             m.forklift_contacts, m.intrusions);
+  }
   return c;
 }
 

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "crowd_drawing.hpp"
 #include "legend.hpp"
 #include "picture_layout.hpp"
 #include "run_caption.hpp"
@@ -31,9 +32,10 @@ constexpr std::size_t kMaxPathPoints = 5000;
 constexpr std::size_t kMaxNamedRobots = 40;
 
 /// The picture of one or more robots in one world: `title` and `numbers` are the two lines of
-/// text at the top.
+/// text at the top; `crowd`, when given, the people and forklifts drawn under the robots.
 std::string render_tracks(const Scenario& scenario, std::span<const Track> tracks,
-                          const std::string& title, const std::string& numbers) {
+                          const std::string& title, const std::string& numbers,
+                          const CrowdResult* crowd = nullptr) {
   const World* world = scenario.world.get();
   const OccupancyGrid* grid = world ? world->grid() : nullptr;
   View v = fit_view(picture_extent(world, tracks), kMapMaxWidth, kMapMaxHeight);
@@ -66,6 +68,7 @@ std::string render_tracks(const Scenario& scenario, std::span<const Track> track
   if (grid) draw_grid(out, *grid, v);
   if (world) draw_obstacles(out, *world, v);
   if (world) draw_walls(out, *world, v);
+  if (crowd) draw_crowd(out, *crowd, v);
   for (const Track& t : tracks) draw_goal_areas(out, *t.task, v, t.color);
   for (const Track& t : tracks) draw_path(out, t, v, max_points);
   for (const Track& t : tracks) draw_switches(out, *t.run, v);
@@ -131,7 +134,7 @@ std::string render_fleet_svg(const Scenario& s, const FleetResult& f) {
   // A fleet of one is drawn like a lone robot: its path coloured by mode.
   if (tracks.size() == 1) tracks.front().color.clear();
   const Caption c = fleet_caption(s, f);
-  return render_tracks(s, tracks, c.title, c.numbers);
+  return render_tracks(s, tracks, c.title, c.numbers, f.crowd.empty() ? nullptr : &f.crowd);
 }
 
 }  // namespace floornav

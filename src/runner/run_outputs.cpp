@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "floornav/io/atomic_file.hpp"
+#include "floornav/io/crowd_csv.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
 #include "floornav/render/trajectory_html.hpp"
@@ -65,6 +66,9 @@ void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scena
                                     [](const RunResult& r) { return !r.trajectory.empty(); });
   if (which.html && recorded)
     write_file_atomically(dir / "trajectory.html", render_fleet_html(scenario, result));
+  // People and forklifts: their tracks beside the robots'.
+  if (which.csv && !result.crowd.empty())
+    write_file_atomically(dir / "crowd.csv", crowd_to_csv(result.crowd));
 }
 
 std::string describe_fleet(const FleetResult& f) {
@@ -73,6 +77,10 @@ std::string describe_fleet(const FleetResult& f) {
       "{:.3f} m",
       f.scenario, f.robots.size(), f.reached, f.collided, f.deliveries, f.delivery_count,
       f.sim_time, f.min_clearance);
+  if (!f.crowd.empty())
+    out += fmt::format(", {} people, {} forklifts: {} person and {} forklift contacts",
+                       f.crowd.people.size(), f.crowd.forklifts.size(),
+                       f.crowd.metrics.person_contacts, f.crowd.metrics.forklift_contacts);
   return out;
 }
 

@@ -1,5 +1,7 @@
 #include "floornav/scenario/simulate.hpp"
 
+#include <stdexcept>
+
 namespace floornav {
 
 void Scenario::set_controller(std::string kind, ControllerFactory factory) {
@@ -10,6 +12,11 @@ void Scenario::set_controller(std::string kind, ControllerFactory factory) {
 }
 
 Simulation make_simulation(const Scenario& scenario) {
+  // A lone robot's simulation has no crowd: ignoring the people would be a silent wrong answer.
+  if (!scenario.crowd.empty())
+    throw std::invalid_argument("scenario '" + scenario.name +
+                                "' has people or forklifts: only a fleet simulation "
+                                "(make_fleet_simulation, simulate_fleet) moves them");
   return Simulation(*scenario.world, scenario.robot(), scenario.sim, scenario.name);
 }
 
@@ -20,7 +27,8 @@ RunResult simulate(const Scenario& scenario) {
 }
 
 FleetSimulation make_fleet_simulation(const Scenario& scenario) {
-  return FleetSimulation(*scenario.world, scenario.robots, scenario.sim, scenario.name);
+  return FleetSimulation(*scenario.world, scenario.robots, scenario.sim, scenario.name,
+                         &scenario.crowd);
 }
 
 FleetResult simulate_fleet(const Scenario& scenario, int threads) {

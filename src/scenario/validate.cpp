@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -130,6 +131,10 @@ void validate_controller(const NavigationParams& n, const RobotKeys& k) {
   if (n.heading_pid.integral_limit < 0.0) bad("pid.integral_limit", "must not be negative");
   validate_planner(n.planner, k);
   validate_dwa(n.dwa, k);
+  if (!(n.avoidance_range > 0.0) || n.avoidance_range > 1000.0)
+    bad("avoidance_range", "must be in (0, 1000] m");
+  if (!(n.avoidance_horizon > 0.0)) bad("avoidance_horizon", "must be positive");
+  if (!(n.avoidance_margin >= 0.0)) bad("avoidance_margin", "must not be negative");
 }
 
 void validate_robot(const RobotTask& t, const World& w, const SimConfig& sim, const RobotKeys& k) {
@@ -203,6 +208,65 @@ void validate_starts_apart(const std::vector<RobotTask>& robots, const std::stri
     });
 }
 
+// People and forklifts: where they start and go must be free floor, not on a robot's start.
+void validate_crowd(const Scenario& s, const std::string& file) {
+  const World& w = *s.world;
+  auto free_floor = [&](const Vec2& p, const std::string& key) {
+    if (w.is_inside_obstacle(p) || !(w.clearance(p) > 0.0))
+      throw InputError(
+          file, key,
+          fmt::format("({}, {}) is inside an obstacle or outside the world", p.x(), p.y()));
+  };
+  auto clear_of_robots = [&](auto gap_to, const std::string& key) {
+    for (std::size_t i = 0; i < s.robots.size(); ++i) {
+      const RobotTask& t = s.robots[i];
+      if (gap_to(t.start.position) <= t.robot.body_radius)
+        throw InputError(file, key, fmt::format("touches robot {} ('{}') at its start", i, t.name));
+    }
+  };
+  const SocialForceParams& sf = s.crowd.social;
+  if (!(sf.tau > 0.0 && sf.sigma > 0.0 && sf.r_wall > 0.0 && sf.step_time >= 0.0))
+    throw InputError(file, "people", "the social force constants must be positive");
+  for (std::size_t a = 0; a < s.crowd.people.size(); ++a) {
+    const PersonSpec& p = s.crowd.people[a];
+    const std::string key = fmt::format("people[{}] ('{}')", a, p.name);
+    if (!(p.speed > 0.0 && p.speed <= 10.0))
+      throw InputError(file, key + ".speed",
+                       fmt::format("must be in (0, 10] m/s, got {}", p.speed));
+    if (!(p.radius > 0.0 && p.radius <= 5.0))
+      throw InputError(file, key + ".radius", fmt::format("must be in (0, 5] m, got {}", p.radius));
+    // A person may step at most half its body per step, as a robot may.
+    if (sf.max_speed_factor * p.speed * s.sim.dt > 0.5 * p.radius)
+      throw InputError(file, "sim.dt",
+                       fmt::format("{} s is too large for {}: at {:.3g} m/s it moves more than "
+                                   "half its radius per step",
+                                   s.sim.dt, key, sf.max_speed_factor * p.speed));
+    free_floor(p.start, key + ".start");
+    for (std::size_t k = 0; k < p.waypoints.size(); ++k)
+      free_floor(p.waypoints[k], fmt::format("{}.waypoints[{}]", key, k));
+    clear_of_robots([&](const Vec2& q) { return (q - p.start).norm() - p.radius; }, key + ".start");
+  }
+  for (std::size_t k = 0; k < s.crowd.forklifts.size(); ++k) {
+    const ForkliftSpec& f = s.crowd.forklifts[k];
+    const std::string key = fmt::format("forklifts[{}] ('{}')", k, f.name);
+    if (!(f.speed > 0.0 && f.speed <= 20.0))
+      throw InputError(file, key + ".speed",
+                       fmt::format("must be in (0, 20] m/s, got {}", f.speed));
+    if (f.speed * s.sim.dt > 0.25 * std::min(f.size.x(), f.size.y()))
+      throw InputError(file, "sim.dt",
+                       fmt::format("{} s is too large for {}: it moves more than a quarter of its "
+                                   "width per step",
+                                   s.sim.dt, key));
+    if (f.size.x() > 100.0 || f.size.y() > 100.0)
+      throw InputError(file, key + ".size", "at most 100 m a side");
+    for (std::size_t j = 0; j < f.route.size(); ++j)
+      free_floor(f.route[j], fmt::format("{}.route[{}]", key, j));
+    const Vec2 dir = (f.route[1] - f.route[0]).normalized();
+    const OrientedBox start{f.route[0], 0.5 * f.size, dir};
+    clear_of_robots([&](const Vec2& q) { return signed_distance(start, q); }, key + ".route[0]");
+  }
+}
+
 }  // namespace
 
 void validate_scenario(const Scenario& s, const std::string& file) {
@@ -212,6 +276,7 @@ void validate_scenario(const Scenario& s, const std::string& file) {
   for (std::size_t i = 0; i < s.robots.size(); ++i)
     validate_robot(s.robots[i], *s.world, s.sim, RobotKeys{file, s.robots_listed, i});
   if (s.robots.size() > 1) validate_starts_apart(s.robots, file);
+  if (!s.crowd.empty()) validate_crowd(s, file);
 }
 
 }  // namespace floornav

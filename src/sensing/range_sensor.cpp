@@ -32,6 +32,14 @@ double nearest_disc(std::span<const Circle> others, const Vec2& origin, const Ve
   return best;
 }
 
+// The nearest of `boxes` along the ray, or `best` when none is nearer.
+double nearest_box(std::span<const OrientedBox> boxes, const Vec2& origin, const Vec2& dir,
+                   double best) {
+  for (const OrientedBox& b : boxes)
+    if (auto t = intersect_ray(b, origin, dir); t && *t < best) best = *t;
+  return best;
+}
+
 // A sensor sees nothing beyond its range: noise is added only to real returns.
 double finish_reading(double r, const RangeSensorSpec& s, double noise_stddev, Rng& rng) {
   if (noise_stddev > 0.0 && r < s.max_range) r += noise_stddev * rng.normal();
@@ -40,14 +48,15 @@ double finish_reading(double r, const RangeSensorSpec& s, double noise_stddev, R
 
 double sense_one(const World& world, const SensorBeam& b, const RangeSensorSpec& s,
                  double noise_stddev, Rng& rng, const FreeDisc& free,
-                 std::span<const Circle> others) {
+                 std::span<const Circle> others, std::span<const OrientedBox> boxes) {
   const double free_radius = free.radius - kFreeMargin;
   const bool known_free =
       free_radius > 0.0 && (b.origin - free.centre).squaredNorm() < free_radius * free_radius;
   const auto cast = [&](const Vec2& dir) {
     const double r = known_free ? world.cast_ray_from_free(b.origin, dir, s.max_range)
                                 : world.cast_ray(b.origin, dir, s.max_range);
-    return others.empty() ? r : nearest_disc(others, b.origin, dir, r);
+    const double near = others.empty() ? r : nearest_disc(others, b.origin, dir, r);
+    return boxes.empty() ? near : nearest_box(boxes, b.origin, dir, near);
   };
   double r = s.max_range;
   if (s.cone_rays <= 1 || s.cone_angle <= 0.0) {
@@ -155,6 +164,19 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
   }
 }
 
+// Moving rectangles on a fan of beams [i, end) that share an origin, lowering ranges[k] to each
+// hit; a box wholly beyond the fan's range is skipped.
+void fan_boxes(std::span<const SensorBeam> beams, std::size_t i, std::size_t end, double max_range,
+               std::span<const OrientedBox> boxes, std::span<double> ranges) {
+  const Vec2 origin = beams[i].origin;
+  for (const OrientedBox& box : boxes) {
+    const double reach = max_range + box.bounding_radius();
+    if ((box.center - origin).squaredNorm() > reach * reach) continue;
+    for (std::size_t k = i; k < end; ++k)
+      if (auto t = intersect_ray(box, origin, beams[k].dir); t && *t < ranges[k]) ranges[k] = *t;
+  }
+}
+
 // A lidar in the sensor list: the end of the run from `i` of single-beam sensors on one mount
 // point whose headings are evenly spaced (to 1e-9 rad), or i + 1.
 std::size_t lidar_end(std::span<const RangeSensorSpec> sensors, std::size_t i) {
@@ -212,7 +234,8 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
 
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
-                  std::span<double> ranges, const FreeDisc& free, std::span<const Circle> others) {
+                  std::span<double> ranges, const FreeDisc& free, std::span<const Circle> others,
+                  std::span<const OrientedBox> boxes) {
   for (std::size_t i = 0; i < sensors.size();) {
     const std::size_t end = fan_end(beams, sensors, i);
     if (end - i >= kMinFanBeams) {
@@ -220,11 +243,12 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
       // sensor: the RNG sees the same order.
       cast_fan(world, beams, i, end, sensors[i].max_range, ranges, free);
       if (!others.empty()) fan_discs(beams, i, end, others, ranges);
+      if (!boxes.empty()) fan_boxes(beams, i, end, sensors[i].max_range, boxes, ranges);
       for (; i < end; ++i) ranges[i] = finish_reading(ranges[i], sensors[i], noise_stddev, rng);
     } else {
       const std::size_t stop = std::max(end, i + 1);  // at least one (a cone sensor)
       for (; i < stop; ++i)
-        ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free, others);
+        ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free, others, boxes);
     }
   }
 }
@@ -245,7 +269,7 @@ void sense_ranges(const World& world, const Pose2& robot, std::span<const RangeS
   const double c = std::cos(robot.theta), s = std::sin(robot.theta);
   for (std::size_t i = 0; i < sensors.size(); ++i)
     ranges[i] = sense_one(world, beam_of(robot, c, s, sensors[i]), sensors[i], noise_stddev, rng,
-                          FreeDisc{}, {});
+                          FreeDisc{}, {}, {});
 }
 
 std::size_t ranges_to_points(const Pose2& robot, std::span<const RangeSensorSpec> sensors,

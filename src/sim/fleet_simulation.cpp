@@ -34,8 +34,22 @@ constexpr std::size_t kRaysPerThread = 2000;
 
 }  // namespace
 
+std::string_view to_string(ContactKind kind) {
+  switch (kind) {
+    case ContactKind::World:
+      return "world";
+    case ContactKind::Robot:
+      return "robot";
+    case ContactKind::Person:
+      return "person";
+    case ContactKind::Forklift:
+      return "forklift";
+  }
+  return "unknown";
+}
+
 FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> robots,
-                                 const SimConfig& sim, std::string name)
+                                 const SimConfig& sim, std::string name, const CrowdSpec* crowd)
     : world_(world), tasks_(robots), sim_(sim), name_(std::move(name)) {
   const std::size_t n = tasks_.size();
   ControllerMaker controllers;  // robots of one built-in kind share one automaton
@@ -63,10 +77,16 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     max_radius_ = std::max(max_radius_, radius_[i]);
     max_reach = std::max(max_reach, reach_[i]);
     max_sensors = std::max(max_sensors, t.robot.sensors.size());
+    if (t.controller.params.robot_avoidance != RobotAvoidance::None) {
+      tell_range_.resize(n, 0.0);
+      tell_range_[i] = t.controller.params.avoidance_range;
+    }
     for (const RangeSensorSpec& sensor : t.robot.sensors)
       rays_per_step_ += static_cast<std::size_t>(std::max(sensor.cone_rays, 1));
   }
   scratch_.emplace_back(max_sensors);
+  if (!tell_range_.empty()) scratch_.back().robots.resize(n);
+  if (!tell_range_.empty() || (crowd && !crowd->empty())) velocities_.assign(n, Vec2::Zero());
   others_.emplace_back();
   others_.back().reserve(n);
 
@@ -90,6 +110,11 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
   // Robots that start touching each other have collided before the first step.
   after_step();
   steps_ = 0;
+  // The crowd starts after that check (validation keeps robots clear of people and forklifts).
+  if (crowd && !crowd->empty()) {
+    crowd_ = std::make_unique<Crowd>(*crowd, world_, n, sim_.record_trajectory);
+    others_.back().reserve(n + crowd->people.size());
+  }
 }
 
 void FleetSimulation::update_snapshot() {
@@ -122,14 +147,36 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
       const double r = reach + radius_[j];
       if ((positions_[j] - p).squaredNorm() < r * r) others.push_back({positions_[j], radius_[j]});
     });
+    if (!tell_range_.empty()) tell_nearby(i, scratch);
+    if (crowd_) {
+      crowd_->people_near(p, reach, others);
+      agents_[i].step(scratch, others, crowd_->forklifts());
+      continue;
+    }
     agents_[i].step(scratch, others);
   }
+}
+
+void FleetSimulation::tell_nearby(std::size_t i, SensingScratch& scratch) const {
+  scratch.robot_count = 0;
+  const double range = tell_range_[i];
+  if (range <= 0.0) return;
+  const Vec2 p = positions_[i];
+  grid_.for_each_near(p, range, [&](std::size_t j) {
+    if (j == i || (positions_[j] - p).squaredNorm() >= range * range) return;
+    scratch.robots[scratch.robot_count++] = {positions_[j], velocities_[j], radius_[j],
+                                             moving_[j] != 0};
+  });
 }
 
 void FleetSimulation::prepare_contacts() {
   ++steps_;
   for (std::size_t i = 0; i < agents_.size(); ++i) positions_[i] = agents_[i].pose().position;
+  if (!velocities_.empty())
+    for (std::size_t i = 0; i < agents_.size(); ++i)
+      velocities_[i] = agents_[i].finished() ? Vec2::Zero() : agents_[i].velocity();
   grid_.build(positions_, present_);
+  if (crowd_) crowd_->step(static_cast<double>(steps_ - 1) * sim_.dt, sim_.dt, bodies());
 }
 
 double FleetSimulation::nearest_gap(std::size_t i) const {
@@ -154,7 +201,8 @@ void FleetSimulation::apply_gaps() {
   for (std::size_t i = 0; i < agents_.size(); ++i)
     if (moving_[i] && agents_[i].result().collided)
       collisions_.push_back(
-          {agents_[i].recorded_time(agents_[i].result().steps), static_cast<int>(i), -1});
+          {agents_[i].recorded_time(agents_[i].result().steps), static_cast<int>(i), -1,
+           ContactKind::World});
   // Contacts between bodies at the positions after the move. Robots that stopped or left this
   // step still count: they were there while the others moved.
   for (std::size_t i = 0; i < agents_.size(); ++i) {
@@ -172,11 +220,31 @@ void FleetSimulation::apply_gaps() {
       if (j == i || (moving_[j] && j < i)) return;
       if ((positions_[j] - p).norm() - radius_[i] - radius_[j] <= 0.0)
         collisions_.push_back(
-            {a.recorded_time(a.result().steps), static_cast<int>(i), static_cast<int>(j)});
+            {a.recorded_time(a.result().steps), static_cast<int>(i), static_cast<int>(j),
+             ContactKind::Robot});
     });
     a.collide_with_robot(gap);
   }
+  if (crowd_) apply_crowd_contacts();
   update_snapshot();
+}
+
+void FleetSimulation::apply_crowd_contacts() {
+  crowd_contacts_.clear();
+  crowd_->check(sim_.dt, bodies(), crowd_contacts_);
+  for (std::size_t i = 0; i < agents_.size(); ++i) {
+    const double gap = crowd_->nearest_gap(i);
+    if (moving_[i] && gap < std::numeric_limits<double>::infinity()) agents_[i].note_robot_gap(gap);
+  }
+  // A running robot that touched a person or a forklift ends its run as a collision (one that
+  // had stopped, or ended this step otherwise, is counted in the crowd's metrics only).
+  for (const CrowdContact& c : crowd_contacts_) {
+    RobotAgent& a = agents_[c.robot];
+    if (!moving_[c.robot] || a.finished()) continue;
+    collisions_.push_back({a.time(), static_cast<int>(c.robot), static_cast<int>(c.other),
+                           c.forklift ? ContactKind::Forklift : ContactKind::Person});
+    a.collide_with_robot(c.gap);
+  }
 }
 
 void FleetSimulation::after_step() {
@@ -220,6 +288,7 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
   }
   while (scratch_.size() < n_threads) {
     scratch_.emplace_back(scratch_.front().beams.size());
+    scratch_.back().robots.resize(scratch_.front().robots.size());
     others_.emplace_back();
     others_.back().reserve(agents_.size());
   }
@@ -286,6 +355,7 @@ FleetResult FleetSimulation::make_result(std::vector<RunResult> runs) const {
   f.scenario = name_;
   f.collisions = collisions_;
   f.steps = steps_;
+  if (crowd_) f.crowd = crowd_->result();
   f.min_clearance = std::numeric_limits<double>::infinity();
   bool any_collision = false, any_stuck = false;
   for (std::size_t i = 0; i < agents_.size(); ++i) {

@@ -25,6 +25,8 @@ std::string fmt_decision_error(int mode, int guard, std::size_t modes, std::size
 // Slack subtracted per step from the clearance lower bound, far above the rounding of a
 // clearance (~1e-15 m) or a step length, so the bound stays a true lower bound.
 constexpr double kClearanceBoundSlack = 1e-9;  // m
+// m/s: a robot slower than this is waiting (RunResult::wait_time).
+constexpr double kStillSpeed = 0.01;
 }  // namespace
 
 void SensingScratch::fit(std::size_t sensors) {
@@ -127,7 +129,8 @@ void RobotAgent::collide_with_robot(double gap) {
   finish(RunStatus::Collision);
 }
 
-void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others) {
+void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others,
+                       std::span<const OrientedBox> boxes) {
   const RobotSpec& robot = *robot_;
   // The body disc is clear of every obstacle by at least clearance_bound_, so sensors mounted
   // within it start outside the obstacles: the world need not test that per ray.
@@ -136,7 +139,8 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others) 
   const std::span<double> ranges(scratch.ranges.data(), n_sensors);
   compute_sensor_beams(pose_, robot.sensors, beams);
   const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
-  sense_ranges(*world_, beams, robot.sensors, robot.sensor_noise, rng_, ranges, free, others);
+  sense_ranges(*world_, beams, robot.sensors, robot.sensor_noise, rng_, ranges, free, others,
+               boxes);
   if (sim_->record_ranges_every > 0 && result_.steps % sim_->record_ranges_every == 0) {
     // A step that only switched goals senses again at the same pose: that frame is replaced.
     if (!result_.range_steps.empty() && result_.range_steps.back() == result_.steps) {
@@ -168,6 +172,8 @@ Observation RobotAgent::observe(const SensingScratch& scratch) const {
   obs.sensed = std::span<const Vec2>(scratch.sensed.data(), scratch.sensed_count);
   obs.points =
       use_memory_ ? std::span<const Vec2>(scratch.points.data(), scratch.point_count) : obs.sensed;
+  obs.robots = std::span<const NearbyRobot>(scratch.robots.data(), scratch.robot_count);
+  obs.velocity = velocity_;
   obs.robot = robot_;
   obs.params = nav_;
   return obs;
@@ -238,7 +244,9 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
   // 5. integrate
   const Pose2 next = integrate_unicycle(pose_, driven, dt);
   const double moved = (next.position - pose_.position).norm();
+  velocity_ = (next.position - pose_.position) / dt;
   r.path_length += moved;
+  if (moved < kStillSpeed * dt) r.wait_time += dt;
   pose_ = next;
   t_ += dt;
   ++r.steps;

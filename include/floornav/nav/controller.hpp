@@ -29,6 +29,16 @@
 namespace floornav {
 
 class World;
+/// Another robot of the fleet as this robot knows it at the start of a step: not sensed but told,
+/// as fleet robots broadcast their pose and velocity (over a fleet server or robot-to-robot
+/// radio), one step old. Only robots within `controller.avoidance_range` of this one are told,
+/// and only to robots that use robot avoidance (nav/robot_avoidance.hpp).
+struct NearbyRobot {
+  Vec2 position{Vec2::Zero()};  ///< m, world frame: the body's centre
+  Vec2 velocity{Vec2::Zero()};  ///< m/s, world frame: V (cos theta, sin theta) last driven
+  double radius{0.0};           ///< m: the body disc
+  bool moving{false};           ///< still running (a robot that has finished stands still)
+};
 
 /// What a controller sees at one step. The spans point into the simulator's buffers and are
 /// valid only during the call.
@@ -45,6 +55,10 @@ struct Observation {
   /// m, world frame: the returns plus the remembered ones (controller.obstacle_memory); what the
   /// built-in behaviours use.
   std::span<const Vec2> points;
+  /// Other robots near this one, as they broadcast them (NearbyRobot); empty for a lone robot
+  /// and for robots that do not use robot avoidance.
+  std::span<const NearbyRobot> robots;
+  Vec2 velocity{Vec2::Zero()};              ///< m/s, world frame: this robot's last driven V
   const RobotSpec* robot{nullptr};          ///< the robot's base, body and sensors
   const NavigationParams* params{nullptr};  ///< the controller section's values
 

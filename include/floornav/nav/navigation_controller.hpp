@@ -41,7 +41,8 @@ class KnownMapRasters;
 /// built-in kind with equal parameters share one automaton (100,000 robots, one automaton).
 /// `dwa` makes a DwaController; a `planner.kind` other than none wraps the reactive controller
 /// in a PlannerController (planner_controller.hpp), and robots planning on one known map share
-/// its raster.
+/// its raster. With `params.robot_avoidance` set, the whole is wrapped in that layer
+/// (robot_avoidance.hpp).
 class ControllerMaker {
  public:
   ControllerMaker();
@@ -50,6 +51,8 @@ class ControllerMaker {
                                    const ControllerContext& context);
 
  private:
+  std::unique_ptr<Controller> make_planned(const ControllerConfig& config,
+                                           const ControllerContext& context);
   std::unique_ptr<Controller> make_reactive(const ControllerConfig& config,
                                             const ControllerContext& context);
   std::shared_ptr<KnownMapRasters> rasters_;

@@ -24,6 +24,15 @@ enum class ControllerKind {
 std::optional<ControllerKind> parse_controller_kind(std::string_view name);
 std::string_view to_string(ControllerKind kind);
 
+/// How a robot avoids the other robots of its fleet (nav/robot_avoidance.hpp).
+enum class RobotAvoidance {
+  None,  ///< the chapter: other robots are obstacles like any other
+  Orca,  ///< a reciprocal-velocity layer between the controller's command and the wheels
+};
+
+std::optional<RobotAvoidance> parse_robot_avoidance(std::string_view name);
+std::string_view to_string(RobotAvoidance avoidance);
+
 struct NavigationParams {
   double v0{0.15};               ///< m/s cruise speed, the cap on |u|
   double gtg_a{40.0};            ///< 1/m^2 shape of the capped GTG gain (eq. 5.19 note)
@@ -53,6 +62,11 @@ struct NavigationParams {
   /// default) is the chapter alone.
   PlannerParams planner{};
   DwaParams dwa{};  ///< the `dwa` controller kind (nav/dwa_controller.hpp)
+  /// Robot-robot avoidance (robot_avoidance.hpp); read by name, not by serialize().
+  RobotAvoidance robot_avoidance{RobotAvoidance::None};
+  double avoidance_range{1.0};    ///< m between centres: robots told to this one (NearbyRobot)
+  double avoidance_horizon{2.0};  ///< s: ORCA's time horizon tau for other robots
+  double avoidance_margin{0.02};  ///< m added to the sum of two robots' radii
 
   bool operator==(const NavigationParams&) const = default;
 
@@ -80,6 +94,11 @@ struct NavigationParams {
     a("slow_when_turning", slow_when_turning, "scale V by max(0, cos(heading error))");
     a("chatter_switches", chatter_switches, "switches within chatter_window that count as chatter");
     a("chatter_window", chatter_window, "window of the chatter (Zeno) detector, s");
+    a("avoidance_range", avoidance_range,
+      "robot_avoidance: other robots within this distance (centres) are avoided, m");
+    a("avoidance_horizon", avoidance_horizon, "robot_avoidance orca: time horizon tau, s");
+    a("avoidance_margin", avoidance_margin,
+      "robot_avoidance orca: added to the sum of two robots' radii, m");
     a.section("pid", heading_pid);
     a.section("planner", planner);
     a.section("dwa", dwa);

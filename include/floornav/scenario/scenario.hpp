@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "floornav/sim/crowd.hpp"
 #include "floornav/sim/robot_task.hpp"
 #include "floornav/sim/sim_config.hpp"
 #include "floornav/world/world.hpp"
@@ -22,9 +23,12 @@ struct Scenario {
   /// The robots came as a `robots:` list (a fleet, even of one): outputs are per robot (a robot
   /// column, every robot's summary) and errors name `robots[i]`. False for a `robot:` section.
   bool robots_listed{false};
+  /// People and forklifts moving on the floor (`people:`, `people_file:`, `forklifts:`).
+  CrowdSpec crowd{};
 
-  /// Outputs and runs as a fleet (FleetSimulation) rather than a lone robot (Simulation).
-  bool is_fleet() const { return robots_listed || robots.size() != 1; }
+  /// Outputs and runs as a fleet (FleetSimulation) rather than a lone robot (Simulation): also
+  /// a lone robot among people or forklifts (only a fleet simulates them).
+  bool is_fleet() const { return robots_listed || robots.size() != 1 || !crowd.empty(); }
   /// The first (for a lone-robot scenario, the only) robot.
   const RobotTask& robot() const { return robots.front(); }
   RobotTask& robot() { return robots.front(); }

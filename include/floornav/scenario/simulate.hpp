@@ -10,7 +10,8 @@
 namespace floornav {
 
 /// A simulation of the scenario's first robot alone in its world, the run named after the
-/// scenario. The scenario must outlive it.
+/// scenario. The scenario must outlive it. Throws std::invalid_argument for a scenario with
+/// people or forklifts (Scenario::is_fleet(): only a fleet simulation moves them).
 Simulation make_simulation(const Scenario& scenario);
 
 /// A simulation of all the scenario's robots together, the run named after the scenario. The

@@ -6,6 +6,7 @@
 
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/circle.hpp"
+#include "floornav/geometry/oriented_box.hpp"
 #include "floornav/geometry/pose2.hpp"
 #include "floornav/world/world.hpp"
 
@@ -49,11 +50,12 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
 /// Beams starting inside `free` skip the inside-obstacle test; the ranges are the same. A run of
 /// at least 16 consecutive single-beam sensors with one origin and one max_range (a lidar) is cast
 /// as one fan (`World::cast_fan`), again with the same ranges and the same noise draws.
-/// `others` are further solid discs the rays hit besides the world: the bodies of other robots.
+/// `others` are further solid discs the rays hit besides the world: the bodies of other robots
+/// (and of people); `boxes` are solid moving rectangles (forklifts). Each costs nothing when empty.
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
                   std::span<double> ranges, const FreeDisc& free = {},
-                  std::span<const Circle> others = {});
+                  std::span<const Circle> others = {}, std::span<const OrientedBox> boxes = {});
 
 /// `ranges_to_points` below, from beams already computed.
 std::size_t ranges_to_points(std::span<const SensorBeam> beams,

@@ -13,9 +13,11 @@
 /// near whom in O(robots).
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "floornav/sim/crowd.hpp"
 #include "floornav/sim/robot_agent.hpp"
 #include "floornav/sim/robot_neighbour_grid.hpp"
 #include "floornav/sim/robot_task.hpp"
@@ -25,11 +27,18 @@
 
 namespace floornav {
 
-/// Two robots that touched, or a robot that hit the world (`other` = -1).
+/// What a robot's body touched.
+enum class ContactKind { World, Robot, Person, Forklift };
+
+std::string_view to_string(ContactKind kind);
+
+/// Two robots that touched, a robot that hit the world (`other` = -1), or a robot that touched a
+/// person or a forklift (`other`: its index in the crowd).
 struct FleetCollision {
   double time{0.0};  ///< s
   int robot{-1};
   int other{-1};
+  ContactKind kind{ContactKind::Robot};
 };
 
 struct FleetResult {
@@ -46,14 +55,15 @@ struct FleetResult {
   long long robot_steps{0};
   double min_clearance{0.0};  ///< smallest over robots (world and each other)
   double wall_time{0.0};      ///< s, set by the caller that timed the run
+  CrowdResult crowd;          ///< people and forklifts: their tracks and what the robots did
 };
 
 class FleetSimulation {
  public:
-  /// `robots` in `world`; world, robots and sim must outlive the simulation. `name` names the
-  /// run in its result.
+  /// `robots` in `world`; world, robots and sim (and `crowd`, people and forklifts, when given)
+  /// must outlive the simulation. `name` names the run in its result.
   FleetSimulation(const World& world, std::span<const RobotTask> robots, const SimConfig& sim,
-                  std::string name = "fleet");
+                  std::string name = "fleet", const CrowdSpec* crowd = nullptr);
 
   /// Advances every running robot one step on the calling thread; false once all have ended.
   bool step();
@@ -89,6 +99,8 @@ class FleetSimulation {
   void apply_gaps();
   void after_step();
   void update_snapshot();
+  /// Robots that use robot avoidance are told of the robots near them (Observation::robots).
+  void tell_nearby(std::size_t i, SensingScratch& scratch) const;
   /// The fleet's result from each robot's run (in robot order), names filled in.
   FleetResult make_result(std::vector<RunResult> runs) const;
 
@@ -104,12 +116,21 @@ class FleetSimulation {
   std::vector<double> radius_;
   std::vector<double> gap_;    ///< m to the nearest other body after the move (moving robots)
   std::vector<double> reach_;  ///< m from the centre: the farthest a sensor of robot i sees
+  // Robot avoidance (nav/robot_avoidance.hpp): who is told of the others, how far, and the
+  // velocities they are told (start of the step). Empty when no robot uses it.
+  std::vector<double> tell_range_;  ///< m; 0: not told
+  std::vector<Vec2> velocities_;
   double max_radius_{0.0};
   std::size_t rays_per_step_{0};  ///< over all robots: the work of a step, to size the threads
   RobotNeighbourGrid grid_;
   std::vector<SensingScratch> scratch_;      ///< per thread
   std::vector<std::vector<Circle>> others_;  ///< per thread, reserved for every robot
   std::vector<FleetCollision> collisions_;
+  // People and forklifts (none: no crowd), moved serially after the robots each step.
+  std::unique_ptr<Crowd> crowd_;
+  std::vector<CrowdContact> crowd_contacts_;
+  RobotBodies bodies() const { return {positions_, velocities_, radius_, present_}; }
+  void apply_crowd_contacts();
   std::size_t running_{0};
   long long steps_{0};
 };

@@ -37,6 +37,10 @@ struct SensingScratch {
   std::vector<Vec2> points;
   std::size_t sensed_count{0};  ///< returns of the last sense(), in `sensed`
   std::size_t point_count{0};   ///< returns and remembered points, in `points`
+  /// The other robots this robot is told of (Observation::robots), written by the fleet before
+  /// the step; robot_count is 0 for a lone robot and for robots without robot avoidance.
+  std::vector<NearbyRobot> robots;
+  std::size_t robot_count{0};
 
   explicit SensingScratch(std::size_t sensors = 0) { fit(sensors); }
   /// Makes room for robots with up to `sensors` sensors (allocates only when growing).
@@ -62,18 +66,21 @@ class RobotAgent {
  public:
   explicit RobotAgent(AgentSetup setup);
 
-  /// One step at time `time()`, sensing the world and `others` (the bodies of nearby robots,
-  /// as discs): sense() then act(). Returns false once the run has ended (then it does nothing).
-  bool step(SensingScratch& scratch, std::span<const Circle> others = {}) {
+  /// One step at time `time()`, sensing the world, `others` (the bodies of nearby robots and
+  /// people, as discs) and `boxes` (moving rectangles: forklifts): sense() then act(). Returns
+  /// false once the run has ended (then it does nothing).
+  bool step(SensingScratch& scratch, std::span<const Circle> others = {},
+            std::span<const OrientedBox> boxes = {}) {
     if (finished_) return false;
-    sense(scratch, others);
+    sense(scratch, others, boxes);
     return act(scratch);
   }
 
   /// Step 1: casts the sensors at the current pose, turns the returns into world points and adds
   /// the remembered ones, into `scratch`. Once per step: it draws the sensor noise and updates
   /// the obstacle memory.
-  void sense(SensingScratch& scratch, std::span<const Circle> others = {});
+  void sense(SensingScratch& scratch, std::span<const Circle> others = {},
+             std::span<const OrientedBox> boxes = {});
   /// What the controller sees, from the sensing in `scratch` (valid while scratch is unchanged).
   Observation observe(const SensingScratch& scratch) const;
   /// Steps 2-7 from the sensing in `scratch`. With `external`, that command drives the robot
@@ -90,6 +97,8 @@ class RobotAgent {
 
   bool finished() const { return finished_; }
   const Pose2& pose() const { return pose_; }
+  /// m/s, world frame: the last step's displacement over dt (zero before the first step).
+  const Vec2& velocity() const { return velocity_; }
   double time() const { return t_; }
   double body_radius() const { return robot_->body_radius; }
   const RobotSpec& robot() const { return *robot_; }
@@ -126,6 +135,7 @@ class RobotAgent {
   Rng rng_;
   ObstacleMemory memory_{};
   Pose2 pose_{};
+  Vec2 velocity_{Vec2::Zero()};
   double t_{0.0};
   double steps_per_second_{0.0};  ///< 1/dt when that is a whole number, else 0: recorded_time
   std::size_t goal_index_{0};

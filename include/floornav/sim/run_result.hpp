@@ -44,6 +44,7 @@ struct RunResult {
   int goal_count{0};
   double sim_time{0.0};
   double path_length{0.0};
+  double wait_time{0.0};      ///< s the robot's body moved slower than 1 cm/s (waiting, turning)
   double min_clearance{0.0};  ///< m between body and obstacles, over the run (<= 0 on collision)
   int mode_switches{0};
   int steps{0};

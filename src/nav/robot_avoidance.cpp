@@ -1,0 +1,321 @@
+#include "floornav/nav/robot_avoidance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "floornav/geometry/angle.hpp"
+#include "floornav/geometry/segment.hpp"
+#include "floornav/sensing/obstacle_memory.hpp"
+
+namespace floornav {
+
+namespace {
+
+// Below this a determinant is taken as zero (parallel lines), as RVO2 does.
+constexpr double kParallel = 1e-9;
+// s: the horizon of the still-point lines: at clearance c the robot may close in at c / 0.5 s,
+// more than any preset's cruise speed at the follow-boundary distances, so they bind only when
+// avoiding a robot would push the body at a wall.
+constexpr double kStillHorizon = 0.5;
+// m/s: how fast the heading may still close in on a still point at the margin (turn_first).
+constexpr double kCreep = 1e-3;
+
+// The line's permitted side does not hold v: v lies to the right of it.
+bool violates(const OrcaLine& line, const Vec2& v) {
+  return cross(line.direction, line.point - v) > 0.0;
+}
+
+// Program 1: the best velocity on line `i` within the speed disc and the lines before it;
+// false when none is.
+bool program_on_line(std::span<const OrcaLine> lines, std::size_t i, double radius, const Vec2& opt,
+                     bool direction_opt, Vec2& result) {
+  const OrcaLine& line = lines[i];
+  const double dot = line.point.dot(line.direction);
+  const double disc = dot * dot + radius * radius - line.point.squaredNorm();
+  if (disc < 0.0) return false;  // the line misses the speed disc
+  const double root = std::sqrt(disc);
+  double t_left = -dot - root, t_right = -dot + root;
+  for (std::size_t j = 0; j < i; ++j) {
+    const double denominator = cross(line.direction, lines[j].direction);
+    const double numerator = cross(lines[j].direction, line.point - lines[j].point);
+    if (std::abs(denominator) <= kParallel) {
+      if (numerator < 0.0) return false;  // parallel, and line i lies outside line j
+      continue;
+    }
+    const double t = numerator / denominator;
+    if (denominator >= 0.0)
+      t_right = std::min(t_right, t);
+    else
+      t_left = std::max(t_left, t);
+    if (t_left > t_right) return false;
+  }
+  if (direction_opt) {
+    result = line.point + (opt.dot(line.direction) > 0.0 ? t_right : t_left) * line.direction;
+  } else {
+    const double t = std::clamp(line.direction.dot(opt - line.point), t_left, t_right);
+    result = line.point + t * line.direction;
+  }
+  return true;
+}
+
+// Program 2: the velocity nearest to `opt` (or farthest along the direction `opt`) in the speed
+// disc satisfying every line; returns the index of the first line it could not satisfy, or
+// lines.size().
+std::size_t program_2d(std::span<const OrcaLine> lines, double radius, const Vec2& opt,
+                       bool direction_opt, Vec2& result) {
+  if (direction_opt)
+    result = opt * radius;
+  else if (opt.squaredNorm() > radius * radius)
+    result = opt.normalized() * radius;
+  else
+    result = opt;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (!violates(lines[i], result)) continue;
+    const Vec2 before = result;
+    if (!program_on_line(lines, i, radius, opt, direction_opt, result)) {
+      result = before;
+      return i;
+    }
+  }
+  return lines.size();
+}
+
+// Program 3: no velocity satisfies every line; from line `begin` on, the velocity that
+// minimises the largest violation of the soft lines, keeping the first `hard`.
+void program_3d(std::span<const OrcaLine> lines, std::size_t hard, std::size_t begin, double radius,
+                Vec2& result, std::vector<OrcaLine>& projected) {
+  double distance = 0.0;
+  for (std::size_t i = begin; i < lines.size(); ++i) {
+    if (cross(lines[i].direction, lines[i].point - result) <= distance) continue;
+    projected.assign(lines.begin(), lines.begin() + static_cast<std::ptrdiff_t>(hard));
+    for (std::size_t j = hard; j < i; ++j) {
+      OrcaLine line;
+      const double det = cross(lines[i].direction, lines[j].direction);
+      if (std::abs(det) <= kParallel) {
+        if (lines[i].direction.dot(lines[j].direction) > 0.0) continue;  // same direction
+        line.point = 0.5 * (lines[i].point + lines[j].point);
+      } else {
+        line.point =
+            lines[i].point +
+            (cross(lines[j].direction, lines[i].point - lines[j].point) / det) * lines[i].direction;
+      }
+      line.direction = normalized_or_zero(lines[j].direction - lines[i].direction);
+      projected.push_back(line);
+    }
+    const Vec2 before = result;
+    const Vec2 inward = rotate_ccw90(lines[i].direction);
+    if (program_2d(projected, radius, inward, true, result) < projected.size()) result = before;
+    distance = cross(lines[i].direction, lines[i].point - result);
+  }
+}
+
+}  // namespace
+
+std::optional<RobotAvoidance> parse_robot_avoidance(std::string_view name) {
+  if (name == "none") return RobotAvoidance::None;
+  if (name == "orca") return RobotAvoidance::Orca;
+  return std::nullopt;
+}
+
+std::string_view to_string(RobotAvoidance avoidance) {
+  return avoidance == RobotAvoidance::Orca ? "orca" : "none";
+}
+
+OrcaLine orca_line(const Vec2& p, const Vec2& v_a, const Vec2& v_b, double r, double tau, double dt,
+                   double responsibility) {
+  const Vec2 v = v_a - v_b;
+  const double dist_sq = p.squaredNorm();
+  const double r_sq = r * r;
+  OrcaLine line;
+  Vec2 u;
+  if (dist_sq > r_sq) {
+    // w: from the centre of the cut-off disc (p / tau) to v.
+    const Vec2 w = v - p / tau;
+    const double w_sq = w.squaredNorm();
+    const double dot1 = w.dot(p);
+    if (dot1 < 0.0 && dot1 * dot1 > r_sq * w_sq) {
+      // v is nearest to the cut-off disc: out along w.
+      const double w_len = std::sqrt(w_sq);
+      const Vec2 unit_w = w / w_len;
+      line.direction = rotate_cw90(unit_w);
+      u = (r / tau - w_len) * unit_w;
+    } else {
+      // v is nearest to a leg of the cone: the left leg when w is left of p.
+      const double leg = std::sqrt(dist_sq - r_sq);
+      if (cross(p, w) > 0.0)
+        line.direction = Vec2(p.x() * leg - p.y() * r, p.x() * r + p.y() * leg) / dist_sq;
+      else
+        line.direction = -Vec2(p.x() * leg + p.y() * r, -p.x() * r + p.y() * leg) / dist_sq;
+      u = v.dot(line.direction) * line.direction - v;
+    }
+  } else {
+    // Overlapping: leave within one step.
+    const Vec2 w = v - p / dt;
+    const double w_len = w.norm();
+    const Vec2 unit_w = w_len > 0.0 ? Vec2(w / w_len) : Vec2(-p.normalized());
+    line.direction = rotate_cw90(unit_w);
+    u = (r / dt - w_len) * unit_w;
+  }
+  line.point = v_a + responsibility * u;
+  return line;
+}
+
+OrcaLine still_point_line(const Vec2& p, double r, double tau) {
+  const double d = p.norm();
+  const Vec2 n = d > 0.0 ? Vec2(p / d) : Vec2(1.0, 0.0);
+  OrcaLine line;
+  line.point = (std::max(d - r, 0.0) / tau) * n;
+  line.direction = rotate_cw90(Vec2(-n));
+  return line;
+}
+
+Vec2 solve_orca(std::span<const OrcaLine> lines, std::size_t hard, const Vec2& preferred,
+                double max_speed, std::vector<OrcaLine>& projected) {
+  Vec2 result = Vec2::Zero();
+  const std::size_t failed = program_2d(lines, max_speed, preferred, false, result);
+  if (failed < lines.size()) program_3d(lines, hard, failed, max_speed, result, projected);
+  return result;
+}
+
+std::size_t drop_robot_points(std::span<const Vec2> points, std::span<const NearbyRobot> robots,
+                              double tolerance, std::span<const Vec2> current, double memory,
+                              double slack, std::span<Vec2> out) {
+  std::size_t n = 0;
+  for (const Vec2& q : points) {
+    // A remembered point (not among this step's returns) may be a robot's body where it stood
+    // up to `memory` seconds ago.
+    const bool remembered =
+        memory > 0.0 && std::find(current.begin(), current.end(), q) == current.end();
+    bool robot = false;
+    for (const NearbyRobot& b : robots) {
+      if (!b.moving) continue;
+      const double d = remembered
+                           ? distance(Segment{b.position - memory * b.velocity, b.position}, q)
+                           : (q - b.position).norm();
+      if (d <= b.radius + tolerance + (remembered ? slack : 0.0)) {
+        robot = true;
+        break;
+      }
+    }
+    if (!robot) out[n++] = q;
+  }
+  return n;
+}
+
+namespace {
+
+// The robot does not drive u: it drives along its heading at |u| cos e (the pipeline of Fig 5.12,
+// heading_tracker.hpp) while it turns towards u. Near a wall, that can close in on the wall
+// although u does not; then u is scaled down until the speed along the heading satisfies the
+// still lines too (the robot turns before it drives). A tiny u still turns the robot (a zero u
+// would not: the pipeline holds still without a heading).
+Vec2 turn_first(const Vec2& u, const Observation& obs, std::span<const OrcaLine> still) {
+  const double speed = u.norm();
+  if (speed <= 0.0 || still.empty()) return u;
+  const NavigationParams& p = *obs.params;
+  const Vec2 h(std::cos(obs.pose.theta), std::sin(obs.pose.theta));
+  double v = std::min(speed, p.v0);
+  if (p.slow_when_turning) v *= std::max(0.0, h.dot(u) / speed);
+  const Vec2 drive = v * h;
+  double scale = 1.0;
+  for (const OrcaLine& line : still) {
+    // The line's normal into the forbidden side, and its bound: drive . n <= bound.
+    const Vec2 n = rotate_cw90(line.direction);
+    // A creep of 1 mm/s is let through: a robot driving along a wall at its margin has the wall
+    // at a right angle, and rounding would otherwise stop it dead.
+    const double along = drive.dot(n), bound = std::max(line.point.dot(n), 0.0) + kCreep;
+    if (along > bound) scale = std::min(scale, bound / along);
+  }
+  if (scale >= 1.0) return u;
+  constexpr double kTurnOnly = 1e-6;  // m/s
+  return u * std::max(scale, kTurnOnly / speed);
+}
+
+class OrcaLayer final : public Controller {
+ public:
+  OrcaLayer(std::unique_ptr<Controller> inner, const RobotSpec& robot)
+      : Controller(inner->mode_names(), inner->guard_names()), inner_(std::move(inner)) {
+    fit(robot.sensors.size() + ObstacleMemory::kCapacity);
+  }
+
+  Decision decide(const Observation& obs) override {
+    if (std::none_of(obs.robots.begin(), obs.robots.end(),
+                     [](const NearbyRobot& r) { return r.moving; }))
+      return inner_->decide(obs);  // nobody to avoid: exactly the wrapped controller
+    const NavigationParams& p = *obs.params;
+    const double r_self = obs.robot->body_radius;
+    fit(std::max(obs.points.size(), obs.sensed.size()));
+    // The moving robots leave the observation: only the still world reaches the controller.
+    const double tolerance = 1e-6 + 4.0 * obs.robot->sensor_noise;
+    Observation still = obs;
+    still.sensed = {sensed_.data(),
+                    drop_robot_points(obs.sensed, obs.robots, tolerance, {}, 0.0, 0.0, sensed_)};
+    // Remembered points go when they lie along the way a robot came, widened by how far it could
+    // have swerved meanwhile (at this robot's cruise speed).
+    still.points = obs.points.data() == obs.sensed.data()
+                       ? still.sensed
+                       : std::span<const Vec2>(
+                             points_.data(), drop_robot_points(obs.points, obs.robots, tolerance,
+                                                               obs.sensed, p.obstacle_memory,
+                                                               p.v0 * p.obstacle_memory, points_));
+    const Decision d = inner_->decide(still);
+    if (d.command.kind() != Command::Kind::Velocity) return d;
+
+    // Hard lines: the still points near enough to bind at cruise speed; then one soft line per
+    // moving robot.
+    std::vector<OrcaLine>& lines = scratch_.lines;
+    lines.clear();
+    const Vec2 x = obs.pose.position;
+    // A sensed point lies a little beyond the wall's nearest point (beams are spread): the still
+    // lines keep a margin of a quarter of the body radius (at most d_unsafe).
+    const double r_still = r_self + std::min(p.d_unsafe, 0.25 * r_self);
+    for (const Vec2& q : still.points) {
+      const Vec2 rel = q - x;
+      if (rel.norm() - r_still < p.v0 * kStillHorizon)
+        lines.push_back(still_point_line(rel, r_still, kStillHorizon));
+    }
+    const std::size_t hard = lines.size();
+    for (const NearbyRobot& b : obs.robots) {
+      if (!b.moving) continue;
+      lines.push_back(orca_line(b.position - x, obs.velocity, b.velocity,
+                                r_self + b.radius + p.avoidance_margin, p.avoidance_horizon, obs.dt,
+                                0.5));
+    }
+    const Vec2 pref = d.command.u();
+    Vec2 u = solve_orca(lines, hard, pref, p.v0, scratch_.projected);
+    // Keep right: a robot that the others hold back to under half its speed tries the way to
+    // its right (45 degrees), and takes it if that lets it move faster.
+    if (u.norm() < 0.5 * pref.norm()) {
+      const Vec2 right =
+          solve_orca(lines, hard, rotate(pref, -kPi / 4.0), p.v0, scratch_.projected);
+      if (right.norm() > u.norm()) u = right;
+    }
+    return {Command::velocity(turn_first(u, obs, {lines.data(), hard})), d.mode, d.guard};
+  }
+
+  void reset() override { inner_->reset(); }
+  int mode() const override { return inner_->mode(); }
+
+ private:
+  void fit(std::size_t n) {
+    if (points_.size() >= n) return;
+    points_.resize(n);
+    sensed_.resize(n);
+    scratch_.lines.reserve(n + 64);
+    scratch_.projected.reserve(n + 64);
+  }
+
+  std::unique_ptr<Controller> inner_;
+  std::vector<Vec2> points_, sensed_;
+  OrcaScratch scratch_;
+};
+
+}  // namespace
+
+std::unique_ptr<Controller> make_orca_layer(std::unique_ptr<Controller> inner,
+                                            const RobotSpec& robot) {
+  return std::make_unique<OrcaLayer>(std::move(inner), robot);
+}
+
+}  // namespace floornav

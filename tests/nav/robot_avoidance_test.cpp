@@ -1,0 +1,168 @@
+// Robot avoidance (nav/robot_avoidance.hpp): ORCA's constraint and linear programs on values
+// worked by hand, which sensed points are a robot's, and the layer around a controller.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "floornav/nav/robot_avoidance.hpp"
+#include "floornav/scenario/presets.hpp"
+
+using namespace floornav;
+
+namespace {
+// Permitted: on the left of the line (or on it).
+bool permits(const OrcaLine& l, const Vec2& v) {
+  return cross(l.direction, v - l.point) >= -1e-12;
+}
+}  // namespace
+
+// Head on: A at the origin at (1, 0), B 4 m ahead at (-1, 0), r = 1, tau = 2. The relative
+// velocity (2, 0) points at the centre of the cut-off disc (p / tau = (2, 0)), so the nearest
+// way out is the leg: the cone's half-angle is asin(1/4), the change u has length
+// |v| sin(half-angle) = 0.5, u = (-1/8, -sqrt(15)/8), and A takes half of it: the line runs
+// through (1 - 1/16, -sqrt(15)/16) along (-sqrt(15)/4, 1/4). A keeps right (-y): its own velocity
+// is forbidden, moving right is permitted.
+TEST(Orca, HeadOnLineWorkedByHand) {
+  const OrcaLine l = orca_line(Vec2(4, 0), Vec2(1, 0), Vec2(-1, 0), 1.0, 2.0, 0.01, 0.5);
+  const double s15 = std::sqrt(15.0);
+  EXPECT_NEAR(l.point.x(), 1.0 - 1.0 / 16.0, 1e-12);
+  EXPECT_NEAR(l.point.y(), -s15 / 16.0, 1e-12);
+  EXPECT_NEAR(l.direction.x(), -s15 / 4.0, 1e-12);
+  EXPECT_NEAR(l.direction.y(), 0.25, 1e-12);
+  EXPECT_FALSE(permits(l, Vec2(1, 0)));
+  EXPECT_TRUE(permits(l, Vec2(1, -0.5)));
+  EXPECT_FALSE(permits(l, Vec2(1, 0.5)));  // not to the left
+  // B, seeing the mirror image, also keeps to its own right (+y in the world).
+  const OrcaLine m = orca_line(Vec2(-4, 0), Vec2(-1, 0), Vec2(1, 0), 1.0, 2.0, 0.01, 0.5);
+  EXPECT_TRUE(permits(m, Vec2(-1, 0.5)));
+  EXPECT_FALSE(permits(m, Vec2(-1, -0.5)));
+}
+
+// Far apart and moving apart, nothing is forbidden that is near the current velocity.
+TEST(Orca, RobotsDrivingApartAreNotHeldBack) {
+  const OrcaLine l = orca_line(Vec2(3, 0), Vec2(-0.2, 0), Vec2(0.2, 0), 0.2, 2.0, 0.01, 0.5);
+  EXPECT_TRUE(permits(l, Vec2(-0.2, 0)));
+  EXPECT_TRUE(permits(l, Vec2(0, 0)));
+}
+
+// Overlapping bodies: the line asks for separation within one step: the point lies beyond the
+// current velocity, away from the other robot.
+TEST(Orca, OverlappingBodiesSeparateWithinAStep) {
+  const OrcaLine l = orca_line(Vec2(0.1, 0), Vec2(0, 0), Vec2(0, 0), 0.15, 2.0, 0.01, 0.5);
+  // u = (r/dt - |w|) unit_w with w = -p/dt = (-10, 0): u = (15 - 10) (-1, 0); half of it.
+  EXPECT_NEAR(l.point.x(), -2.5, 1e-12);
+  EXPECT_NEAR(l.point.y(), 0.0, 1e-12);
+  EXPECT_FALSE(permits(l, Vec2(0, 0)));
+  EXPECT_TRUE(permits(l, Vec2(-2.6, 0)));
+}
+
+// A still point 0.5 m ahead, r = 0.1, tau = 0.5: v.x <= (0.5 - 0.1) / 0.5 = 0.8; the origin is
+// always permitted, and so is sliding along.
+TEST(Orca, StillPointBoundsTheApproachSpeed) {
+  const OrcaLine l = still_point_line(Vec2(0.5, 0), 0.1, 0.5);
+  EXPECT_TRUE(permits(l, Vec2(0.8, 3.0)));
+  EXPECT_FALSE(permits(l, Vec2(0.81, 0)));
+  EXPECT_TRUE(permits(l, Vec2::Zero()));
+  // Inside the radius: no approach at all, moving away is fine.
+  const OrcaLine in = still_point_line(Vec2(0.05, 0), 0.1, 0.5);
+  EXPECT_TRUE(permits(in, Vec2::Zero()));
+  EXPECT_FALSE(permits(in, Vec2(0.01, 0)));
+  EXPECT_TRUE(permits(in, Vec2(-0.3, 0.2)));
+}
+
+// The 2D program: the velocity nearest the preferred one on the permitted side, within the
+// speed disc.
+TEST(Orca, ProgramFindsTheNearestPermittedVelocity) {
+  std::vector<OrcaLine> projected;
+  const std::vector<OrcaLine> bound{still_point_line(Vec2(0.5, 0), 0.1, 0.5)};  // v.x <= 0.8
+  Vec2 v = solve_orca(bound, 1, Vec2(1.0, 0.3), 2.0, projected);
+  EXPECT_NEAR(v.x(), 0.8, 1e-12);
+  EXPECT_NEAR(v.y(), 0.3, 1e-12);
+  // The speed disc: the preferred velocity is shortened to it.
+  v = solve_orca({}, 0, Vec2(3.0, 4.0), 1.0, projected);
+  EXPECT_NEAR(v.x(), 0.6, 1e-12);
+  EXPECT_NEAR(v.y(), 0.8, 1e-12);
+}
+
+// Two soft lines that contradict (v.x <= 0.3 and v.x >= 0.5): the 3D program splits the
+// violation, v.x = 0.4. With the first made hard (v.x <= 0.2), it is kept: v.x = 0.2.
+TEST(Orca, WithNoRoomTheWorstViolationIsSmallestAndHardLinesHold) {
+  const OrcaLine at_most{Vec2(0.3, 0), Vec2(0, 1)};    // permitted: x <= 0.3
+  const OrcaLine at_least{Vec2(0.5, 0), Vec2(0, -1)};  // permitted: x >= 0.5
+  std::vector<OrcaLine> projected;
+  const std::vector<OrcaLine> soft{at_most, at_least};
+  EXPECT_NEAR(solve_orca(soft, 0, Vec2::Zero(), 1.0, projected).x(), 0.4, 1e-12);
+  const std::vector<OrcaLine> hard{OrcaLine{Vec2(0.2, 0), Vec2(0, 1)}, at_least};
+  EXPECT_NEAR(solve_orca(hard, 1, Vec2::Zero(), 1.0, projected).x(), 0.2, 1e-12);
+}
+
+// Which sensed points are a moving robot's: this step's returns on its body; remembered returns
+// along the way it came (widened by the slack); never those of a robot that stands still, nor a
+// wall's.
+TEST(Orca, DropsTheReturnsOfMovingRobotsOnly) {
+  const std::vector<NearbyRobot> robots{{Vec2(1, 0), Vec2(0.5, 0), 0.1, true}};
+  const std::vector<Vec2> current{Vec2(0.9, 0), Vec2(0.5, 0.5)};
+  const std::vector<Vec2> points{Vec2(0.9, 0), Vec2(0.5, 0.5), Vec2(0.6, 0.15)};
+  std::vector<Vec2> out(points.size());
+  // (0.6, 0.15) is 0.15 from the segment (0.5, 0)-(1, 0): within 0.1 + slack 0.1.
+  ASSERT_EQ(drop_robot_points(points, robots, 1e-6, current, 1.0, 0.1, out), 1u);
+  EXPECT_EQ(out[0], Vec2(0.5, 0.5));
+  // As a current return it would be 0.41 m from the centre: kept.
+  const std::vector<Vec2> now{Vec2(0.6, 0.15)};
+  EXPECT_EQ(drop_robot_points(now, robots, 1e-6, now, 1.0, 0.1, out), 1u);
+  // A robot that stands still is an obstacle like any other.
+  const std::vector<NearbyRobot> parked{{Vec2(1, 0), Vec2::Zero(), 0.1, false}};
+  EXPECT_EQ(drop_robot_points(points, parked, 1e-6, current, 1.0, 0.1, out), 3u);
+}
+
+namespace {
+// A controller that drives straight at (1, 0) m/s and remembers what it saw.
+class Straight final : public Controller {
+ public:
+  Decision decide(const Observation& obs) override {
+    seen = obs.points.size();
+    return Command::velocity(Vec2(0.15, 0.0));
+  }
+  std::size_t seen{0};
+};
+
+Observation observation(const RobotSpec& robot, const NavigationParams& params,
+                        std::span<const Vec2> points, std::span<const NearbyRobot> robots) {
+  Observation obs;
+  obs.dt = 0.01;
+  obs.robot = &robot;
+  obs.params = &params;
+  obs.points = points;
+  obs.sensed = points;
+  obs.robots = robots;
+  obs.velocity = Vec2(0.15, 0.0);
+  return obs;
+}
+}  // namespace
+
+// With no moving robot near, the layer passes the wrapped controller's command and observation
+// unchanged; with one coming head on, the controller no longer sees it and the command keeps to
+// the right.
+TEST(Orca, TheLayerActsOnlyWhenAMovingRobotIsNear) {
+  const RobotSpec robot = find_robot_preset("quickbot")->robot;
+  NavigationParams params;
+  params.robot_avoidance = RobotAvoidance::Orca;
+  auto inner = std::make_unique<Straight>();
+  Straight* straight = inner.get();
+  auto layer = make_orca_layer(std::move(inner), robot);
+  EXPECT_EQ(layer->mode_names(), straight->mode_names());
+
+  const std::vector<Vec2> wall{Vec2(0.0, 0.5)};
+  const std::vector<NearbyRobot> parked{{Vec2(0.6, 0), Vec2::Zero(), 0.075, false}};
+  std::vector<Vec2> seen{Vec2(0.0, 0.5), Vec2(0.525, 0.0)};
+  Decision d = layer->decide(observation(robot, params, seen, parked));
+  EXPECT_EQ(d.command.u(), Vec2(0.15, 0.0));
+  EXPECT_EQ(straight->seen, 2u);
+
+  const std::vector<NearbyRobot> coming{{Vec2(0.6, 0), Vec2(-0.15, 0), 0.075, true}};
+  d = layer->decide(observation(robot, params, seen, coming));
+  EXPECT_EQ(straight->seen, 1u);  // the robot's return is gone, the wall's is not
+  EXPECT_LT(d.command.u().y(), 0.0);
+  EXPECT_LT(d.command.u().x(), 0.15);
+}
