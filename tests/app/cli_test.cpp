@@ -75,7 +75,7 @@ TEST(Cli, SetChangesTheController) {
 TEST(Cli, BadInputExitsWithStatus2AndOneMessage) {
   Output o = floornav("run /nonexistent.yaml");
   EXPECT_EQ(o.status, 2);
-  EXPECT_NE(o.text.find("/nonexistent.yaml: no such file"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("/nonexistent.yaml: does not exist"), std::string::npos) << o.text;
   o = floornav("run " + scenario("rectangle.yaml") + " --set controller.kind=zigzag --out " +
                temp_dir("bad").string());
   EXPECT_EQ(o.status, 2);
