@@ -45,6 +45,18 @@ std::shared_ptr<const OccupancyGrid> load_world_map(const std::filesystem::path&
   }
   if (ext == ".world" || ext == ".sdf") {
     SdfWorld w = load_sdf_world(path);
+    if (!w.skipped.empty()) {
+      // What the world holds but floornav cannot read would be an obstacle the robot drives
+      // through: refused, never dropped.
+      const std::string& first = w.skipped.front();  // "line 12: what"
+      const auto colon = first.find(": ");
+      const bool has_line = first.rfind("line ", 0) == 0 && colon != std::string::npos;
+      throw InputError(path.string(), has_line ? first.substr(0, colon) : "",
+                       (has_line ? first.substr(colon + 2) : first) +
+                           (w.skipped.size() > 1
+                                ? fmt::format(" (and {} more such things)", w.skipped.size() - 1)
+                                : std::string()));
+    }
     desc.circles.insert(desc.circles.end(), w.circles.begin(), w.circles.end());
     for (auto& p : w.polygons) desc.polygons.push_back(std::move(p));
     return nullptr;

@@ -9,21 +9,6 @@
 namespace floornav::io_detail {
 
 namespace {
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
-
 std::string scalar_of(const std::string& file, const YAML::Node& node, const std::string& key,
                       const char* expected) {
   if (!node.IsDefined() || node.IsNull())
@@ -126,13 +111,6 @@ std::vector<Vec2> read_points(const std::string& file, const YAML::Node& node,
   for (std::size_t i = 0; i < node.size(); ++i)
     out.push_back(read_point(file, node[i], fmt::format("{}[{}]", key, i)));
   return out;
-}
-
-std::string quote_input(std::string_view text, std::size_t max) {
-  if (text.size() <= max) return fmt::format("'{}'", text);
-  std::size_t cut = max;
-  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xc0) == 0x80) --cut;  // UTF-8
-  return fmt::format("'{}...' ({} bytes)", text.substr(0, cut), text.size());
 }
 
 MapReader::MapReader(std::string file, YAML::Node node, std::string path)
@@ -265,13 +243,20 @@ void MapReader::operator()(const char* key, bool& field, const char*) {
     known_.insert(key);
 }
 void MapReader::operator()(const char* key, std::uint64_t& field, const char*) {
-  if (!has(key)) {
-    known_.insert(key);
-    return;
-  }
-  const auto v = read_int(file_, get(key), path_of(key));
-  if (v < 0) fail(file_, get(key), path_of(key), "must not be negative");
-  field = static_cast<std::uint64_t>(v);
+  if (!has(key)) return;
+  const YAML::Node n = get(key);
+  const std::string s = scalar_of(file_, n, path_of(key), "a whole number");
+  if (!s.empty() && s.front() == '-' && s.find_first_not_of("-0123456789") == std::string::npos)
+    fail(file_, n, path_of(key), "must not be negative");
+  std::uint64_t v = 0;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec == std::errc::result_out_of_range && ptr == s.data() + s.size())
+    fail(
+        file_, n, path_of(key),
+        fmt::format("{} is out of the range of a whole number (at most 2^64 - 1)", quote_input(s)));
+  if (ec != std::errc() || ptr != s.data() + s.size())
+    fail(file_, n, path_of(key), fmt::format("expected a whole number, got {}", quote_input(s)));
+  field = v;
 }
 
 }  // namespace floornav::io_detail

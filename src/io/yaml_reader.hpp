@@ -35,10 +35,6 @@ Vec2 read_point(const std::string& file, const YAML::Node& node, const std::stri
 std::vector<Vec2> read_points(const std::string& file, const YAML::Node& node,
                               const std::string& key);
 
-/// `text` in single quotes for a message, cut to about `max` bytes (with how long it was), so
-/// that a message quoting a 5 MB scalar stays short.
-std::string quote_input(std::string_view text, std::size_t max = 60);
-
 /// A YAML map whose keys are checked off as they are read; `finish()` rejects the rest, with a
 /// "did you mean" naming the closest key the section knows. A section may have layers: a fleet's
 /// robot entry over the shared `robot:` section. A key is read from the first layer that has it;

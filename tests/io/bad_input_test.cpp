@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "floornav/core/input_error.hpp"
+#include "floornav/io/barn.hpp"
 #include "floornav/io/course_world.hpp"
 #include "floornav/io/movingai_map.hpp"
 #include "floornav/io/ros_map.hpp"
@@ -223,8 +224,10 @@ std::vector<BadCase> generated_cases() {
       [] { return png_header(10, 10, random_bytes(512, 6, true)); });
   add("ros_map/huge_header.png", Via::Loader, "too large",
       [] { return png_header(100000, 100000, ""); });
-  add("ros_map/header_promises_16384_squared.png", Via::Loader, "bytes cannot hold",
+  add("ros_map/header_promises_16384_squared.png", Via::Loader, "too large (limit 2^26",
       [] { return png_header(16384, 16384, png_chunk("IDAT", "x\x9c")); });
+  add("ros_map/header_promises_8192_squared.png", Via::Loader, "bytes cannot hold",
+      [] { return png_header(8192, 8192, png_chunk("IDAT", "x\x9c")); });
   add("ros_map/signature_only.png", Via::Loader, "no IHDR chunk",
       [] { return std::string("\x89PNG\r\n\x1a\n"); });
   add("movingai/binary.map", Via::Loader, "expected 'type octile'",
@@ -243,6 +246,47 @@ std::vector<BadCase> generated_cases() {
     std::string s = "<simulation><obstacle><pose x='0' y='0' theta='0'/><geometry>";
     for (int i = 0; i < 1001; ++i) s += "<point x='" + std::to_string(i) + "' y='0'/>";
     return s + "</geometry></obstacle></simulation>";
+  });
+  // BARN reference paths (.npy): the header is read strictly and the cells must be BARN's.
+  auto npy = [](const std::string& header, const std::vector<std::int64_t>& values) {
+    std::string h = header;
+    while ((10 + h.size() + 1) % 64 != 0) h += ' ';
+    h += '\n';
+    std::string out = std::string("\x93NUMPY\x01\x00", 8);
+    out += static_cast<char>(h.size() & 0xff);
+    out += static_cast<char>(h.size() >> 8);
+    out += h;
+    for (const std::int64_t v : values)
+      for (int b = 0; b < 8; ++b)
+        out += static_cast<char>((static_cast<std::uint64_t>(v) >> (8 * b)) & 0xff);
+    return out;
+  };
+  add("barn/three_dimensional.npy", Via::Loader, "got a 3-dimensional array", [npy] {
+    return npy("{'descr': '<i8', 'fortran_order': False, 'shape': (1, 2, 2), }", {1, 2, 3, 4});
+  });
+  add("barn/decoy_descr.npy", Via::Loader, "unknown key 'note'", [npy] {
+    return npy(
+        "{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2), 'note': \"'descr': "
+        "'<i8'\"}",
+        {1, 2});
+  });
+  add("barn/float_dtype.npy", Via::Loader, "expected dtype '<i8'", [npy] {
+    return npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2), }", {1, 2});
+  });
+  add("barn/extreme_values.npy", Via::Loader, "is outside BARN's 30 x 30 grid", [npy] {
+    return npy("{'descr': '<i8', 'fortran_order': False, 'shape': (2, 2), }",
+               {3, 4, std::int64_t{1} << 62, -5});
+  });
+  add("barn/data_too_short.npy", Via::Loader, "but shape (3, 2) needs 48", [npy] {
+    return npy("{'descr': '<i8', 'fortran_order': False, 'shape': (3, 2), }", {1, 2, 3, 4});
+  });
+  add("barn/empty_path.npy", Via::Loader, "an empty path",
+      [npy] { return npy("{'descr': '<i8', 'fortran_order': False, 'shape': (0, 2), }", {}); });
+  add("barn/fortran_order.npy", Via::Loader, "expected C order", [npy] {
+    return npy("{'descr': '<i8', 'fortran_order': True, 'shape': (1, 2), }", {1, 2});
+  });
+  add("barn/text_after_header.npy", Via::Loader, "text after the header's closing brace", [npy] {
+    return npy("{'descr': '<i8', 'fortran_order': False, 'shape': (1, 2), } x", {1, 2});
   });
   return out;
 }
@@ -364,6 +408,8 @@ void load_map(const fs::path& file) {
     (void)floornav::load_sdf_world(file);
   } else if (dir == "course_xml") {
     (void)floornav::load_course_world(file);
+  } else if (dir == "barn") {
+    (void)floornav::load_barn_path(file);
   } else {
     FAIL() << "no loader for " << file;
   }
