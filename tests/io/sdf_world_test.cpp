@@ -208,9 +208,6 @@ TEST(SdfWorldRealFiles, BarnWorlds) {
   EXPECT_EQ(w.circles[100].radius, 0.075);
 }
 
-}  // namespace
-}  // namespace floornav
-
 // BARN's reference paths load strictly: every real path_N.npy is an (n, 2) int64 array of cells
 // inside the 30 x 30 grid.
 TEST(SdfWorldRealFiles, BarnPaths) {
@@ -227,3 +224,6 @@ TEST(SdfWorldRealFiles, BarnPaths) {
   EXPECT_EQ(load_barn_path(dir / "path_0.npy").front()[0], 26);
   EXPECT_EQ(load_barn_path(dir / "path_0.npy").front()[1], 0);
 }
+
+}  // namespace
+}  // namespace floornav
