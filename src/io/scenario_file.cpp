@@ -541,7 +541,7 @@ void read_world(const std::string& file, MapReader& top, const std::filesystem::
            map ? fmt::format("does not apply to a {} map (only a MovingAI .map or a bare "
                              ".pgm/.png image takes a cell size; a ROS .yaml gives its own "
                              "resolution)",
-                             format.empty() ? "'" + map->filename().string() + "'" : format)
+                             format.empty() ? fmt::format("'{}'", map->filename().string()) : format)
                : std::string("does not apply without world.map (only a MovingAI .map or a bare "
                              ".pgm/.png image takes a cell size)"));
     options.cell_size = read_positive(file, n, "world.cell_size");

@@ -213,7 +213,10 @@ std::string scalar(const Json& v) {
 std::string flow(const Json& v) {
   if (v.is_array()) {
     std::string out = "[";
-    for (std::size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + flow(v[i]);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (i) out += ", ";
+      out += flow(v[i]);
+    }
     return out + "]";
   }
   if (v.is_object()) return "{}";
@@ -225,7 +228,9 @@ void block(const Json& v, std::size_t indent, std::string& out) {
   for (const auto& [key, value] : v.items()) {
     out += pad + key + ":";
     if (is_flat(value)) {
-      out += " " + flow(value) + "\n";
+      out += ' ';
+      out += flow(value);
+      out += '\n';
     } else if (value.is_object()) {
       out += "\n";
       block(value, indent + 2, out);
@@ -237,7 +242,10 @@ void block(const Json& v, std::size_t indent, std::string& out) {
           block(item, indent + 4, text);
           text.replace(indent, 4, "  - ");
         } else {
-          text = std::string(indent + 2, ' ') + "- " + flow(item) + "\n";
+          text.assign(indent + 2, ' ');
+          text += "- ";
+          text += flow(item);
+          text += '\n';
         }
         out += text;
       }
