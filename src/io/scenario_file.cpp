@@ -537,13 +537,14 @@ void read_world(const std::string& file, MapReader& top, const std::filesystem::
   if (w.has("cell_size")) {
     const YAML::Node n = w.get("cell_size");
     if (!takes_cell_size)
-      fail(file, n, "world.cell_size",
-           map ? fmt::format("does not apply to a {} map (only a MovingAI .map or a bare "
-                             ".pgm/.png image takes a cell size; a ROS .yaml gives its own "
-                             "resolution)",
-                             format.empty() ? fmt::format("'{}'", map->filename().string()) : format)
-               : std::string("does not apply without world.map (only a MovingAI .map or a bare "
-                             ".pgm/.png image takes a cell size)"));
+      fail(
+          file, n, "world.cell_size",
+          map ? fmt::format("does not apply to a {} map (only a MovingAI .map or a bare "
+                            ".pgm/.png image takes a cell size; a ROS .yaml gives its own "
+                            "resolution)",
+                            format.empty() ? fmt::format("'{}'", map->filename().string()) : format)
+              : std::string("does not apply without world.map (only a MovingAI .map or a bare "
+                            ".pgm/.png image takes a cell size)"));
     options.cell_size = read_positive(file, n, "world.cell_size");
     source.cell_size = options.cell_size;
   }

@@ -2,9 +2,12 @@
 /// @file
 /// Writing a run's files (summary.json, trajectory.csv, trajectory.svg) and its one-line report.
 
+#include <atomic>
 #include <filesystem>
+#include <optional>
 #include <string>
 
+#include "floornav/runner/run_summary.hpp"
 #include "floornav/scenario/scenario.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/run_result.hpp"
@@ -16,9 +19,16 @@ struct OutputSelection {
   bool summary{true};
   bool csv{true};
   bool svg{true};
+  bool transitions{true};  ///< transitions.csv
 };
 
-/// Writes the selected files into `dir` (created if needed), each atomically.
+/// Writes the selected files into `dir` (created if needed), all together or none
+/// (OutputFolder): summary.json (run_summary with `context`), trajectory.csv, transitions.csv,
+/// trajectory.svg.
+void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,
+                       const RunResult& result, const RunContext& context,
+                       const OutputSelection& which = {});
+/// The same without provenance overrides or an optimum (RunContext{}).
 void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,
                        const RunResult& result, const OutputSelection& which = {});
 
@@ -28,8 +38,14 @@ std::string describe_run(const RunResult& result);
 /// Times `simulate` and fills in the result's wall_time.
 RunResult run_timed(const Scenario& scenario);
 
-/// A fleet's files in `dir`: summary.json (fleet_summary_to_json), trajectory.csv (with a robot
-/// column) and trajectory.svg (every robot's path).
+/// The same, abandoned (nullopt) as soon as `stop` is set: it is read at every step.
+std::optional<RunResult> run_timed(const Scenario& scenario, const std::atomic<bool>* stop);
+
+/// A fleet's files in `dir`, all together or none: summary.json (fleet_run_summary),
+/// trajectory.csv (with a robot column), transitions.csv and trajectory.svg (every robot's path).
+void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scenario,
+                         const FleetResult& result, const RunContext& context,
+                         const OutputSelection& which = {});
 void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scenario,
                          const FleetResult& result, const OutputSelection& which = {});
 
@@ -38,5 +54,9 @@ std::string describe_fleet(const FleetResult& result);
 
 /// Times `simulate_fleet` on `threads` threads (0: all cores) and fills in wall_time.
 FleetResult run_fleet_timed(const Scenario& scenario, int threads = 0);
+
+/// The same, abandoned (nullopt) once `stop` is set: it is read every 64 world steps.
+std::optional<FleetResult> run_fleet_timed(const Scenario& scenario, int threads,
+                                           const std::atomic<bool>* stop);
 
 }  // namespace floornav

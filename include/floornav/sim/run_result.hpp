@@ -56,6 +56,11 @@ struct RunResult {
   std::vector<Transition> transitions;
   std::vector<double> transition_x, transition_y;  ///< where each transition happened
   std::vector<TrajectorySample> trajectory;
+  /// The extra columns recorded with the trajectory (SimConfig::record), by name, and their
+  /// values: extra_columns.size() per trajectory row, row-major; NaN where a value does not apply
+  /// (no velocity command, the first row's command and ranges).
+  std::vector<std::string> extra_columns;
+  std::vector<double> extra;
   double final_x{0.0}, final_y{0.0}, final_theta{0.0};
 };
 
