@@ -53,7 +53,8 @@ RunContext context_of(const BatchCase& c, const BatchOptions& o) {
   return ctx;
 }
 
-/// Runs one case; nullopt when `halt` was set while it ran (the case is abandoned).
+/// Runs one case; nullopt when the user's stop or `halt` was set while it ran (the case is
+/// abandoned).
 std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
                              const std::atomic<bool>* halt) {
   Scenario sc = c.scenario;  // shares the world; copies only small data
@@ -61,7 +62,7 @@ std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
   RunContext ctx = context_of(c, o);
   if (sc.is_fleet()) {
     // A fleet: one thread per case, like every case (the batch is parallel across cases).
-    auto f = run_fleet_timed(sc, 1, halt);
+    auto f = run_fleet_timed(sc, 1, o.stop, halt);
     if (!f) return std::nullopt;
     // The fleet's line holds the fleet's summary without each robot's (there can be thousands).
     Json summary = fleet_run_summary(c.scenario, *f, ctx);
@@ -69,7 +70,7 @@ std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
     return case_line(c, summary, o.timing);
   }
   if (o.optimum && !c.optimal_length) ctx.optimum = compute_optimum(sc);
-  auto r = run_timed(sc, halt);
+  auto r = run_timed(sc, o.stop, halt);
   if (!r) return std::nullopt;
   return case_line(c, run_summary(c.scenario, *r, ctx), o.timing);
 }
@@ -293,7 +294,7 @@ BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
       std::size_t i;
       {
         std::lock_guard lock(mutex);
-        if (next_job >= todo.size() || halt.load()) return;
+        if (next_job >= todo.size() || halt.load() || user_stop()) return;
         i = todo[next_job++];
       }
       std::optional<Json> line;

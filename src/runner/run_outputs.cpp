@@ -60,13 +60,18 @@ RunResult run_timed(const Scenario& scenario) {
   return r;
 }
 
-std::optional<RunResult> run_timed(const Scenario& scenario, const std::atomic<bool>* stop) {
+std::optional<RunResult> run_timed(const Scenario& scenario, const std::atomic<bool>* stop,
+                                   const std::atomic<bool>* also) {
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim = make_simulation(scenario);
-  // The stop flag is read once per step (a relaxed load): a case is abandoned mid-run, so that
+  // The stop flags are read once per step (relaxed loads): a case is abandoned mid-run, so that
   // an interrupt never waits for a long case to end.
+  const auto stopped = [&] {
+    return (stop != nullptr && stop->load(std::memory_order_relaxed)) ||
+           (also != nullptr && also->load(std::memory_order_relaxed));
+  };
   while (sim.step())
-    if (stop != nullptr && stop->load(std::memory_order_relaxed)) return std::nullopt;
+    if (stopped()) return std::nullopt;
   RunResult r = sim.result();
   r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
@@ -108,13 +113,18 @@ FleetResult run_fleet_timed(const Scenario& scenario, int threads) {
 }
 
 std::optional<FleetResult> run_fleet_timed(const Scenario& scenario, int threads,
-                                           const std::atomic<bool>* stop) {
+                                           const std::atomic<bool>* stop,
+                                           const std::atomic<bool>* also) {
   const auto t0 = std::chrono::steady_clock::now();
   FleetSimulation sim = make_fleet_simulation(scenario);
+  const auto stopped = [&] {
+    return (stop != nullptr && stop->load(std::memory_order_relaxed)) ||
+           (also != nullptr && also->load(std::memory_order_relaxed));
+  };
   // A stop is looked at every 64 world steps (each step of a big fleet is long enough).
   while (sim.run_steps(64, threads) > 0 && !sim.finished())
-    if (stop != nullptr && stop->load(std::memory_order_relaxed)) return std::nullopt;
-  if (!sim.finished() && stop != nullptr && stop->load()) return std::nullopt;
+    if (stopped()) return std::nullopt;
+  if (!sim.finished() && stopped()) return std::nullopt;
   FleetResult r = sim.take_result();
   r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

@@ -38,8 +38,9 @@ std::string describe_run(const RunResult& result);
 /// Times `simulate` and fills in the result's wall_time.
 RunResult run_timed(const Scenario& scenario);
 
-/// The same, abandoned (nullopt) as soon as `stop` is set: it is read at every step.
-std::optional<RunResult> run_timed(const Scenario& scenario, const std::atomic<bool>* stop);
+/// The same, abandoned (nullopt) as soon as `stop` or `also` is set: both are read at every step.
+std::optional<RunResult> run_timed(const Scenario& scenario, const std::atomic<bool>* stop,
+                                   const std::atomic<bool>* also = nullptr);
 
 /// A fleet's files in `dir`, all together or none: summary.json (fleet_run_summary),
 /// trajectory.csv (with a robot column), transitions.csv and trajectory.svg (every robot's path).
@@ -55,8 +56,9 @@ std::string describe_fleet(const FleetResult& result);
 /// Times `simulate_fleet` on `threads` threads (0: all cores) and fills in wall_time.
 FleetResult run_fleet_timed(const Scenario& scenario, int threads = 0);
 
-/// The same, abandoned (nullopt) once `stop` is set: it is read every 64 world steps.
+/// The same, abandoned (nullopt) once `stop` or `also` is set: read every 64 world steps.
 std::optional<FleetResult> run_fleet_timed(const Scenario& scenario, int threads,
-                                           const std::atomic<bool>* stop);
+                                           const std::atomic<bool>* stop,
+                                           const std::atomic<bool>* also = nullptr);
 
 }  // namespace floornav
