@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <memory>
 
 #include "bench_cases.hpp"
 #include "floornav/core/input_error.hpp"
@@ -15,107 +15,302 @@
 
 namespace floornav {
 
-std::vector<BatchCase> make_scen_cases(const std::string& template_file,
-                                       const std::string& scen_file, double cell_size,
-                                       std::span<const std::string> overrides) {
-  const std::vector<MovingAiCase> rows = load_movingai_scen(scen_file);
-  if (rows.empty()) throw InputError(scen_file, "", "no cases in the .scen file");
-  // The map: the path in the .scen relative to it, or a file of that name beside it.
-  const std::filesystem::path scen_dir = std::filesystem::path(scen_file).parent_path();
-  std::filesystem::path map = scen_dir / rows[0].map_file;
-  if (!std::filesystem::exists(map))
-    map = scen_dir / std::filesystem::path(rows[0].map_file).filename();
-  if (!std::filesystem::exists(map))
-    throw InputError(scen_file, "line 2",
-                     fmt::format("map '{}' not found beside the .scen file", rows[0].map_file));
-  // The template with the benchmark's map; start and goal are placeholders replaced per row.
-  std::vector<std::string> sets(overrides.begin(), overrides.end());
-  sets.push_back("world.map=" + std::filesystem::absolute(map).string());
-  sets.push_back(fmt::format("world.cell_size={}", cell_size));
-  const OccupancyGrid probe = load_movingai_map(map, cell_size);
-  // Load the template once with the first row's start and goal; the world is then shared.
-  const Vec2 s0 = movingai_cell_center(rows[0].start_x, rows[0].start_y, rows[0].height, cell_size);
-  const Vec2 g0 = movingai_cell_center(rows[0].goal_x, rows[0].goal_y, rows[0].height, cell_size);
-  auto with_pose = sets;
-  with_pose.push_back(fmt::format("robot.start=[{},{},{}]", s0.x(), s0.y(),
-                                  std::atan2(g0.y() - s0.y(), g0.x() - s0.x())));
-  with_pose.push_back(fmt::format("goal=[{},{}]", g0.x(), g0.y()));
-  const Scenario base = load_scenario_file(template_file, with_pose);
+namespace {
 
-  std::vector<BatchCase> cases;
-  cases.reserve(rows.size());
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const MovingAiCase& row = rows[i];
-    if (row.width != probe.width() || row.height != probe.height())
-      throw InputError(scen_file, fmt::format("line {}", i + 2),
-                       "the row's map size differs from the map's");
-    Scenario s = base;
-    const Vec2 start = movingai_cell_center(row.start_x, row.start_y, row.height, cell_size);
-    const Vec2 goal = movingai_cell_center(row.goal_x, row.goal_y, row.height, cell_size);
-    s.robot().start = {start, std::atan2(goal.y() - start.y(), goal.x() - start.x())};
-    s.robot().goals = {goal};
-    s.name = fmt::format("{}-{}", base.name, i);
-    validate_scenario(s, fmt::format("{} (row {})", scen_file, i + 2));
-    BatchCase c{std::move(s), fmt::format("{}:{}", scen_file, i + 2), i, {}, {}};
-    c.optimal_length = row.optimal_length * cell_size;  // the scen's octile optimum, in metres
-    cases.push_back(std::move(c));
-  }
-  return cases;
+/// A case made from a scenario already loaded and checked.
+CaseSource from_cases(std::vector<BatchCase> cases) {
+  auto shared = std::make_shared<std::vector<BatchCase>>(std::move(cases));
+  return {shared->size(), [shared](std::size_t id) { return shared->at(id); }};
 }
 
-namespace {
-// The number in a file name ("world_17.world" -> 17), or -1.
-long number_in(const std::string& name) {
-  long value = -1;
+void add_overrides(SweepHasher& hash, std::span<const std::string> overrides) {
+  for (const std::string& o : overrides) hash.add("--set", o);
+}
+
+/// The digits in a file name ("world_17.world" -> "17"), or "" (kept as text: a 23-digit number
+/// would overflow any integer).
+std::string digits_in(const std::string& name) {
+  std::string out;
   for (char c : name) {
     if (c >= '0' && c <= '9')
-      value = (value < 0 ? 0 : value * 10) + (c - '0');
-    else if (value >= 0)
+      out += c;
+    else if (!out.empty())
       break;
   }
-  return value;
+  const auto first = out.find_first_not_of('0');
+  return first == std::string::npos ? (out.empty() ? "" : "0") : out.substr(first);
 }
+
+/// Natural order of numbers written as digits: shorter is smaller, then by digits.
+bool number_less(const std::string& a, const std::string& b) {
+  return a.size() != b.size() ? a.size() < b.size() : a < b;
+}
+
 }  // namespace
 
-std::vector<BatchCase> make_world_cases(const std::string& template_file, const std::string& dir,
-                                        const std::string& barn_paths,
-                                        std::span<const std::string> overrides) {
+CaseSource make_file_cases(std::span<const std::string> files,
+                           std::span<const std::string> overrides, SweepHasher& hash) {
+  hash.add("mode", "files");
+  add_overrides(hash, overrides);
+  std::vector<BatchCase> cases;
+  for (const std::string& f : files) {
+    BatchCase c;
+    c.scenario = load_scenario_file(f, overrides);
+    c.source = f;
+    c.id = cases.size();
+    hash.add_file("scenario", f);
+    cases.push_back(std::move(c));
+  }
+  return from_cases(std::move(cases));
+}
+
+CaseSource make_scen_cases(const std::string& template_file, const std::string& scen_file,
+                           double cell_size, std::span<const std::string> overrides,
+                           SweepHasher& hash) {
+  auto rows = std::make_shared<const std::vector<MovingAiCase>>(load_movingai_scen(scen_file));
+  if (rows->empty()) throw InputError(scen_file, "", "no cases in the .scen file (only a header)");
+  const MovingAiCase& first = rows->front();
+  // One map per .scen file: a row naming another would otherwise run on the first row's map.
+  for (const MovingAiCase& row : *rows)
+    if (row.map_file != first.map_file)
+      throw InputError(scen_file, fmt::format("line {}", row.line),
+                       fmt::format("names map '{}', but line {} names '{}': the rows of one .scen "
+                                   "file are on one map",
+                                   row.map_file, first.line, first.map_file));
+  // The map: the path in the .scen relative to it, or a file of that name beside it.
+  const std::filesystem::path scen_dir = std::filesystem::path(scen_file).parent_path();
+  const std::filesystem::path named = scen_dir / first.map_file;
+  const std::filesystem::path beside = scen_dir / std::filesystem::path(first.map_file).filename();
+  std::error_code ec;
+  const std::filesystem::path map = std::filesystem::exists(named, ec) ? named : beside;
+  if (!std::filesystem::exists(map, ec))
+    throw InputError(scen_file, fmt::format("line {}", first.line),
+                     fmt::format("its map '{}' does not exist (looked for {} and {})",
+                                 first.map_file, named.string(), beside.string()));
+  const std::string map_path = std::filesystem::absolute(map).lexically_normal().string();
+  hash.add("mode", "scen");
+  add_overrides(hash, overrides);
+  hash.add("cell_size", fmt::format("{}", cell_size));
+  hash.add_file("template", template_file);
+  hash.add_file("scen", scen_file);
+  hash.add_file("map", map);
+
+  // The template with the benchmark's map, and the first row's start and goal in place of the
+  // template's: each of these values is blamed on where it came from, never on a --set.
+  const std::string first_line = fmt::format("line {}", first.line);
+  auto pose_of = [&](const MovingAiCase& row) {
+    const Vec2 s = movingai_cell_center(row.start_x, row.start_y, row.height, cell_size);
+    const Vec2 g = movingai_cell_center(row.goal_x, row.goal_y, row.height, cell_size);
+    return std::pair{Pose2{s, std::atan2(g.y() - s.y(), g.x() - s.x())}, g};
+  };
+  const auto [s0, g0] = pose_of(first);
+  std::vector<ScenarioOverride> sets = user_overrides(overrides);
+  sets.push_back({"world.map=" + map_path, scen_file, first_line + " (its map)"});
+  sets.push_back(
+      {fmt::format("world.cell_size={}", cell_size), "", fmt::format("--cell-size {}", cell_size)});
+  sets.push_back({fmt::format("robot.start=[{},{},{}]", s0.position.x(), s0.position.y(), s0.theta),
+                  scen_file, first_line + " (its start)"});
+  sets.push_back(
+      {fmt::format("goal=[{},{}]", g0.x(), g0.y()), scen_file, first_line + " (its goal)"});
+  auto base = std::make_shared<const Scenario>(load_scenario_with_overrides(template_file, sets));
+  if (base->is_fleet())
+    throw InputError(template_file, "robots", "a .scen template has one robot, not a robots list");
+  const OccupancyGrid* grid = base->world->grid();
+
+  // Every row is checked now (start and goal on free floor, the map's size): a bad row is an
+  // error before anything runs. One scenario is reused for the checks.
+  Scenario probe = *base;
+  for (const MovingAiCase& row : *rows) {
+    const std::string where = fmt::format("line {}", row.line);
+    if (grid && (row.width != grid->width() || row.height != grid->height()))
+      throw InputError(scen_file, where,
+                       fmt::format("the row's map size {} x {} differs from the map's {} x {}",
+                                   row.width, row.height, grid->width(), grid->height()));
+    const auto [start, goal] = pose_of(row);
+    probe.robot().start = start;
+    probe.robot().goals = {goal};
+    try {
+      validate_scenario(probe, scen_file);
+    } catch (const InputError& e) {
+      throw InputError(
+          scen_file, where,
+          fmt::format("{}: {}", e.where == "goal" ? "its goal" : "its start", e.detail));
+    }
+  }
+  return {rows->size(), [base, rows, cell_size, scen_file, pose_of](std::size_t id) {
+            const MovingAiCase& row = rows->at(id);
+            BatchCase c;
+            c.scenario = *base;
+            const auto [start, goal] = pose_of(row);
+            c.scenario.robot().start = start;
+            c.scenario.robot().goals = {goal};
+            c.scenario.name = fmt::format("{}-{}", base->name, id);
+            c.source = fmt::format("{}:{}", scen_file, row.line);
+            c.id = id;
+            c.optimal_length = row.optimal_length * cell_size;  // the scen's octile optimum, in m
+            return c;
+          }};
+}
+
+CaseSource make_world_cases(const std::string& template_file, const std::string& dir,
+                            const std::string& barn_paths, std::span<const std::string> overrides,
+                            SweepHasher& hash) {
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec))
-    throw InputError(dir, "", "--worlds needs a folder of .world/.sdf files");
+    throw InputError(dir, "",
+                     std::filesystem::exists(dir, ec)
+                         ? "is not a directory (--worlds needs a folder of .world/.sdf files)"
+                         : "does not exist (--worlds needs a folder of .world/.sdf files)");
   std::vector<std::filesystem::path> worlds;
   for (const auto& e : std::filesystem::directory_iterator(dir))
     if (e.path().extension() == ".world" || e.path().extension() == ".sdf")
       worlds.push_back(e.path());
   if (worlds.empty()) throw InputError(dir, "", "no .world or .sdf files in the folder");
   std::sort(worlds.begin(), worlds.end(), [](const auto& a, const auto& b) {
-    const long na = number_in(a.filename().string()), nb = number_in(b.filename().string());
-    return na != nb ? na < nb : a < b;
+    const std::string na = digits_in(a.filename().string()), nb = digits_in(b.filename().string());
+    return na != nb ? number_less(na, nb) : a < b;
   });
+  hash.add("mode", "worlds");
+  add_overrides(hash, overrides);
+  hash.add_file("template", template_file);
   std::vector<BatchCase> cases;
   for (std::size_t i = 0; i < worlds.size(); ++i) {
-    std::vector<std::string> sets(overrides.begin(), overrides.end());
-    sets.push_back("world.map=" + std::filesystem::absolute(worlds[i]).string());
-    Scenario s = load_scenario_file(template_file, sets);
-    s.name = fmt::format("{}-{}", s.name, worlds[i].stem().string());
-    BatchCase c{std::move(s), worlds[i].string(), i, {}, {}};
+    std::vector<ScenarioOverride> sets = user_overrides(overrides);
+    sets.push_back({"world.map=" + std::filesystem::absolute(worlds[i]).string(),
+                    worlds[i].string(), "--worlds"});
+    hash.add_file("world", worlds[i]);
+    BatchCase c;
+    c.scenario = load_scenario_with_overrides(template_file, sets);
+    c.scenario.name = fmt::format("{}-{}", c.scenario.name, worlds[i].stem().string());
+    c.source = worlds[i].string();
+    c.id = i;
     if (!barn_paths.empty()) {
-      const long n = number_in(worlds[i].filename().string());
+      const std::string n = digits_in(worlds[i].filename().string());
+      if (n.empty())
+        throw InputError(worlds[i].string(), "",
+                         "--barn-paths: the file name has no number N to find path_N.npy by");
       const auto path = std::filesystem::path(barn_paths) / fmt::format("path_{}.npy", n);
-      c.optimal_time =
-          barn_optimal_time(load_npy_int_pairs(path), c.scenario.robot().start.position,
-                            c.scenario.robot().goals.back());
+      hash.add_file("barn_path", path);
+      c.optimal_time = barn_optimal_time(load_barn_path(path), c.scenario.robot().start.position,
+                                         c.scenario.robot().goals.back());
     }
     cases.push_back(std::move(c));
   }
-  return cases;
+  return from_cases(std::move(cases));
 }
 
-std::vector<BatchCase> make_floor_cases(const std::string& template_file, int count,
-                                        std::uint64_t first_seed,
-                                        std::span<const std::string> overrides) {
+namespace {
+
+/// The values of one --grid: "key=FROM:TO:COUNT" or "key=V1,V2,...".
+struct GridAxis {
+  std::string key;
+  std::vector<std::string> values;
+};
+
+GridAxis parse_grid(const std::string& spec) {
+  const std::string where = "--grid " + spec;
+  auto bad = [&](const std::string& what) { throw InputError("", where, what); };
+  const auto eq = spec.find('=');
+  if (eq == std::string::npos || eq == 0)
+    bad("expected KEY=FROM:TO:COUNT or KEY=V1,V2,... (e.g. controller.d_o=0.1:0.5:5)");
+  GridAxis axis{spec.substr(0, eq), {}};
+  const std::string rhs = spec.substr(eq + 1);
+  if (rhs.empty()) bad("no values after '='");
+  if (rhs.find(':') != std::string::npos) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    for (std::size_t p; (p = rhs.find(':', start)) != std::string::npos; start = p + 1)
+      parts.push_back(rhs.substr(start, p - start));
+    parts.push_back(rhs.substr(start));
+    if (parts.size() != 3) bad("a range is FROM:TO:COUNT, e.g. 0.1:0.5:5");
+    double from = 0, to = 0;
+    long count = 0;
+    std::size_t used = 0;
+    try {
+      from = std::stod(parts[0], &used);
+      if (used != parts[0].size()) throw std::invalid_argument("");
+      to = std::stod(parts[1], &used);
+      if (used != parts[1].size()) throw std::invalid_argument("");
+      count = std::stol(parts[2], &used);
+      if (used != parts[2].size()) throw std::invalid_argument("");
+    } catch (const std::exception&) {
+      bad("FROM and TO are numbers and COUNT a whole number, e.g. 0.1:0.5:5");
+    }
+    if (!std::isfinite(from) || !std::isfinite(to)) bad("FROM and TO must be finite");
+    if (count < 1 || count > 100000) bad("COUNT must be between 1 and 100000");
+    for (long i = 0; i < count; ++i) {
+      // Evenly spaced, both ends exact.
+      const double v = count == 1       ? from
+                       : i == count - 1 ? to
+                                        : from + (to - from) * static_cast<double>(i) /
+                                                     static_cast<double>(count - 1);
+      axis.values.push_back(fmt::format("{}", v));
+    }
+  } else {
+    std::size_t start = 0;
+    for (std::size_t p;; start = p + 1) {
+      p = rhs.find(',', start);
+      const std::string v = rhs.substr(start, p == std::string::npos ? p : p - start);
+      if (v.empty()) bad("an empty value in the list");
+      axis.values.push_back(v);
+      if (p == std::string::npos) break;
+    }
+  }
+  return axis;
+}
+
+}  // namespace
+
+CaseSource make_grid_cases(const std::string& template_file, std::span<const std::string> grid,
+                           std::span<const std::string> overrides, SweepHasher& hash) {
+  if (grid.empty()) throw InputError("", "--grid", "give at least one --grid KEY=VALUES");
+  std::vector<GridAxis> axes;
+  std::size_t count = 1;
+  for (const std::string& spec : grid) {
+    axes.push_back(parse_grid(spec));
+    count *= axes.back().values.size();
+    if (count > 1000000)
+      throw InputError("", "--grid " + spec, "the grid has more than 1000000 cases");
+  }
+  hash.add("mode", "grid");
+  add_overrides(hash, overrides);
+  for (const std::string& spec : grid) hash.add("--grid", spec);
+  hash.add_file("template", template_file);
+  // Every combination is loaded (and so checked) now; the last axis varies fastest.
+  std::vector<BatchCase> cases;
+  cases.reserve(count);
+  std::vector<std::size_t> at(axes.size(), 0);
+  for (std::size_t id = 0; id < count; ++id) {
+    std::vector<ScenarioOverride> sets = user_overrides(overrides);
+    BatchCase c;
+    std::string label;
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      const std::string assignment = axes[a].key + "=" + axes[a].values[at[a]];
+      sets.push_back({assignment, "", "--grid " + grid[a] + " (" + assignment + ")"});
+      c.swept.push_back(assignment);
+      label += (a ? " " : "") + assignment;
+    }
+    c.scenario = load_scenario_with_overrides(template_file, sets);
+    c.source = template_file + " [" + label + "]";
+    c.id = id;
+    cases.push_back(std::move(c));
+    for (std::size_t a = axes.size(); a-- > 0;) {
+      if (++at[a] < axes[a].values.size()) break;
+      at[a] = 0;
+    }
+  }
+  return from_cases(std::move(cases));
+}
+
+CaseSource make_floor_cases(const std::string& template_file, int count, std::uint64_t first_seed,
+                            std::span<const std::string> overrides, SweepHasher& hash) {
   if (count < 1 || count > 100000)
     throw InputError("", "--floors", fmt::format("must be in [1, 100000], got {}", count));
+  hash.add("mode", "floors");
+  add_overrides(hash, overrides);
+  hash.add("floors", fmt::format("{}", count));
+  hash.add("floor_seed", fmt::format("{}", first_seed));
+  hash.add_file("template", template_file);
   const Scenario base = load_scenario_file(template_file, overrides);
   std::vector<BatchCase> cases;
   for (int i = 0; i < count; ++i) {
@@ -134,9 +329,9 @@ std::vector<BatchCase> make_floor_cases(const std::string& template_file, int co
     s.name = fmt::format("{}-floor{}", base.name, seed);
     validate_scenario(s, fmt::format("{} (floor {})", template_file, seed));
     cases.push_back(
-        {std::move(s), fmt::format("floor:{}", seed), static_cast<std::size_t>(i), {}, {}});
+        {std::move(s), fmt::format("floor:{}", seed), static_cast<std::size_t>(i), {}, {}, {}});
   }
-  return cases;
+  return from_cases(std::move(cases));
 }
 
 }  // namespace floornav

@@ -1,33 +1,54 @@
 #pragma once
-// Where batch cases come from besides plain scenario files: a MovingAI .scen file, or a folder of
-// Gazebo worlds (BARN), each with a template scenario.
+// Where a batch's cases come from: scenario files, the rows of a MovingAI .scen file, a folder of
+// Gazebo worlds (BARN), or a grid of parameter values over a template. Every case is checked
+// when the source is made (a bad row or value is an error before anything runs); cases are then
+// made one at a time when they run, so that a .scen of a million rows holds no million scenarios.
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "floornav/runner/batch.hpp"
+#include "sweep_id.hpp"
 
 namespace floornav {
 
-std::vector<BatchCase> make_scen_cases(const std::string& template_file,
-                                       const std::string& scen_file, double cell_size,
-                                       std::span<const std::string> overrides);
+/// `count` cases, numbered 0..count-1; `make(id)` makes one.
+struct CaseSource {
+  std::size_t count{0};
+  std::function<BatchCase(std::size_t id)> make;
+};
+
+/// One case per scenario file, each with the --set values `overrides`.
+CaseSource make_file_cases(std::span<const std::string> files,
+                           std::span<const std::string> overrides, SweepHasher& hash);
+
+/// One case per row of a MovingAI .scen file, on its map (found beside it), with the template's
+/// robot and controller; `cell_size` metres per cell.
+CaseSource make_scen_cases(const std::string& template_file, const std::string& scen_file,
+                           double cell_size, std::span<const std::string> overrides,
+                           SweepHasher& hash);
 
 /// One case per .world/.sdf file in `dir` (in natural order: world_2 before world_10), with the
 /// template's robot, controller, start and goal. With `barn_paths`, each world_N also gets the
 /// BARN optimal time from path_N.npy.
-std::vector<BatchCase> make_world_cases(const std::string& template_file, const std::string& dir,
-                                        const std::string& barn_paths,
-                                        std::span<const std::string> overrides);
+CaseSource make_world_cases(const std::string& template_file, const std::string& dir,
+                            const std::string& barn_paths, std::span<const std::string> overrides,
+                            SweepHasher& hash);
+
+/// One case per combination of the `grid` values ("key=FROM:TO:COUNT", COUNT evenly spaced values
+/// from FROM to TO, or "key=V1,V2,..."), the last key varying fastest, on the template with the
+/// --set values `overrides` first. Each case's line carries its values (`swept`).
+CaseSource make_grid_cases(const std::string& template_file, std::span<const std::string> grid,
+                           std::span<const std::string> overrides, SweepHasher& hash);
 
 /// `count` generated factory floors (bench_cases.hpp: a walled 20 x 20 m hall of 50 random
 /// star-shaped obstacles, floor seed `first_seed + i`), each with a tour of four goals across
 /// it drawn from that seed; robot, controller and sim from the template (its world, start and
 /// goals are replaced).
-std::vector<BatchCase> make_floor_cases(const std::string& template_file, int count,
-                                        std::uint64_t first_seed,
-                                        std::span<const std::string> overrides);
+CaseSource make_floor_cases(const std::string& template_file, int count, std::uint64_t first_seed,
+                            std::span<const std::string> overrides, SweepHasher& hash);
 
 }  // namespace floornav

@@ -1,15 +1,18 @@
-// floornav: the command line. Subcommands: run, batch, demo, presets.
-// Exit status: 0 when the simulation(s) ran, 2 for bad input, 1 for an internal error.
+// floornav: the command line. Subcommands: run, batch, sweep, merge, demo, bench, presets.
+// Exit status: 0 when the simulation(s) ran, 2 for bad input (one line on stderr), 1 for an
+// internal error, 130 when a batch was interrupted (its finished lines are kept).
 
 #include <fmt/format.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -18,11 +21,16 @@
 #include "bench_command.hpp"
 #include "demo_scenario.hpp"
 #include "floornav/core/input_error.hpp"
+#include "floornav/io/atomic_file.hpp"
+#include "floornav/io/provenance.hpp"
 #include "floornav/io/scenario_file.hpp"
+#include "floornav/io/scenario_writer.hpp"
 #include "floornav/robot/robot_spec.hpp"
 #include "floornav/runner/batch.hpp"
 #include "floornav/runner/run_outputs.hpp"
+#include "floornav/runner/run_summary.hpp"
 #include "floornav/scenario/presets.hpp"
+#include "sweep_id.hpp"
 
 namespace fs = std::filesystem;
 using namespace floornav;
@@ -34,106 +42,317 @@ extern "C" void on_signal(int) {
   g_stop.store(true);
 }
 
-std::string default_out_dir(const std::string& name) {
-  return (fs::path("out") / name).string();
+// A run records at most this many trajectory rows (robots x steps) and this many numbers in all
+// (rows x columns): 1e7 rows hold about 0.7 GB in memory and 1 GB of CSV.
+constexpr double kMaxRecordedRows = 1e7;
+constexpr double kMaxRecordedValues = 2e8;
+
+/// The `--record` list: command, heading, clearance, goal, ranges, or all.
+RecordOptions parse_record(const std::string& list) {
+  RecordOptions r;
+  std::stringstream ss(list);
+  for (std::string item; std::getline(ss, item, ',');) {
+    if (item == "command")
+      r.command = true;
+    else if (item == "heading")
+      r.heading = true;
+    else if (item == "clearance")
+      r.clearance = true;
+    else if (item == "goal")
+      r.goal = true;
+    else if (item == "ranges")
+      r.ranges = true;
+    else if (item == "all")
+      r = {true, true, true, true, true};
+    else
+      throw InputError("", "--record " + list,
+                       fmt::format("unknown column group '{}' (expected command, heading, "
+                                   "clearance, goal, ranges or all, separated by commas)",
+                                   item.substr(0, 40)));
+  }
+  return r;
 }
 
-int run_one(Scenario scenario, const std::string& out, bool quiet, int threads, bool html) {
-  const fs::path dir = out.empty() ? fs::path(default_out_dir(scenario.name)) : fs::path(out);
+/// Refuses a run whose recording would not fit in memory, before it starts.
+void check_recording(const Scenario& s, const std::string& file) {
+  if (!s.sim.record_trajectory) return;
+  const double rows =
+      static_cast<double>(s.robots.size()) * (std::ceil(s.sim.t_max / s.sim.dt) + 1);
+  if (rows > kMaxRecordedRows)
+    throw InputError(
+        file, "sim.record_trajectory",
+        fmt::format("recording {} robot(s) for {:.6g} steps is {:.3g} trajectory rows, "
+                    "more than the {:.0e} a run may record: set "
+                    "sim.record_trajectory: false (the summary is still written) or "
+                    "a shorter sim.t_max",
+                    s.robots.size(), s.sim.t_max / s.sim.dt, rows, kMaxRecordedRows));
+  std::size_t sensors = 0;
+  for (const RobotTask& t : s.robots) sensors = std::max(sensors, t.robot.sensors.size());
+  const RecordOptions& o = s.sim.record;
+  const double columns = 9.0 + 4.0 * o.command + 2.0 * o.heading + o.clearance + 3.0 * o.goal +
+                         (o.ranges ? static_cast<double>(sensors) : 0.0);
+  if (rows * columns > kMaxRecordedValues)
+    throw InputError("", "--record",
+                     fmt::format("{:.3g} rows of {} columns is more than the {:.0e} numbers a run "
+                                 "may record: record fewer columns or a shorter run",
+                                 rows, columns, kMaxRecordedValues));
+}
+
+/// Outputs appear whole: SIGINT and SIGTERM wait while they are written and moved into place.
+class SignalsHeld {
+ public:
+  SignalsHeld() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigaddset(&set, SIGHUP);
+    sigprocmask(SIG_BLOCK, &set, &old_);
+  }
+  ~SignalsHeld() { sigprocmask(SIG_SETMASK, &old_, nullptr); }
+  SignalsHeld(const SignalsHeld&) = delete;
+  SignalsHeld& operator=(const SignalsHeld&) = delete;
+
+ private:
+  sigset_t old_;
+};
+
+struct RunRequest {
+  std::string file;  ///< names the scenario in warnings
+  std::string out;
+  std::vector<std::string> sets;
+  bool quiet{false};
+  int threads{0};
+  std::string config_out;
+  std::string record;
+  bool optimum{true};
+  bool html{true};  ///< trajectory.html, the replay
+};
+
+int run_one(Scenario scenario, const RunRequest& rq) {
+  const fs::path dir =
+      rq.out.empty() ? fs::path("out") / safe_file_name(scenario.name) : fs::path(rq.out);
+  if (!rq.record.empty()) scenario.sim.record = parse_record(rq.record);
+  check_recording(scenario, rq.file);
+  if (!rq.config_out.empty()) write_file_atomically(rq.config_out, scenario_to_yaml(scenario));
   OutputSelection which;
-  which.html = html;
+  which.html = rq.html;
   prepare_outputs(scenario, which);
+  RunContext context;
+  context.overrides = rq.sets;
+  if (rq.optimum) context.optimum = compute_optimum(scenario);
+  if (context.optimum)
+    if (auto warning = reachability_warning(scenario, *context.optimum))
+      fmt::print(stderr, "floornav: warning: {}: {}\n", rq.file, *warning);
   if (scenario.is_fleet()) {
-    const FleetResult f = run_fleet_timed(scenario, threads);
-    write_fleet_outputs(dir, scenario, f, which);
-    if (!quiet) fmt::print("{} -> {}\n", describe_fleet(f), dir.string());
+    const FleetResult f = run_fleet_timed(scenario, rq.threads);
+    {
+      SignalsHeld held;
+      write_fleet_outputs(dir, scenario, f, context, which);
+    }
+    if (!rq.quiet) fmt::print("{} -> {}\n", describe_fleet(f), dir.string());
     return 0;
   }
   const RunResult r = run_timed(scenario);
-  write_run_outputs(dir, scenario, r, which);
-  if (!quiet) fmt::print("{} -> {}\n", describe_run(r), dir.string());
+  {
+    SignalsHeld held;
+    write_run_outputs(dir, scenario, r, context, which);
+  }
+  if (!rq.quiet) fmt::print("{} -> {}\n", describe_run(r), dir.string());
   return 0;
+}
+
+/// K/N of --shard.
+std::pair<int, int> parse_shard(const std::string& text) {
+  int k = 0, n = 0;
+  char slash = 0;
+  std::istringstream ss(text);
+  if (text.empty() || !(ss >> k >> slash >> n) || slash != '/' || n < 1 || k < 1 || k > n ||
+      !ss.eof() || n > 1000000)
+    throw InputError("", "--shard " + text, "expected K/N with 1 <= K <= N (e.g. --shard 2/16)");
+  return {k, n};
+}
+
+/// --cell-size: a positive, finite number of metres.
+double parse_cell_size(const std::string& text) {
+  double v = 0.0;
+  std::size_t used = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || !std::isfinite(v) || v <= 0.0 || v > 1e9)
+    throw InputError("", "--cell-size " + text.substr(0, 40),
+                     "must be a positive, finite number of metres per cell (at most 1e9)");
+  return v;
+}
+
+/// The options batch and sweep share.
+struct BatchRequest {
+  std::vector<std::string> sets;
+  std::string out;
+  int jobs{0};
+  long limit{-1};
+  bool no_timing{false}, resume{false}, no_optimum{false};
+  std::string shard;
+  std::vector<std::string> pictures;  ///< --pictures failed|all DIR
+};
+
+void add_batch_options(CLI::App* cmd, BatchRequest& rq) {
+  cmd->add_option("--jobs,-j", rq.jobs, "worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--out", rq.out, "output folder");
+  cmd->add_option("--set", rq.sets, "override a key in every scenario")->take_all();
+  cmd->add_option("--limit", rq.limit, "run only the first N cases of the sweep")
+      ->check(CLI::Range(0L, 1000000000L));
+  cmd->add_flag("--no-timing", rq.no_timing,
+                "write wall_time as 0 so that repeated runs give identical files");
+  cmd->add_flag("--resume", rq.resume,
+                "keep the cases already in results.jsonl (of this very sweep) and run the rest");
+  cmd->add_flag("--no-optimum", rq.no_optimum,
+                "skip the grid A* optimal path length (and path_efficiency) where no .scen "
+                "file gives the optimum");
+  cmd->add_option("--shard", rq.shard,
+                  "K/N: run only shard K of N (every N-th case); join shards with merge");
+  cmd->add_option("--pictures", rq.pictures,
+                  "failed|all DIR: an SVG and an HTML replay of each failed (or every) case in DIR")
+      ->expected(2);
+}
+
+int run_sweep(const CaseSource& source, SweepHasher& hash, const BatchRequest& rq) {
+  std::size_t count = source.count;
+  if (rq.limit >= 0) count = std::min(count, static_cast<std::size_t>(rq.limit));
+  const auto [k, n] = rq.shard.empty() ? std::pair{1, 1} : parse_shard(rq.shard);
+  // (Not --limit: a sweep cut short by --limit is the same sweep; sweep.json has the count.)
+  hash.add("floornav_version", floornav_version());
+  hash.add("timing", rq.no_timing ? "off" : "on");
+  hash.add("optimum", rq.no_optimum ? "off" : "on");
+  BatchOptions opt;
+  opt.jobs = rq.jobs;
+  opt.out_dir = rq.out;
+  opt.progress = isatty(STDERR_FILENO) != 0;
+  opt.timing = !rq.no_timing;
+  opt.resume = rq.resume;
+  opt.optimum = !rq.no_optimum;
+  opt.stop = &g_stop;
+  opt.overrides = rq.sets;
+  opt.sweep = {hash.id(), k, n, count};
+  if (!rq.pictures.empty()) {
+    if (rq.pictures[0] == "failed")
+      opt.pictures = BatchPictures::Failed;
+    else if (rq.pictures[0] == "all")
+      opt.pictures = BatchPictures::All;
+    else
+      throw InputError("", "--pictures", "expected failed or all, got '" + rq.pictures[0] + "'");
+    opt.pictures_dir = rq.pictures[1];
+  }
+  CaseList list{shard_ids(count, k, n), source.make};
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  const BatchOutcome o = run_batch(list, opt);
+  const auto& a = o.aggregate;
+  const auto rate = [&](const char* key) { return 100.0 * a[key].get<double>(); };
+  fmt::print(
+      "{} of {} cases{}{}: success {:.1f}%, collision {:.1f}%, timeout {:.1f}%, stuck {:.1f}% -> "
+      "{}\n",
+      o.completed, o.total,
+      n > 1 ? fmt::format(" (shard {}/{} of sweep {})", k, n, opt.sweep.id) : std::string(),
+      o.interrupted ? " (interrupted; --resume completes it)"
+      : o.resumed   ? fmt::format(" ({} kept from before, {} run now)", o.resumed, o.ran)
+                    : std::string(),
+      rate("success_rate"), rate("collision_rate"), rate("timeout_rate"), rate("stuck_rate"),
+      rq.out);
+  return o.interrupted ? 130 : 0;
+}
+
+/// The name of the subcommand a parse error is about, for the hint.
+std::string subcommand_of(const CLI::App& app) {
+  for (const CLI::App* s : app.get_subcommands()) return " " + s->get_name();
+  return "";
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"floornav: reactive navigation of wheeled mobile robots on factory floors"};
-  app.set_version_flag("--version", std::string("floornav ") + FLOORNAV_VERSION);
+  app.set_version_flag("--version", "floornav " + floornav_version());
   app.require_subcommand(1);
 
   // run
-  std::string run_file, run_out;
-  std::vector<std::string> run_sets;
-  bool run_quiet = false, run_no_html = false;
+  RunRequest run_rq;
+  std::string run_file;
+  bool run_no_optimum = false;
   auto* run = app.add_subcommand("run",
-                                 "Simulate one scenario; writes summary.json, "
-                                 "trajectory.csv, trajectory.svg and trajectory.html");
+                                 "Simulate one scenario; writes summary.json, trajectory.csv, "
+                                 "transitions.csv, trajectory.svg and trajectory.html");
   run->add_option("scenario", run_file, "scenario YAML file")->required();
-  run->add_option("--out", run_out, "output folder (default: out/<scenario name>)");
-  run->add_option("--set", run_sets, "override a scenario key: --set controller.kind=blended")
+  run->add_option("--out", run_rq.out, "output folder (default: out/<scenario name>)");
+  run->add_option("--set", run_rq.sets, "override a scenario key: --set controller.kind=blended")
       ->take_all();
-  run->add_flag("-q,--quiet", run_quiet, "print nothing on success");
+  run->add_flag("-q,--quiet", run_rq.quiet, "print nothing on success");
+  bool run_no_html = false;
   run->add_flag("--no-html", run_no_html, "do not write trajectory.html (the replay)");
-  int run_threads = 0;
-  run->add_option("--threads", run_threads,
+  run->add_option("--threads", run_rq.threads,
                   "threads stepping a fleet's robots (default: all cores; same result for any)")
       ->check(CLI::Range(1, 1024));
+  run->add_option("--config-out", run_rq.config_out,
+                  "also write the resolved scenario (presets and --set applied) as YAML to FILE");
+  run->add_option("--record", run_rq.record,
+                  "extra trajectory.csv columns: command, heading, clearance, goal, ranges or all "
+                  "(comma-separated)");
+  run->add_flag("--no-optimum", run_no_optimum,
+                "skip the grid optimum (and so the warning when the goal cannot be reached)");
 
   // batch
-  std::vector<std::string> batch_files, batch_sets;
-  std::string batch_out = "out/batch", batch_scen;
-  int batch_jobs = 0;
-  double batch_cell = 0.0;
-  long batch_limit = -1;
-  bool batch_no_timing = false, batch_resume = false, batch_no_optimum = false;
-  std::string batch_worlds, batch_barn_paths, batch_shard;
-  std::vector<std::string> batch_pictures;
+  BatchRequest batch_rq;
+  batch_rq.out = "out/batch";
+  std::vector<std::string> batch_files;
+  std::string batch_scen, batch_cell, batch_worlds, batch_barn_paths;
   auto* batch = app.add_subcommand("batch",
-                                   "Run many scenarios in parallel; writes "
-                                   "results.jsonl and aggregate.json");
+                                   "Run many scenarios in parallel; writes results.jsonl, "
+                                   "aggregate.json and sweep.json");
   batch->add_option("scenarios", batch_files, "scenario YAML files (or one template with --scen)")
       ->required();
-  batch->add_option("--jobs,-j", batch_jobs, "worker threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
-  batch->add_option("--out", batch_out, "output folder (default: out/batch)");
-  batch->add_option("--set", batch_sets, "override a key in every scenario")->take_all();
+  add_batch_options(batch, batch_rq);
   batch->add_option("--scen", batch_scen, "MovingAI .scen file: one case per row, on its map");
-  batch->add_option("--cell-size", batch_cell, "metres per grid cell for --scen (default 1)")
-      ->check(CLI::PositiveNumber);
-  batch->add_option("--limit", batch_limit, "run only the first N cases")
-      ->check(CLI::NonNegativeNumber);
-  batch->add_flag("--no-timing", batch_no_timing,
-                  "write wall_time as 0 so that repeated runs give identical files");
-  batch->add_flag("--resume", batch_resume, "keep the cases already in results.jsonl");
-  batch->add_flag("--no-optimum", batch_no_optimum,
-                  "skip the grid A* optimal path length (and path_efficiency) where no .scen "
-                  "file gives the optimum");
+  batch->add_option("--cell-size", batch_cell, "metres per grid cell for --scen (default 1)");
   batch->add_option("--worlds", batch_worlds,
                     "folder of Gazebo .world/.sdf files: one case per world, on the template");
+  batch->add_option("--barn-paths", batch_barn_paths,
+                    "with --worlds: BARN path_N.npy folder, adds optimal_time and the BARN score");
   int batch_floors = 0;
   std::uint64_t batch_floor_seed = 1;
   batch->add_option("--floors", batch_floors,
                     "one case per generated factory floor (20 x 20 m, 50 obstacles, a tour of 4 "
-                    "goals): N floors, robot and controller from the template");
+                    "goals): N floors, robot and controller from the template")
+      ->check(CLI::Range(1, 100000));
   batch->add_option("--floor-seed", batch_floor_seed, "with --floors: the first floor's seed (1)");
-  batch->add_option("--barn-paths", batch_barn_paths,
-                    "with --worlds: BARN path_N.npy folder, adds optimal_time and the BARN score");
-  batch->add_option("--shard", batch_shard,
-                    "K/N: run only shard K of N (every N-th case); join shards with merge");
 
-  batch
-      ->add_option(
-          "--pictures", batch_pictures,
-          "failed|all DIR: an SVG and an HTML replay of each failed (or every) case in DIR")
-      ->expected(2);
+  // sweep
+  BatchRequest sweep_rq;
+  sweep_rq.out = "out/sweep";
+  std::string sweep_template;
+  std::vector<std::string> sweep_grid;
+  auto* sweep = app.add_subcommand(
+      "sweep", "Run a template over a grid of parameter values (a batch whose lines carry them)");
+  sweep->add_option("template", sweep_template, "scenario YAML file")->required();
+  sweep
+      ->add_option("--grid", sweep_grid,
+                   "KEY=FROM:TO:COUNT or KEY=V1,V2,...; several --grid make a product")
+      ->take_all()
+      ->required();
+  add_batch_options(sweep, sweep_rq);
 
   // merge
   std::vector<std::string> merge_dirs;
   std::string merge_out = "out/merged";
-  auto* merge = app.add_subcommand("merge", "Join the results of sharded batches");
-  merge->add_option("dirs", merge_dirs, "batch output folders")->required();
+  bool merge_partial = false;
+  auto* merge = app.add_subcommand("merge", "Join the shards of one sweep (checked)");
+  merge->add_option("dirs", merge_dirs, "batch output folders, one per shard")->required();
   merge->add_option("--out", merge_out, "output folder (default: out/merged)");
+  merge->add_flag("--allow-partial", merge_partial,
+                  "merge even when shards or cases are missing (aggregate says complete: false)");
 
   // demo
   std::string demo_out;
@@ -147,7 +366,7 @@ int main(int argc, char** argv) {
   auto* bench = app.add_subcommand("bench", "Measure simulation speed on the standard cases");
   bench->add_flag("--json", bench_opt.json, "one JSON object instead of the table");
   bench->add_option("--seconds", bench_opt.seconds_per_case, "timed seconds per case (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1e-3, 3600.0));
   bench->add_option("--filter", bench_opt.filter, "only cases whose name contains this");
 
   // presets
@@ -156,18 +375,27 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // Every error is one line (CLI11's own would add a second one).
+    const InputError one_line("", "", e.what());
+    fmt::print(stderr, "floornav: error: {} (see floornav{} --help)\n", one_line.what(),
+               subcommand_of(app));
+    return 2;
   }
 
   try {
     if (*run) {
-      const Scenario s = load_scenario_file(run_file, run_sets);
-      return run_one(s, run_out, run_quiet, run_threads, !run_no_html);
+      run_rq.file = run_file;
+      run_rq.optimum = !run_no_optimum;
+      run_rq.html = !run_no_html;
+      return run_one(load_scenario_file(run_file, run_rq.sets), run_rq);
     }
     if (*demo) {
-      const Scenario s = load_scenario_text(app::kDemoScenarioYaml, "factory-delivery.yaml");
-      return run_one(s, demo_out, false, 0, !demo_no_html);
+      RunRequest rq;
+      rq.file = "factory-delivery.yaml";
+      rq.out = demo_out;
+      rq.html = !demo_no_html;
+      return run_one(load_scenario_text(app::kDemoScenarioYaml, "factory-delivery.yaml"), rq);
     }
     if (*bench) return run_bench(bench_opt);
     if (*presets) {
@@ -183,78 +411,64 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*batch) {
-      std::vector<BatchCase> cases;
+      if (!batch_scen.empty() && !batch_worlds.empty())
+        throw InputError("", "--scen", "give either --scen or --worlds, not both");
+      if (!batch_cell.empty() && batch_scen.empty())
+        throw InputError("", "--cell-size", "applies only with --scen (a MovingAI .scen file)");
+      if (!batch_barn_paths.empty() && batch_worlds.empty())
+        throw InputError("", "--barn-paths", "applies only with --worlds");
+      if (batch_floors > 0 && (!batch_scen.empty() || !batch_worlds.empty()))
+        throw InputError("", "--floors", "give --floors alone, not with --scen or --worlds");
+      SweepHasher hash;
+      CaseSource source;
       if (batch_floors > 0) {
         if (batch_files.size() != 1)
           throw InputError("", "--floors", "give exactly one template scenario with --floors");
-        cases = make_floor_cases(batch_files[0], batch_floors, batch_floor_seed, batch_sets);
+        source = make_floor_cases(batch_files[0], batch_floors, batch_floor_seed, batch_rq.sets,
+                                  hash);
       } else if (!batch_worlds.empty()) {
         if (batch_files.size() != 1)
           throw InputError("", "--worlds", "give exactly one template scenario with --worlds");
-        cases = make_world_cases(batch_files[0], batch_worlds, batch_barn_paths, batch_sets);
+        source =
+            make_world_cases(batch_files[0], batch_worlds, batch_barn_paths, batch_rq.sets, hash);
       } else if (!batch_scen.empty()) {
         if (batch_files.size() != 1)
           throw InputError("", "--scen", "give exactly one template scenario with --scen");
-        cases = make_scen_cases(batch_files[0], batch_scen, batch_cell > 0 ? batch_cell : 1.0,
-                                batch_sets);
+        const double cell = batch_cell.empty() ? 1.0 : parse_cell_size(batch_cell);
+        source = make_scen_cases(batch_files[0], batch_scen, cell, batch_rq.sets, hash);
       } else {
-        for (const auto& f : batch_files)
-          cases.push_back({load_scenario_file(f, batch_sets), f, cases.size(), {}, {}});
+        source = make_file_cases(batch_files, batch_rq.sets, hash);
       }
-      if (batch_limit >= 0 && static_cast<std::size_t>(batch_limit) < cases.size())
-        cases.resize(static_cast<std::size_t>(batch_limit));
-      if (!batch_shard.empty()) {
-        int k = 0, n = 0;
-        char slash = 0;
-        std::istringstream ss(batch_shard);
-        if (!(ss >> k >> slash >> n) || slash != '/' || n < 1 || k < 1 || k > n || !ss.eof())
-          throw InputError("", "--shard",
-                           "expected K/N with 1 <= K <= N, got '" + batch_shard + "'");
-        cases = select_shard(std::move(cases), k, n);
-      }
-      std::signal(SIGINT, on_signal);
-      std::signal(SIGTERM, on_signal);
-      BatchOptions opt;
-      opt.jobs = batch_jobs;
-      opt.out_dir = batch_out;
-      opt.progress = isatty(STDERR_FILENO) != 0;
-      opt.timing = !batch_no_timing;
-      opt.resume = batch_resume;
-      opt.optimum = !batch_no_optimum;
-      opt.stop = &g_stop;
-      if (!batch_pictures.empty()) {
-        if (batch_pictures[0] == "failed")
-          opt.pictures = BatchPictures::Failed;
-        else if (batch_pictures[0] == "all")
-          opt.pictures = BatchPictures::All;
-        else
-          throw InputError("", "--pictures",
-                           "expected failed or all, got '" + batch_pictures[0] + "'");
-        opt.pictures_dir = batch_pictures[1];
-      }
-      const BatchOutcome o = run_batch(cases, opt);
-      const auto& a = o.aggregate;
-      fmt::print(
-          "{} of {} cases{}: success {:.1f}%, collision {:.1f}%, timeout {:.1f}%, stuck "
-          "{:.1f}% -> {}\n",
-          o.completed, o.total, o.interrupted ? " (interrupted; --resume completes it)" : "",
-          100.0 * a["success_rate"].get<double>(), 100.0 * a["collision_rate"].get<double>(),
-          100.0 * a["timeout_rate"].get<double>(), 100.0 * a["stuck_rate"].get<double>(),
-          batch_out);
-      return o.interrupted ? 130 : 0;
+      return run_sweep(source, hash, batch_rq);
+    }
+    if (*sweep) {
+      SweepHasher hash;
+      const CaseSource source = make_grid_cases(sweep_template, sweep_grid, sweep_rq.sets, hash);
+      return run_sweep(source, hash, sweep_rq);
     }
     if (*merge) {
       std::vector<fs::path> dirs(merge_dirs.begin(), merge_dirs.end());
-      const auto a = merge_batches(dirs, merge_out);
-      fmt::print("{} cases merged: success {:.1f}% -> {}\n", a["runs"].get<std::size_t>(),
-                 100.0 * a["success_rate"].get<double>(), merge_out);
+      const MergeOutcome o = merge_batches(dirs, merge_out, merge_partial);
+      std::string partial;
+      if (!o.complete) {
+        partial = fmt::format(" (PARTIAL: {} of {} cases", o.merged, o.total);
+        if (!o.missing_shards.empty())
+          partial += fmt::format(", {} shard(s) missing", o.missing_shards.size());
+        partial += "; aggregate.json says complete: false)";
+      }
+      fmt::print("{} cases merged{}: success {:.1f}% -> {}\n", o.merged, partial,
+                 100.0 * o.aggregate["success_rate"].get<double>(), merge_out);
       return 0;
     }
   } catch (const InputError& e) {
     fmt::print(stderr, "floornav: error: {}\n", e.what());
     return 2;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "floornav: error: out of memory\n");
+    return 1;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "floornav: internal error: {}\n", e.what());
+    fmt::print(stderr, "floornav: internal error: {}\n",
+               InputError("", "", e.what()).what());  // one line, whatever it says
     return 1;
   }
   return 0;

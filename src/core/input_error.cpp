@@ -60,13 +60,31 @@ std::string one_line(const std::string& s) {
   return out;
 }
 
+/// `text` cut to at most kMaxMessageBytes: its head and tail, with how much was left out, so that
+/// a message quoting a 5 MB line of input is still a line a terminal can show. Cuts fall on UTF-8
+/// character boundaries (`text` has no control characters left: one_line ran first).
+std::string capped(std::string text) {
+  constexpr std::size_t kMaxMessageBytes = 480, kHead = 360, kTail = 100;
+  if (text.size() <= kMaxMessageBytes) return text;
+  const auto is_continuation = [&](std::size_t i) {
+    return (static_cast<unsigned char>(text[i]) & 0xc0) == 0x80;
+  };
+  std::size_t head = kHead;
+  while (head > 0 && is_continuation(head)) --head;
+  std::size_t tail = text.size() - kTail;
+  while (tail < text.size() && is_continuation(tail)) ++tail;
+  return text.substr(0, head) + " [... " + std::to_string(tail - head) + " bytes cut ...] " +
+         text.substr(tail);
+}
+
 }  // namespace
 
 std::string InputError::render(const std::string& file, const std::string& where,
                                const std::string& what) {
-  std::string out = file.empty() ? std::string("<command line>") : file;
-  if (!where.empty()) out += ":" + where;
-  return one_line(out + ": " + what);
+  // "file:where: what"; a command-line value has no file: "--set sim.dt=-1: what".
+  std::string out = file;
+  if (!where.empty()) out += (out.empty() ? "" : ":") + where;
+  return capped(one_line(out.empty() ? what : out + ": " + what));
 }
 
 }  // namespace floornav

@@ -86,4 +86,90 @@ void ensure_directory(const std::filesystem::path& dir) {
     throw InputError(dir.string(), "", "cannot create directory: it exists and is not a directory");
 }
 
+OutputFolder::OutputFolder(std::filesystem::path dir) : dir_(dir.lexically_normal()) {
+  if (dir_.has_filename() == false && dir_.has_parent_path()) dir_ = dir_.parent_path();
+  if (dir_.empty() || dir_ == "." || dir_ == "..")
+    throw InputError(dir.string(), "", "cannot write outputs there: name a folder below it");
+  std::error_code ec;
+  if (std::filesystem::exists(dir_, ec) && !std::filesystem::is_directory(dir_, ec))
+    throw InputError(dir_.string(), "", "cannot write outputs: it exists and is not a directory");
+}
+
+OutputFolder::~OutputFolder() {
+  if (staging_.empty()) return;
+  std::error_code ignored;
+  std::filesystem::remove_all(staging_, ignored);
+}
+
+void OutputFolder::stage() {
+  if (!staging_.empty()) return;
+  const std::filesystem::path parent = dir_.has_parent_path() ? dir_.parent_path() : ".";
+  ensure_directory(parent);
+  std::string name(1, '.');
+  name += dir_.filename().string();
+  name += ".staging.";
+  name += std::to_string(static_cast<long>(::getpid()));
+  name += '.';
+  name += std::to_string(g_temp_counter.fetch_add(1, std::memory_order_relaxed));
+  staging_ = parent / name;
+  std::error_code ec;
+  if (!std::filesystem::create_directory(staging_, ec)) {
+    const std::string reason = ec ? ec.message() : "it exists";
+    staging_.clear();
+    throw InputError(parent.string(), "", "cannot create a staging folder: " + reason);
+  }
+}
+
+void OutputFolder::write(const std::string& name, std::string_view content) {
+  write(name, [&](const std::function<void(std::string_view)>& sink) { sink(content); });
+}
+
+void OutputFolder::write(
+    const std::string& name,
+    const std::function<void(const std::function<void(std::string_view)>& sink)>& produce) {
+  stage();
+  try {
+    write_file_atomically(staging_ / name, produce);
+  } catch (const InputError& e) {
+    // Name the file where it was meant to go, not the staging folder.
+    throw InputError((dir_ / name).string(), "", e.detail);
+  }
+  names_.push_back(name);
+}
+
+void OutputFolder::commit() {
+  if (committed_) return;
+  committed_ = true;
+  if (staging_.empty()) {  // nothing written: just the folder
+    ensure_directory(dir_);
+    return;
+  }
+  std::error_code ec;
+  if (!std::filesystem::exists(dir_, ec)) {
+    std::filesystem::rename(staging_, dir_, ec);  // the whole set in one step
+    if (!ec) {
+      staging_.clear();
+      return;
+    }
+  }
+  ensure_directory(dir_);
+  for (const std::string& name : names_) {
+    std::filesystem::rename(staging_ / name, dir_ / name, ec);
+    if (ec) throw InputError((dir_ / name).string(), "", "cannot write: " + ec.message());
+  }
+  std::filesystem::remove_all(staging_, ec);
+  staging_.clear();
+}
+
+std::string safe_file_name(std::string_view name) {
+  std::string out;
+  for (const char c : name.substr(0, 120)) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '-' || c == '_' || c == '.';
+    out += ok ? c : '_';
+  }
+  while (!out.empty() && out.front() == '.') out.front() = '_';
+  return out.empty() ? std::string("_") : out;
+}
+
 }  // namespace floornav

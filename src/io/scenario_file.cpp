@@ -4,9 +4,9 @@
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <unordered_set>
@@ -18,6 +18,7 @@
 #include "floornav/nav/dwa_controller.hpp"
 #include "floornav/scenario/presets.hpp"
 #include "floornav/scenario/validate.hpp"
+#include "input_file.hpp"
 #include "world_map.hpp"
 #include "yaml_reader.hpp"
 
@@ -25,66 +26,104 @@ namespace floornav {
 
 using io_detail::fail;
 using io_detail::MapReader;
+using io_detail::quote_input;
 using io_detail::read_double;
 using io_detail::read_point;
 using io_detail::read_points;
 
 namespace {
 
-constexpr std::size_t kMaxScenarioBytes = 16u << 20;  // a scenario is text, not data
 constexpr std::size_t kMaxObstacles = 1000000;
 constexpr double kPointPostRadius = 0.03;  // m, the radius given to `point:` obstacles
-// The simplicity check is quadratic in a polygon's points: bound them, per polygon and in all
-// (YAML aliases can repeat one polygon a million times in a small file), so that no file can
-// make it hang. The same goes for goals and sensor mounts, each checked or simulated in turn.
+// The simplicity check is quadratic in a polygon's points: bound the points of one polygon, and
+// the sum of their squares over all polygons (YAML aliases can repeat one polygon a million times
+// in a small file), so that no file can make it hang. 100 polygons of 1000 points reach it.
 constexpr std::size_t kMaxPolygonPoints = 1000;
-constexpr std::size_t kMaxPolygonPointsInAll = 100000;
-constexpr std::size_t kMaxGoals = 10000;
-// A fleet scenario lists at most this many robots (each has its own goals and sensors).
-constexpr std::size_t kMaxRobots = 100000;
-constexpr std::size_t kMaxMounts = 100000;
+constexpr std::size_t kMaxPolygonWork = 100000000;  // sum of points^2
+// An angle further than this from 0 is a unit mistake (degrees), not a heading.
+constexpr double kMaxAngle = 2.0 * kPi + 1e-9;
 
-/// YAML text -> tree; errors name `file` (or the --set value when `file` is empty).
+/// YAML text -> tree. A file is one document: text after it (a second `---` document, anything
+/// after `...`, or after a closed flow collection such as `[0, 0, 0] x`) is an error, never
+/// silently dropped. Errors name `file` and `where` (a --set), or the line.
 YAML::Node parse_yaml(const std::string& text, const std::string& file, const std::string& where) {
+  const auto at = [&](const YAML::Mark& m) {
+    return where.empty() ? fmt::format("line {}", m.line + 1) : where;
+  };
+  std::vector<YAML::Node> docs;
   try {
-    return YAML::Load(text);
+    docs = YAML::LoadAll(text);
   } catch (const YAML::DeepRecursion& e) {
-    throw InputError(file, where.empty() ? fmt::format("line {}", e.mark.line + 1) : where,
-                     "not valid YAML: the text nests too deeply");
+    throw InputError(file, at(e.mark), "not valid YAML: the text nests too deeply");
   } catch (const YAML::ParserException& e) {
-    throw InputError(file, where.empty() ? fmt::format("line {}", e.mark.line + 1) : where,
-                     "not valid YAML: " + e.msg);
+    throw InputError(file, at(e.mark), "not valid YAML: " + e.msg);
   } catch (const YAML::Exception& e) {
     throw InputError(file, where, std::string("not valid YAML: ") + e.what());
   }
+  if (docs.size() > 1) {
+    const YAML::Mark m = docs[1].Mark();
+    const std::string rest =
+        m.pos >= 0 && static_cast<std::size_t>(m.pos) < text.size() ? text.substr(m.pos) : "";
+    throw InputError(file, at(m),
+                     where.empty()
+                         ? "a second YAML document: a scenario is one document, and nothing may "
+                           "follow it (no '---' or '...' with more text after)"
+                         : "text after the value: " + quote_input(rest));
+  }
+  return docs.empty() ? YAML::Node() : docs[0];
 }
 
 // --- --set overrides ------------------------------------------------------------------------
 
-void apply_override(YAML::Node& root, const std::string& assignment) {
+/// A copy of a mapping or list whose entries are new nodes sharing the old values: assigning to
+/// an entry of the copy changes only the copy. (yaml-cpp's aliases are one node in several
+/// places: assigning to it in place would change every alias.) Scalars are returned as they are:
+/// they are only ever replaced.
+YAML::Node shallow_copy(const YAML::Node& n) {
+  if (n.IsMap()) {
+    YAML::Node out(YAML::NodeType::Map);
+    for (const auto& kv : n) out[kv.first] = kv.second;
+    return out;
+  }
+  if (n.IsSequence()) {
+    YAML::Node out(YAML::NodeType::Sequence);
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      out.push_back(YAML::Node(YAML::NodeType::Null));
+      out[i] = n[i];
+    }
+    return out;
+  }
+  return n;
+}
+
+/// Applies one override to `root` (a fresh copy, see shallow_copy): every map and list on the
+/// way down is copied before it changes, so that no alias of it elsewhere in the file changes.
+/// The copies' handles go to `keep`, which must outlive every use of the tree: yaml-cpp frees a
+/// node with the last handle to the memory it was made in, even while the tree still uses it.
+void apply_override(YAML::Node& root, const ScenarioOverride& o, std::vector<YAML::Node>& keep) {
+  const std::string& assignment = o.assignment;
+  auto bad = [&](const std::string& what) { throw InputError(o.file, o.where, what); };
   const auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw InputError("", "--set " + assignment, "expected KEY=VALUE");
+  if (eq == std::string::npos || eq == 0) bad("expected KEY=VALUE");
   const std::string key = assignment.substr(0, eq);
   const std::string text = assignment.substr(eq + 1);
   YAML::Node value;
   try {
-    value = parse_yaml(text, "", "--set " + key);
+    value.reset(parse_yaml(text, o.file, o.where));
+    keep.push_back(value);
   } catch (const InputError& e) {
-    throw InputError("", "--set " + key, fmt::format("cannot read value '{}': {}", text, e.detail));
+    bad(fmt::format("cannot read value {}: {}", quote_input(text), e.detail));
   }
   std::vector<std::string> parts;
   std::stringstream ss(key);
   for (std::string part; std::getline(ss, part, '.');) {
-    if (part.empty()) throw InputError("", "--set " + key, "empty part in the key path");
+    if (part.empty()) bad("empty part in the key path");
     parts.push_back(part);
   }
-  // Walk down with plain node copies (yaml-cpp nodes are handles), creating maps as needed. A part
-  // may index a list, as errors name its entries: `robots[2].start`. (Assigning one yaml-cpp
-  // node to another copies content, so the walk keeps each step's handle in `chain`.)
-  std::vector<YAML::Node> chain{root};
+  if (key.back() == '.') bad("empty part in the key path");
+  // A part may index a list, as errors name its entries: `robots[2].start`.
+  YAML::Node node = root;
   for (std::size_t i = 0; i < parts.size(); ++i) {
-    YAML::Node node = chain.back();
     std::string name = parts[i];
     std::vector<std::size_t> indices;
     while (!name.empty() && name.back() == ']') {
@@ -94,71 +133,86 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
           open == std::string::npos ? "" : name.substr(open + 1, name.size() - open - 2);
       const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
       if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size())
-        throw InputError("", "--set " + key,
-                         fmt::format("'{}': a list index is a number in brackets", parts[i]));
+        bad(fmt::format("{}: a list index is a number in brackets", quote_input(parts[i])));
       indices.insert(indices.begin(), index);
       name.erase(open);
     }
-    if (name.empty()) throw InputError("", "--set " + key, "empty part in the key path");
-    if (!node.IsMap() && !node.IsNull())
-      throw InputError("", "--set " + key,
-                       fmt::format("'{}' is not a mapping, cannot set a key inside it",
-                                   i > 0 ? parts[i - 1] : std::string("the scenario")));
+    if (name.empty()) bad("empty part in the key path");
+    if (!node.IsMap())
+      bad(fmt::format("{} is not a mapping, cannot set a key inside it",
+                      i > 0 ? quote_input(parts[i - 1]) : std::string("the scenario")));
     const bool last = i + 1 == parts.size();
     if (last && indices.empty()) {
       // `goal` and `goals` are alternatives: setting one replaces the other.
-      if ((name == "goal" || name == "goals") && node.IsMap())
-        node.remove(name == "goal" ? "goals" : "goal");
+      if (name == "goal" || name == "goals") node.remove(name == "goal" ? "goals" : "goal");
       node[name] = value;
       return;
     }
-    YAML::Node child = node[name];
-    if (indices.empty() && (!child.IsDefined() || child.IsNull())) {
-      node[name] = YAML::Node(YAML::NodeType::Map);
-      child = node[name];
-    }
-    chain.push_back(child);
+    // (Handles are rebound with reset(): assigning one yaml-cpp node to another would rewrite
+    // the node itself, wherever else it appears.)
+    const YAML::Node& cnode = node;
+    const YAML::Node existing = cnode[name];
+    if (!indices.empty() && (!existing.IsDefined() || !existing.IsSequence()))
+      bad(fmt::format("{} has no entry [{}] (not a list)", quote_input(name), indices[0]));
+    YAML::Node child = indices.empty() && (!existing.IsDefined() || existing.IsNull())
+                           ? YAML::Node(YAML::NodeType::Map)
+                           : shallow_copy(existing);
+    keep.push_back(child);
+    node[name] = child;
     std::string path = name;
     for (std::size_t k = 0; k < indices.size(); ++k) {
-      YAML::Node list = chain.back();
-      if (!list.IsSequence() || indices[k] >= list.size())
-        throw InputError(
-            "", "--set " + key,
-            fmt::format("'{}' has no entry [{}] ({})", path, indices[k],
-                        list.IsSequence() ? fmt::format("it has {}", list.size()) : "not a list"));
+      if (!child.IsSequence() || indices[k] >= child.size())
+        bad(fmt::format(
+            "{} has no entry [{}] ({})", quote_input(path), indices[k],
+            child.IsSequence() ? fmt::format("it has {}", child.size()) : "not a list"));
       if (last && k + 1 == indices.size()) {
-        list[indices[k]] = value;
+        child[indices[k]] = value;
         return;
       }
       path += fmt::format("[{}]", indices[k]);
-      chain.push_back(list[indices[k]]);
+      YAML::Node element = shallow_copy(child[indices[k]]);
+      keep.push_back(element);
+      child[indices[k]] = element;
+      child.reset(element);
     }
+    node.reset(child);
   }
 }
 
 // --- sections -------------------------------------------------------------------------------
 
+/// An angle in radians, refused beyond +-2 pi: such a number is nearly always degrees.
+double check_angle(const std::string& file, const YAML::Node& n, const std::string& key,
+                   double angle) {
+  if (std::abs(angle) > kMaxAngle)
+    fail(file, n, key,
+         fmt::format("{:.6g} is beyond +-2 pi: angles are in radians (if you meant {:.6g} "
+                     "degrees, write {:.6g})",
+                     angle, angle, deg_to_rad(angle)));
+  return angle;
+}
+
 Pose2 read_pose(const std::string& file, const YAML::Node& n, const std::string& key) {
   const auto v = io_detail::read_numbers(file, n, key, 3);
-  return {Vec2(v[0], v[1]), v[2]};
+  return {Vec2(v[0], v[1]), check_angle(file, n[2], key + "[2]", v[2])};
 }
 
 double read_positive(const std::string& file, const YAML::Node& n, const std::string& key) {
   const double v = read_double(file, n, key);
-  if (v <= 0.0) fail(file, n, key, fmt::format("must be positive, got {}", v));
+  if (v <= 0.0) fail(file, n, key, fmt::format("must be positive, got {:.6g}", v));
   return v;
 }
 
 void read_obstacle(const std::string& file, const YAML::Node& item, const std::string& key,
-                   WorldDesc& desc, std::size_t& polygon_points) {
+                   WorldDesc& desc, std::size_t& polygon_work) {
   MapReader r(file, item, key);
   int kinds = 0;
   if (r.has("circle")) {
     ++kinds;
-    MapReader c(file, r.get("circle"), r.path_of("circle"));
+    MapReader c = r.sub("circle");
     Circle circle;
-    circle.center = read_point(file, c.get("center"), c.path_of("center"));
-    circle.radius = read_positive(file, c.get("radius"), c.path_of("radius"));
+    circle.center = read_point(file, c.require("center", "[x, y]"), c.path_of("center"));
+    circle.radius = read_positive(file, c.require("radius", "m"), c.path_of("radius"));
     c.finish();
     desc.circles.push_back(circle);
   }
@@ -174,9 +228,11 @@ void read_obstacle(const std::string& file, const YAML::Node& item, const std::s
     if (n.IsSequence() && n.size() > kMaxPolygonPoints)
       fail(file, n, r.path_of("polygon"),
            fmt::format("a polygon has at most {} points, got {}", kMaxPolygonPoints, n.size()));
-    if (n.IsSequence() && (polygon_points += n.size()) > kMaxPolygonPointsInAll)
+    if (n.IsSequence() && (polygon_work += n.size() * n.size()) > kMaxPolygonWork)
       fail(file, n, r.path_of("polygon"),
-           fmt::format("the polygons have more than {} points in all", kMaxPolygonPointsInAll));
+           fmt::format("the polygons are too large in all: the sum of their points squared is "
+                       "above {} (e.g. 100 polygons of 1000 points)",
+                       kMaxPolygonWork));
     auto pts = read_points(file, n, r.path_of("polygon"));
     if (pts.size() < 3)
       fail(file, n, r.path_of("polygon"),
@@ -188,18 +244,24 @@ void read_obstacle(const std::string& file, const YAML::Node& item, const std::s
   }
   if (r.has("rectangle")) {
     ++kinds;
-    MapReader c(file, r.get("rectangle"), r.path_of("rectangle"));
-    const Vec2 center = read_point(file, c.get("center"), c.path_of("center"));
-    const Vec2 size = read_point(file, c.get("size"), c.path_of("size"));
+    MapReader c = r.sub("rectangle");
+    const Vec2 center = read_point(file, c.require("center", "[x, y]"), c.path_of("center"));
+    const YAML::Node size_node = c.require("size", "[width, height]");
+    const Vec2 size = read_point(file, size_node, c.path_of("size"));
     if (size.x() <= 0.0 || size.y() <= 0.0)
-      fail(file, c.node()["size"], c.path_of("size"), "both sides must be positive");
+      fail(file, size_node, c.path_of("size"), "both sides must be positive");
     double angle = 0.0;
-    if (c.has("angle")) angle = read_double(file, c.get("angle"), c.path_of("angle"));
+    if (c.has("angle")) {
+      const YAML::Node a = c.get("angle");
+      angle = check_angle(file, a, c.path_of("angle"), read_double(file, a, c.path_of("angle")));
+    }
     c.finish();
     desc.polygons.push_back(make_rectangle(center, size, angle));
   }
-  if (kinds != 1)
+  if (kinds != 1) {
+    r.finish();  // a misspelt shape is named as such
     fail(file, item, key, "an obstacle is exactly one of: circle, point, polygon, rectangle");
+  }
   r.finish();
 }
 
@@ -207,14 +269,19 @@ void read_sensors(const std::string& file, MapReader& r, RobotSpec& robot) {
   if (r.has("mounts") && r.has("lidar"))
     fail(file, r.node(), r.path_of("mounts"), "give either mounts or lidar, not both");
   if (r.has("lidar")) {
-    MapReader l(file, r.get("lidar"), r.path_of("lidar"));
-    const auto beams = io_detail::read_int(file, l.get("beams"), l.path_of("beams"));
-    if (beams < 1 || beams > 100000)
-      fail(file, l.node()["beams"], l.path_of("beams"), "must be between 1 and 100000");
-    const double fov = read_positive(file, l.get("fov"), l.path_of("fov"));
-    if (fov > 2.0 * kPi + 1e-9) fail(file, l.node()["fov"], l.path_of("fov"), "at most 2 pi");
-    const double lo = read_double(file, l.get("min_range"), l.path_of("min_range"));
-    const double hi = read_positive(file, l.get("max_range"), l.path_of("max_range"));
+    MapReader l = r.sub("lidar");
+    const YAML::Node beams_node = l.require("beams", "a whole number of beams");
+    const auto beams = io_detail::read_int(file, beams_node, l.path_of("beams"));
+    if (beams < 1 || beams > static_cast<std::int64_t>(kMaxSensorsPerRobot))
+      fail(file, beams_node, l.path_of("beams"),
+           fmt::format("must be between 1 and {}", kMaxSensorsPerRobot));
+    const YAML::Node fov_node = l.require("fov", "the field of view, rad");
+    const double fov = read_positive(file, fov_node, l.path_of("fov"));
+    if (fov > 2.0 * kPi + 1e-9)
+      fail(file, fov_node, l.path_of("fov"),
+           fmt::format("{:.6g} is more than 2 pi: angles are in radians", fov));
+    const double lo = read_double(file, l.require("min_range", "m"), l.path_of("min_range"));
+    const double hi = read_positive(file, l.require("max_range", "m"), l.path_of("max_range"));
     Pose2 mount;
     if (l.has("mount")) mount = read_pose(file, l.get("mount"), l.path_of("mount"));
     l.finish();
@@ -224,9 +291,9 @@ void read_sensors(const std::string& file, MapReader& r, RobotSpec& robot) {
     const YAML::Node n = r.get("mounts");
     if (!n.IsSequence() || n.size() == 0)
       fail(file, n, r.path_of("mounts"), "expected a list of [x, y, theta] sensor poses");
-    if (n.size() > kMaxMounts)
+    if (n.size() > kMaxSensorsPerRobot)
       fail(file, n, r.path_of("mounts"),
-           fmt::format("at most {} sensors, got {}", kMaxMounts, n.size()));
+           fmt::format("at most {} sensors, got {}", kMaxSensorsPerRobot, n.size()));
     const RangeSensorSpec base = robot.sensors.empty() ? RangeSensorSpec{} : robot.sensors[0];
     robot.sensors.clear();
     for (std::size_t i = 0; i < n.size(); ++i) {
@@ -246,6 +313,10 @@ void read_sensors(const std::string& file, MapReader& r, RobotSpec& robot) {
   each("min_range", [](RangeSensorSpec& s, double v) { s.min_range = v; });
   each("max_range", [](RangeSensorSpec& s, double v) { s.max_range = v; });
   each("cone_angle", [](RangeSensorSpec& s, double v) { s.cone_angle = v; });
+  if (r.has("cone_angle")) {
+    const YAML::Node n = r.get("cone_angle");
+    check_angle(file, n, r.path_of("cone_angle"), read_double(file, n, r.path_of("cone_angle")));
+  }
   if (r.has("cone_rays")) {
     const YAML::Node n = r.get("cone_rays");
     const auto v = io_detail::read_int(file, n, r.path_of("cone_rays"));
@@ -257,29 +328,32 @@ void read_sensors(const std::string& file, MapReader& r, RobotSpec& robot) {
     robot.sensor_noise = read_double(file, n, r.path_of("noise"));
     if (robot.sensor_noise < 0.0) fail(file, n, r.path_of("noise"), "must not be negative");
   }
+  std::size_t rays = 0;
+  for (const RangeSensorSpec& s : robot.sensors) rays += static_cast<std::size_t>(s.cone_rays);
+  if (rays > kMaxRaysPerRobot)
+    fail(
+        file, r.node(), r.path_of("cone_rays"),
+        fmt::format("{} sensors of {} rays each cast {} rays per step, more than the {} a robot "
+                    "may cast",
+                    robot.sensors.size(), robot.sensors.front().cone_rays, rays, kMaxRaysPerRobot));
   r.finish();
 }
 
 // The robot section: a preset, then overrides of any of its values.
 void read_robot(const std::string& file, MapReader& r, RobotTask& s) {
   std::string preset = "quickbot";
-  if (r.has("preset")) {
-    const YAML::Node n = r.get("preset");
-    preset = io_detail::read_string(file, n, r.path_of("preset"));
-    if (!find_robot_preset(preset)) {
-      std::string names;
-      for (auto name : robot_preset_names())
-        names += (names.empty() ? "" : ", ") + std::string(name);
-      fail(file, n, r.path_of("preset"),
-           fmt::format("unknown preset '{}' (expected one of: {})", preset, names));
-    }
+  if (r.has("preset")) preset = io_detail::read_string(file, r.get("preset"), r.path_of("preset"));
+  std::optional<RobotPreset> p = find_robot_preset(preset);
+  if (!p) {
+    std::string names;
+    for (auto name : robot_preset_names()) names += (names.empty() ? "" : ", ") + std::string(name);
+    fail(file, r.get("preset"), r.path_of("preset"),
+         fmt::format("unknown preset {} (expected one of: {})", quote_input(preset), names));
   }
-  const RobotPreset p = *find_robot_preset(preset);
-  s.robot = p.robot;
+  s.robot = std::move(p->robot);
   s.robot.preset = preset;
-  s.controller.params = p.navigation;
-  if (!r.has("start")) fail(file, r.node(), r.path_of("start"), "missing (x, y, theta)");
-  s.start = read_pose(file, r.get("start"), r.path_of("start"));
+  s.controller.params = p->navigation;
+  s.start = read_pose(file, r.require("start", "[x, y, theta]"), r.path_of("start"));
   s.start.theta = wrap_angle(s.start.theta);
   auto positive = [&](const char* key, double& field) {
     if (r.has(key)) field = read_positive(file, r.get(key), r.path_of(key));
@@ -299,14 +373,17 @@ void read_robot(const std::string& file, MapReader& r, RobotTask& s) {
   }
   if (r.has("footprint")) {
     const YAML::Node n = r.get("footprint");
+    if (n.IsSequence() && n.size() > 16)
+      fail(file, n, r.path_of("footprint"),
+           fmt::format("a footprint has at most 16 points, got {}", n.size()));
     auto pts = read_points(file, n, r.path_of("footprint"));
-    if (!pts.empty() && (pts.size() < 3 || pts.size() > 16 || !is_simple(pts)))
+    if (!pts.empty() && (pts.size() < 3 || !is_simple(pts)))
       fail(file, n, r.path_of("footprint"),
            "a footprint is a simple polygon of 3 to 16 points (or [] for the body disc)");
     s.robot.footprint = std::move(pts);
   }
   if (r.has("sensors")) {
-    MapReader sr(file, r.get("sensors"), r.path_of("sensors"));
+    MapReader sr = r.sub("sensors");
     read_sensors(file, sr, s.robot);
   }
   r.finish();
@@ -319,9 +396,9 @@ void read_controller(const std::string& file, MapReader& r, ControllerConfig& c)
     const auto k = parse_controller_kind(kind);
     if (!k && kind != kDwaKindName)
       fail(file, n, r.path_of("kind"),
-           fmt::format("unknown controller '{}' (expected hybrid, hard_switch, blended, "
+           fmt::format("unknown controller {} (expected hybrid, hard_switch, blended, "
                        "go_to_goal or dwa)",
-                       kind));
+                       quote_input(kind)));
     c.kind = kind;
   }
   if (r.has("robot_avoidance")) {
@@ -338,46 +415,46 @@ void read_controller(const std::string& file, MapReader& r, ControllerConfig& c)
 }
 
 // `goal: [x, y]` or `goals: [[x, y], ...]` in the map `m` (the top level or one robot).
-std::vector<Vec2> read_goals(const std::string& file, MapReader& m) {
+// `goals_in_all` counts the goals of every robot so far, against kMaxGoalsInAll.
+std::vector<Vec2> read_goals(const std::string& file, MapReader& m, std::size_t& goals_in_all) {
   const bool has_goal = m.has("goal"), has_goals = m.has("goals");
-  if (has_goal == has_goals)
-    fail(file, m.node(), m.path_of(has_goal ? "goals" : "goal"),
-         has_goal ? "give either goal or goals, not both" : "missing (goal: [x, y])");
-  if (has_goal) return {read_point(file, m.get("goal"), m.path_of("goal"))};
+  if (has_goal && has_goals)
+    fail(file, m.get("goals"), m.path_of("goals"), "give either goal or goals, not both");
+  if (!has_goal && !has_goals) m.require("goal", "goal: [x, y], or goals: [[x, y], ...]");
+  if (has_goal) {
+    ++goals_in_all;
+    return {read_point(file, m.get("goal"), m.path_of("goal"))};
+  }
   const YAML::Node n = m.get("goals");
-  if (n.IsSequence() && n.size() > kMaxGoals)
-    fail(file, n, m.path_of("goals"), fmt::format("at most {} goals, got {}", kMaxGoals, n.size()));
+  if (n.IsSequence() && n.size() > kMaxGoalsPerRobot)
+    fail(file, n, m.path_of("goals"),
+         fmt::format("at most {} goals, got {}", kMaxGoalsPerRobot, n.size()));
+  if (n.IsSequence() && (goals_in_all += n.size()) > kMaxGoalsInAll)
+    fail(file, n, m.path_of("goals"),
+         fmt::format("the robots have more than {} goals in all", kMaxGoalsInAll));
   std::vector<Vec2> goals = read_points(file, n, m.path_of("goals"));
   if (goals.empty()) fail(file, n, m.path_of("goals"), "needs at least one goal");
   return goals;
 }
 
-// `entry` over `defaults`: keys of `entry` win; maps found in both (sensors, sensors.lidar) are
-// merged the same way. Nodes keep their marks, so errors still name the right line.
-YAML::Node with_defaults(const YAML::Node& entry, const YAML::Node& defaults) {
-  YAML::Node out(YAML::NodeType::Map);
-  for (const auto& kv : defaults) out[kv.first.as<std::string>()] = kv.second;
-  for (const auto& kv : entry) {
-    const std::string key = kv.first.as<std::string>();
-    const YAML::Node d = defaults[key];
-    out[key] = d && d.IsMap() && kv.second.IsMap() ? with_defaults(kv.second, d) : kv.second;
-  }
-  return out;
-}
-
 // `robots:`, a list of robot sections, each with its own goal(s), an optional name and an
-// optional controller section on top of the shared one.
-void read_fleet(const std::string& file, const YAML::Node& root, MapReader& top, Scenario& s) {
+// optional controller section on top of the shared one. Each entry is read as a layer over the
+// shared `robot:` section (no merged copy of the shared section per robot: loading stays linear
+// in the file).
+void read_fleet(const std::string& file, const YAML::Node& root, MapReader& top, Scenario& s,
+                std::size_t& goals_in_all) {
   for (const char* key : {"goal", "goals"})
-    if (top.has(key)) fail(file, root, key, "with robots, each robot has its own goal or goals");
+    if (top.has(key))
+      fail(file, top.get(key), key, "with robots, each robot has its own goal or goals");
   // `robot:` beside `robots:` holds what the robots share; each entry overrides it.
   std::optional<YAML::Node> shared_robot;
   if (top.has("robot")) {
     shared_robot = top.get("robot");
     if (!shared_robot->IsMap()) fail(file, *shared_robot, "robot", "expected a mapping of keys");
+    const YAML::Node& shared = *shared_robot;
     for (const char* own : {"start", "goal", "goals", "name"})
-      if ((*shared_robot)[own])
-        fail(file, (*shared_robot)[own], fmt::format("robot.{}", own),
+      if (shared[own])
+        fail(file, shared[own], fmt::format("robot.{}", own),
              "with robots, each robot gives its own (robots[i].start, .goal, .name)");
   }
   const YAML::Node list = top.get("robots");
@@ -389,20 +466,30 @@ void read_fleet(const std::string& file, const YAML::Node& root, MapReader& top,
   if (top.has("controller")) shared_controller = top.get("controller");
   s.robots.reserve(list.size());
   std::unordered_set<std::string> names;
+  std::size_t rays_in_all = 0;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string path = fmt::format("robots[{}]", i);
-    if (!list[i].IsMap())
-      fail(file, list[i], path, "expected a robot section ({start: [x, y, theta], goal: [x, y]})");
-    MapReader r(file, shared_robot ? with_defaults(list[i], *shared_robot) : list[i], path);
+    const YAML::Node entry = list[i];
+    if (!entry.IsMap())
+      fail(file, entry, path, "expected a robot section ({start: [x, y, theta], goal: [x, y]})");
+    MapReader r(file, entry, path);
+    if (shared_robot) r.add_layer(*shared_robot, "robot");
     RobotTask task;
     task.name = r.has("name") ? io_detail::read_string(file, r.get("name"), r.path_of("name"))
                               : fmt::format("robot{}", i);
     if (!names.insert(task.name).second)
-      fail(file, list[i], r.path_of("name"), fmt::format("'{}' names two robots", task.name));
-    task.goals = read_goals(file, r);
+      fail(file, entry, r.path_of("name"),
+           fmt::format("{} names two robots", quote_input(task.name)));
+    task.goals = read_goals(file, r, goals_in_all);
     std::optional<YAML::Node> own_controller;
     if (r.has("controller")) own_controller = r.get("controller");
     read_robot(file, r, task);  // the preset, then this robot's values
+    for (const RangeSensorSpec& sensor : task.robot.sensors)
+      rays_in_all += static_cast<std::size_t>(sensor.cone_rays);
+    if (rays_in_all > kMaxRaysInAll)
+      fail(file, entry, path,
+           fmt::format("the robots up to this one cast more than {} rays per step in all",
+                       kMaxRaysInAll));
     for (const auto& [node, key] : {std::pair{shared_controller, std::string("controller")},
                                     std::pair{own_controller, r.path_of("controller")}}) {
       if (!node) continue;
@@ -412,6 +499,96 @@ void read_fleet(const std::string& file, const YAML::Node& root, MapReader& top,
     s.robots.push_back(std::move(task));
   }
   s.robots_listed = true;
+  (void)root;
+}
+
+/// The lower-case extension of a map path.
+std::string map_format(const std::filesystem::path& map) {
+  std::string ext = map.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+void read_world(const std::string& file, MapReader& top, const std::filesystem::path& origin,
+                Scenario& s, WorldDesc& desc) {
+  MapReader w = top.sub("world");
+  if (w.has("bounds")) {
+    const YAML::Node n = w.get("bounds");
+    const auto b = io_detail::read_numbers(file, n, "world.bounds", 4);
+    if (!(b[2] > b[0] && b[3] > b[1]))
+      fail(file, n, "world.bounds",
+           "expected [xmin, ymin, xmax, ymax] with xmin < xmax, ymin < ymax");
+    desc.bounds = Box2{Vec2(b[0], b[1]), Vec2(b[2], b[3])};
+  }
+  if (w.has("obstacles")) {
+    const YAML::Node n = w.get("obstacles");
+    if (!n.IsSequence()) fail(file, n, "world.obstacles", "expected a list of obstacles");
+    if (n.size() > kMaxObstacles)
+      fail(file, n, "world.obstacles",
+           fmt::format("at most {} obstacles, got {}", kMaxObstacles, n.size()));
+    std::size_t polygon_work = 0;
+    for (std::size_t i = 0; i < n.size(); ++i)
+      read_obstacle(file, n[i], fmt::format("world.obstacles[{}]", i), desc, polygon_work);
+  }
+  std::optional<std::filesystem::path> map;
+  std::string format;
+  YAML::Node map_node;
+  if (w.has("map")) {
+    map_node = w.get("map");
+    map = io_detail::read_string(file, map_node, "world.map");
+    if (map->empty()) fail(file, map_node, "world.map", "is empty (a path to a map file)");
+    if (map->is_relative()) *map = origin.parent_path() / *map;
+    format = map_format(*map);
+  }
+  // Keys that mean nothing for this world's map are errors, never silently ignored.
+  const bool takes_cell_size = format == ".map" || format == ".pgm" || format == ".png";
+  const bool takes_unknown =
+      format == ".yaml" || format == ".yml" || format == ".pgm" || format == ".png";
+  io_detail::MapOptions options;
+  WorldMapSource source;
+  if (w.has("cell_size")) {
+    const YAML::Node n = w.get("cell_size");
+    if (!takes_cell_size)
+      fail(
+          file, n, "world.cell_size",
+          map ? fmt::format("does not apply to a {} map (only a MovingAI .map or a bare "
+                            ".pgm/.png image takes a cell size; a ROS .yaml gives its own "
+                            "resolution)",
+                            format.empty() ? fmt::format("'{}'", map->filename().string()) : format)
+              : std::string("does not apply without world.map (only a MovingAI .map or a bare "
+                            ".pgm/.png image takes a cell size)"));
+    options.cell_size = read_positive(file, n, "world.cell_size");
+    source.cell_size = options.cell_size;
+  }
+  if (w.has("unknown")) {
+    const YAML::Node n = w.get("unknown");
+    if (!takes_unknown)
+      fail(file, n, "world.unknown",
+           "applies only to occupancy maps (a ROS .yaml, .pgm or .png), not to this world");
+    const std::string v = io_detail::read_string(file, n, "world.unknown");
+    if (v != "occupied" && v != "free")
+      fail(file, n, "world.unknown",
+           fmt::format("expected occupied or free, got {}", quote_input(v)));
+    options.unknown_is_occupied = v == "occupied";
+    source.unknown = v;
+  }
+  if (map) {
+    const std::size_t circles = desc.circles.size(), polygons = desc.polygons.size();
+    desc.grid = io_detail::load_world_map(*map, options, desc, file,
+                                          io_detail::where_of(map_node, "world.map"));
+    std::error_code ec;
+    const auto absolute = std::filesystem::absolute(*map, ec);
+    source.path = (ec ? *map : absolute).lexically_normal().string();
+    source.circles = desc.circles.size() - circles;
+    source.polygons = desc.polygons.size() - polygons;
+    s.world_map = source;
+  }
+  if (!desc.bounds && desc.circles.empty() && desc.polygons.empty() && !desc.grid)
+    fail(file, w.node(), "world",
+         "the world is empty: give bounds, obstacles or a map (in an empty, unbounded world no "
+         "clearance can be measured)");
+  w.finish();
 }
 
 Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& origin) {
@@ -419,72 +596,44 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
   if (!root.IsDefined() || root.IsNull())
     throw InputError(file, "", "the file is empty (a scenario needs world, robot and goal)");
   MapReader top(file, root, "");
+  // Every top-level key, so that a misspelling anywhere gets its "did you mean".
+  for (const char* key : {"name", "world", "robot", "robots", "goal", "goals", "controller", "sim",
+                          "people", "people_file", "forklifts"})
+    top.has(key);
   Scenario s;
   s.name = origin.stem().string();
-  if (top.has("name")) s.name = io_detail::read_string(file, top.get("name"), "name");
+  if (top.has("name")) {
+    const YAML::Node n = top.get("name");
+    s.name = io_detail::read_string(file, n, "name");
+    if (s.name.empty()) fail(file, n, "name", "is empty");
+  }
 
   // robot first: its preset supplies the controller defaults.
+  std::size_t goals_in_all = 0;
   const bool fleet = top.has("robots");
   if (fleet) {
-    read_fleet(file, root, top, s);
+    read_fleet(file, root, top, s, goals_in_all);
   } else {
-    if (!top.has("robot"))
-      fail(file, root, "robot", "missing section (robot: {start: [x, y, theta]})");
-    MapReader r(file, top.get("robot"), "robot");
+    top.require("robot", "a section robot: {start: [x, y, theta]}");
+    MapReader r = top.sub("robot");
     s.robots.emplace_back();
     read_robot(file, r, s.robots.back());
   }
   if (top.has("controller") && !fleet) {
-    MapReader r(file, top.get("controller"), "controller");
+    MapReader r = top.sub("controller");
     read_controller(file, r, s.robot().controller);
   }
   if (top.has("sim")) {
-    MapReader r(file, top.get("sim"), "sim");
+    MapReader r = top.sub("sim");
     s.sim.serialize(r);
     r.finish();
   }
 
-  if (!fleet) s.robot().goals = read_goals(file, top);
+  if (!fleet) s.robot().goals = read_goals(file, top, goals_in_all);
 
   WorldDesc desc;
-  if (!top.has("world")) fail(file, root, "world", "missing section (world: {bounds: [...]})");
-  {
-    MapReader w(file, top.get("world"), "world");
-    if (w.has("bounds")) {
-      const YAML::Node n = w.get("bounds");
-      const auto b = io_detail::read_numbers(file, n, "world.bounds", 4);
-      if (!(b[2] > b[0] && b[3] > b[1]))
-        fail(file, n, "world.bounds",
-             "expected [xmin, ymin, xmax, ymax] with xmin < xmax, ymin < ymax");
-      desc.bounds = Box2{Vec2(b[0], b[1]), Vec2(b[2], b[3])};
-    }
-    if (w.has("obstacles")) {
-      const YAML::Node n = w.get("obstacles");
-      if (!n.IsSequence()) fail(file, n, "world.obstacles", "expected a list of obstacles");
-      if (n.size() > kMaxObstacles) fail(file, n, "world.obstacles", "too many obstacles");
-      std::size_t polygon_points = 0;
-      for (std::size_t i = 0; i < n.size(); ++i)
-        read_obstacle(file, n[i], fmt::format("world.obstacles[{}]", i), desc, polygon_points);
-    }
-    io_detail::MapOptions options;
-    if (w.has("cell_size"))
-      options.cell_size = read_positive(file, w.get("cell_size"), "world.cell_size");
-    if (w.has("unknown")) {
-      const YAML::Node n = w.get("unknown");
-      const std::string v = io_detail::read_string(file, n, "world.unknown");
-      if (v != "occupied" && v != "free")
-        fail(file, n, "world.unknown", fmt::format("expected occupied or free, got '{}'", v));
-      options.unknown_is_occupied = v == "occupied";
-    }
-    if (w.has("map")) {
-      const YAML::Node n = w.get("map");
-      std::filesystem::path map = io_detail::read_string(file, n, "world.map");
-      if (map.is_relative()) map = origin.parent_path() / map;
-      desc.grid =
-          io_detail::load_world_map(map, options, desc, file, io_detail::where_of(n, "world.map"));
-    }
-    w.finish();
-  }
+  top.require("world", "a section world: {bounds: [xmin, ymin, xmax, ymax]}");
+  read_world(file, top, origin, s, desc);
   io_detail::read_crowd(file, top, origin, s.crowd);
   top.finish();
   s.world = std::make_shared<const World>(std::move(desc));
@@ -492,43 +641,64 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
   return s;
 }
 
-}  // namespace
+/// The dotted key an error names: "line 3: sim.dt" -> "sim.dt", "sim.dt" -> "sim.dt",
+/// "line 3" -> "".
+std::string error_key(const std::string& where) {
+  if (where.rfind("line ", 0) != 0) return where;
+  const auto colon = where.find(": ");
+  return colon == std::string::npos ? std::string() : where.substr(colon + 2);
+}
 
-namespace {
-
-/// An error about a key that a --set replaced, blamed on that --set: the file's line numbers
-/// mean nothing for it. nullopt for errors about the file's own keys or another file.
+/// An error about a key that an override set (or a key inside it, or one of its parents that
+/// the override created), blamed on that override: the scenario file's line numbers mean nothing
+/// for it. nullopt for errors about the file's own keys or another file.
 std::optional<InputError> blame_override(const InputError& e, const std::string& file,
-                                         std::span<const std::string> overrides) {
+                                         std::span<const ScenarioOverride> overrides) {
   if (e.file != file) return std::nullopt;
-  std::string key = e.where;  // "line 3: sim.dt", "sim.dt" or "line 3"
-  if (key.rfind("line ", 0) == 0) {
-    const auto colon = key.find(": ");
-    key = colon == std::string::npos ? std::string() : key.substr(colon + 2);
-  }
+  std::string key = error_key(e.where);
+  // "controller.d_o (robots[2])": the key before the robot it is about.
+  if (const auto paren = key.find(" ("); paren != std::string::npos) key.erase(paren);
   if (key.empty()) return std::nullopt;
-  for (auto it = overrides.rbegin(); it != overrides.rend(); ++it) {  // the last --set wins
-    const std::string set_key = it->substr(0, it->find('='));
-    const bool below = key.size() > set_key.size() &&
-                       key.compare(0, set_key.size(), set_key) == 0 &&
-                       (key[set_key.size()] == '.' || key[set_key.size()] == '[');
-    if (key != set_key && !below) continue;
-    return InputError(file, "--set " + *it + (below ? ": " + key : std::string()), e.detail);
+  const auto under = [](const std::string& a, const std::string& b) {  // a is below b
+    return a.size() > b.size() && a.compare(0, b.size(), b) == 0 &&
+           (a[b.size()] == '.' || a[b.size()] == '[');
+  };
+  for (auto it = overrides.rbegin(); it != overrides.rend(); ++it) {  // the last one wins
+    const std::string set_key = it->assignment.substr(0, it->assignment.find('='));
+    const bool below = under(key, set_key);
+    // An error about a parent of the key, at a place the file does not have (the override made
+    // it), or naming a key the override misspelt ("controler" for --set controler.kind=...).
+    const bool above = under(set_key, key) && error_key(e.where) == e.where;
+    if (key != set_key && !below && !above) continue;
+    return InputError(it->file, it->where + (below ? ": " + key : std::string()), e.detail);
   }
   return std::nullopt;
 }
 
 }  // namespace
 
-Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& origin,
-                            std::span<const std::string> overrides) {
+std::vector<ScenarioOverride> user_overrides(std::span<const std::string> sets) {
+  std::vector<ScenarioOverride> out;
+  out.reserve(sets.size());
+  for (const std::string& s : sets) out.push_back({s, "", "--set " + s});
+  return out;
+}
+
+Scenario load_scenario_text_with_overrides(std::string_view yaml,
+                                           const std::filesystem::path& origin,
+                                           std::span<const ScenarioOverride> overrides) {
   const std::string file = origin.string();
   YAML::Node root = parse_yaml(std::string(yaml), file, "");
   if (root.IsDefined() && !root.IsNull() && !root.IsMap())
     throw InputError(file, "line 1", "a scenario is a mapping of sections (world, robot, goal)");
   if (!root.IsDefined() || root.IsNull())
     throw InputError(file, "", "the file is empty (a scenario needs world, robot and goal)");
-  for (const std::string& o : overrides) apply_override(root, o);
+  std::vector<YAML::Node> keep{root};  // every handle the tree's nodes live in (apply_override)
+  if (!overrides.empty()) {
+    root.reset(shallow_copy(root));  // overrides change copies, never a node the file aliases
+    keep.push_back(root);
+    for (const ScenarioOverride& o : overrides) apply_override(root, o, keep);
+  }
   try {
     return read_scenario(root, origin);
   } catch (const YAML::Exception& e) {
@@ -539,22 +709,23 @@ Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& 
   }
 }
 
-Scenario load_scenario_file(const std::filesystem::path& path,
+Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& origin,
                             std::span<const std::string> overrides) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(path.string(), "",
-                     std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
-  const auto size = std::filesystem::file_size(path, ec);
-  if (ec) throw InputError(path.string(), "", "cannot read: " + ec.message());
-  if (size > kMaxScenarioBytes)
-    throw InputError(path.string(), "", fmt::format("{} bytes is too large for a scenario", size));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "", "cannot open for reading");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return load_scenario_text_with_overrides(yaml, origin, user_overrides(overrides));
+}
+
+Scenario load_scenario_with_overrides(const std::filesystem::path& path,
+                                      std::span<const ScenarioOverride> overrides) {
+  const std::string text =
+      io_detail::read_input_file(path, "scenario", io_detail::kMaxScenarioBytes);
   if (text.find('\0') != std::string::npos)
     throw InputError(path.string(), "", "binary data, not a YAML scenario");
-  return load_scenario_text(text, path, overrides);
+  return load_scenario_text_with_overrides(text, path, overrides);
+}
+
+Scenario load_scenario_file(const std::filesystem::path& path,
+                            std::span<const std::string> overrides) {
+  return load_scenario_with_overrides(path, user_overrides(overrides));
 }
 
 }  // namespace floornav

@@ -10,6 +10,7 @@
 #include "floornav/io/movingai_map.hpp"
 #include "floornav/io/ros_map.hpp"
 #include "floornav/io/sdf_world.hpp"
+#include "input_file.hpp"
 
 namespace floornav::io_detail {
 
@@ -17,10 +18,9 @@ std::shared_ptr<const OccupancyGrid> load_world_map(const std::filesystem::path&
                                                     const MapOptions& options, WorldDesc& desc,
                                                     const std::string& scenario_file,
                                                     const std::string& key) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(scenario_file, key,
-                     fmt::format("map file '{}' does not exist", path.string()));
+  // Named for what it is (missing, a folder, a FIFO, a device) before any reader opens it.
+  if (auto problem = input_file_problem(path, "map", std::uint64_t{1} << 40))
+    throw InputError(scenario_file, key, fmt::format("map file '{}' {}", path.string(), *problem));
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
@@ -45,6 +45,18 @@ std::shared_ptr<const OccupancyGrid> load_world_map(const std::filesystem::path&
   }
   if (ext == ".world" || ext == ".sdf") {
     SdfWorld w = load_sdf_world(path);
+    if (!w.skipped.empty()) {
+      // What the world holds but floornav cannot read would be an obstacle the robot drives
+      // through: refused, never dropped.
+      const std::string& first = w.skipped.front();  // "line 12: what"
+      const auto colon = first.find(": ");
+      const bool has_line = first.rfind("line ", 0) == 0 && colon != std::string::npos;
+      throw InputError(path.string(), has_line ? first.substr(0, colon) : "",
+                       (has_line ? first.substr(colon + 2) : first) +
+                           (w.skipped.size() > 1
+                                ? fmt::format(" (and {} more such things)", w.skipped.size() - 1)
+                                : std::string()));
+    }
     desc.circles.insert(desc.circles.end(), w.circles.begin(), w.circles.end());
     for (auto& p : w.polygons) desc.polygons.push_back(std::move(p));
     return nullptr;

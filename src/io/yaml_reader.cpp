@@ -9,21 +9,6 @@
 namespace floornav::io_detail {
 
 namespace {
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
-
 std::string scalar_of(const std::string& file, const YAML::Node& node, const std::string& key,
                       const char* expected) {
   if (!node.IsDefined() || node.IsNull())
@@ -56,7 +41,7 @@ double read_double(const std::string& file, const YAML::Node& node, const std::s
   const char* e = s.data() + s.size();
   auto [ptr, ec] = std::from_chars(b, e, v);
   if (ec == std::errc::result_out_of_range)
-    fail(file, node, key, fmt::format("'{}' is out of the range of a number", s));
+    fail(file, node, key, fmt::format("{} is out of the range of a number", quote_input(s)));
   if (ec != std::errc() || ptr != e) {
     // YAML spellings of infinity and NaN are numbers, but never acceptable ones.
     const std::string lower = [&] {
@@ -67,11 +52,12 @@ double read_double(const std::string& file, const YAML::Node& node, const std::s
     }();
     if (lower == ".nan" || lower == ".inf" || lower == "-.inf" || lower == "+.inf")
       fail(file, node, key, fmt::format("'{}' is not a finite number", s));
-    fail(file, node, key, fmt::format("expected a number, got '{}'", s));
+    fail(file, node, key, fmt::format("expected a number, got {}", quote_input(s)));
   }
   if (!std::isfinite(v)) fail(file, node, key, fmt::format("'{}' is not a finite number", s));
   if (std::abs(v) > kMaxInputMagnitude)
-    fail(file, node, key, fmt::format("'{}' is too large (more than 1e9 in magnitude)", s));
+    fail(file, node, key,
+         fmt::format("{} is too large (more than 1e9 in magnitude)", quote_input(s)));
   return v;
 }
 
@@ -79,8 +65,10 @@ std::int64_t read_int(const std::string& file, const YAML::Node& node, const std
   const std::string s = scalar_of(file, node, key, "a whole number");
   std::int64_t v = 0;
   auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec == std::errc::result_out_of_range && ptr == s.data() + s.size())
+    fail(file, node, key, fmt::format("{} is out of the range of a whole number", quote_input(s)));
   if (ec != std::errc() || ptr != s.data() + s.size())
-    fail(file, node, key, fmt::format("expected a whole number, got '{}'", s));
+    fail(file, node, key, fmt::format("expected a whole number, got {}", quote_input(s)));
   return v;
 }
 
@@ -88,7 +76,7 @@ bool read_bool(const std::string& file, const YAML::Node& node, const std::strin
   const std::string s = scalar_of(file, node, key, "true or false");
   if (s == "true" || s == "True" || s == "yes" || s == "on") return true;
   if (s == "false" || s == "False" || s == "no" || s == "off") return false;
-  fail(file, node, key, fmt::format("expected true or false, got '{}'", s));
+  fail(file, node, key, fmt::format("expected true or false, got {}", quote_input(s)));
 }
 
 std::string read_string(const std::string& file, const YAML::Node& node, const std::string& key) {
@@ -126,47 +114,110 @@ std::vector<Vec2> read_points(const std::string& file, const YAML::Node& node,
 }
 
 MapReader::MapReader(std::string file, YAML::Node node, std::string path)
-    : file_(std::move(file)), node_(std::move(node)), path_(std::move(path)) {
-  if (!node_.IsMap())
-    fail(file_, node_, path_.empty() ? "(top level)" : path_,
-         "expected a mapping of keys to values");
-  // yaml-cpp keeps both entries of a repeated key and returns the first: refuse the ambiguity.
-  std::set<std::string> seen;
-  for (const auto& kv : node_) {
-    if (kv.first.IsScalar() && !seen.insert(kv.first.Scalar()).second)
-      fail(file_, kv.first, path_of(kv.first.Scalar()), "given twice");
-  }
+    : MapReader(std::move(file), std::vector<Layer>{}) {
+  add_layer(node, std::move(path));
 }
 
-bool MapReader::has(const std::string& key) const {
-  const YAML::Node n = node_[key];
-  return n.IsDefined();
+MapReader::MapReader(std::string file, std::vector<Layer> layers)
+    : file_(std::move(file)), layers_(std::move(layers)) {}
+
+void MapReader::add_layer(const YAML::Node& node, std::string path) {
+  if (!node.IsMap())
+    fail(file_, node, path.empty() ? "(top level)" : path, "expected a mapping of keys to values");
+  // yaml-cpp keeps both entries of a repeated key and returns the first: refuse the ambiguity.
+  std::set<std::string> seen;
+  for (const auto& kv : node) {
+    if (kv.first.IsScalar() && !seen.insert(kv.first.Scalar()).second)
+      fail(file_, kv.first, path.empty() ? kv.first.Scalar() : path + "." + kv.first.Scalar(),
+           "given twice");
+  }
+  layers_.push_back({node, std::move(path)});
+}
+
+const MapReader::Layer* MapReader::layer_of(const std::string& key) const {
+  for (const Layer& l : layers_) {
+    const YAML::Node& n = l.node;  // const access: never inserts the key
+    if (n[key].IsDefined()) return &l;
+  }
+  return nullptr;
+}
+
+bool MapReader::has(const std::string& key) {
+  known_.insert(key);
+  return layer_of(key) != nullptr;
 }
 
 YAML::Node MapReader::get(const std::string& key) {
   known_.insert(key);
-  return node_[key];
+  const Layer* l = layer_of(key);
+  if (l == nullptr) return YAML::Node(YAML::NodeType::Undefined);
+  const YAML::Node& n = l->node;
+  return n[key];
+}
+
+YAML::Node MapReader::require(const std::string& key, const std::string& what) {
+  if (has(key)) return get(key);
+  // A key of the section that is not known and is close to the missing one: a misspelling.
+  for (const Layer& l : layers_)
+    for (const auto& kv : l.node) {
+      if (!kv.first.IsScalar() || known_.count(kv.first.Scalar())) continue;
+      if (edit_distance(kv.first.Scalar(), key) <= 2)
+        fail(
+            file_, kv.first, l.path.empty() ? kv.first.Scalar() : l.path + "." + kv.first.Scalar(),
+            fmt::format("unknown key (did you mean '{}'? it is required: {})", path_of(key), what));
+    }
+  fail(file_, node(), path_of(key), "missing (" + what + ")");
+}
+
+MapReader MapReader::sub(const std::string& key) {
+  known_.insert(key);
+  std::vector<Layer> layers;
+  for (const Layer& l : layers_) {
+    const YAML::Node& n = l.node;
+    const YAML::Node child = n[key];
+    if (!child.IsDefined()) continue;
+    const std::string path = l.path.empty() ? key : l.path + "." + key;
+    if (!child.IsMap()) {
+      if (layers.empty()) fail(file_, child, path, "expected a mapping of keys to values");
+      break;  // a value that is not a mapping hides the layers under it
+    }
+    layers.push_back({child, path});
+  }
+  if (layers.empty()) fail(file_, node(), path_of(key), "missing");
+  MapReader out(file_, std::vector<Layer>{});
+  for (Layer& l : layers) out.add_layer(l.node, std::move(l.path));
+  return out;
 }
 
 std::string MapReader::path_of(const std::string& key) const {
-  return path_.empty() ? key : path_ + "." + key;
+  const Layer* l = layer_of(key);
+  const std::string& path = (l != nullptr ? *l : layers_.front()).path;
+  return path.empty() ? key : path + "." + key;
+}
+
+std::string MapReader::closest_known(const std::string& key) const {
+  std::string hint;
+  std::size_t best = 3;
+  for (const std::string& k : known_) {
+    const std::size_t d = edit_distance(key, k);
+    if (d < best) best = d, hint = k;
+  }
+  return hint;
 }
 
 void MapReader::finish() const {
-  for (const auto& kv : node_) {
-    if (!kv.first.IsScalar()) fail(file_, kv.first, path_of("?"), "keys must be plain names");
-    const std::string key = kv.first.Scalar();
-    if (known_.count(key)) continue;
-    std::string hint;
-    std::size_t best = 3;
-    for (const std::string& k : known_) {
-      const std::size_t d = edit_distance(key, k);
-      if (d < best) best = d, hint = k;
+  for (const Layer& l : layers_)
+    for (const auto& kv : l.node) {
+      const auto path = [&](const std::string& k) { return l.path.empty() ? k : l.path + "." + k; };
+      if (!kv.first.IsScalar()) fail(file_, kv.first, path("?"), "keys must be plain names");
+      const std::string key = kv.first.Scalar();
+      if (known_.count(key)) continue;
+      const std::string hint = closest_known(key);
+      const std::string shown = key.size() > 80 ? key.substr(0, 80) + "..." : key;
+      fail(file_, kv.first, path(shown),
+           hint.empty() ? std::string("unknown key")
+                        : fmt::format("unknown key (did you mean '{}'?)", path(hint)));
     }
-    fail(file_, kv.first, path_of(key),
-         hint.empty() ? std::string("unknown key")
-                      : fmt::format("unknown key (did you mean '{}'?)", path_of(hint)));
-  }
 }
 
 void MapReader::operator()(const char* key, double& field, const char*) {
@@ -182,7 +233,7 @@ void MapReader::operator()(const char* key, int& field, const char*) {
   }
   const auto v = read_int(file_, get(key), path_of(key));
   if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
-    fail(file_, node_[key], path_of(key), "number too large");
+    fail(file_, get(key), path_of(key), "number too large");
   field = static_cast<int>(v);
 }
 void MapReader::operator()(const char* key, bool& field, const char*) {
@@ -192,13 +243,20 @@ void MapReader::operator()(const char* key, bool& field, const char*) {
     known_.insert(key);
 }
 void MapReader::operator()(const char* key, std::uint64_t& field, const char*) {
-  if (!has(key)) {
-    known_.insert(key);
-    return;
-  }
-  const auto v = read_int(file_, get(key), path_of(key));
-  if (v < 0) fail(file_, node_[key], path_of(key), "must not be negative");
-  field = static_cast<std::uint64_t>(v);
+  if (!has(key)) return;
+  const YAML::Node n = get(key);
+  const std::string s = scalar_of(file_, n, path_of(key), "a whole number");
+  if (!s.empty() && s.front() == '-' && s.find_first_not_of("-0123456789") == std::string::npos)
+    fail(file_, n, path_of(key), "must not be negative");
+  std::uint64_t v = 0;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec == std::errc::result_out_of_range && ptr == s.data() + s.size())
+    fail(
+        file_, n, path_of(key),
+        fmt::format("{} is out of the range of a whole number (at most 2^64 - 1)", quote_input(s)));
+  if (ec != std::errc() || ptr != s.data() + s.size())
+    fail(file_, n, path_of(key), fmt::format("expected a whole number, got {}", quote_input(s)));
+  field = v;
 }
 
 }  // namespace floornav::io_detail

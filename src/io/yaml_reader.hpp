@@ -9,6 +9,7 @@
 #include <set>
 #include <string>
 #include <type_traits>
+#include <string_view>
 #include <vector>
 
 #include "floornav/core/input_error.hpp"
@@ -35,18 +36,30 @@ Vec2 read_point(const std::string& file, const YAML::Node& node, const std::stri
 std::vector<Vec2> read_points(const std::string& file, const YAML::Node& node,
                               const std::string& key);
 
-/// A YAML map whose keys are checked off as they are read; `finish()` rejects the rest.
+/// A YAML map whose keys are checked off as they are read; `finish()` rejects the rest, with a
+/// "did you mean" naming the closest key the section knows. A section may have layers: a fleet's
+/// robot entry over the shared `robot:` section. A key is read from the first layer that has it;
+/// `sub()` gives a key's maps in every layer, layered the same way.
 class MapReader {
  public:
   MapReader(std::string file, YAML::Node node, std::string path);
 
-  bool has(const std::string& key) const;
+  /// This reader with `node` (a mapping named `path`) as a further layer under the others.
+  void add_layer(const YAML::Node& node, std::string path);
+
+  /// Whether the key is given; also makes `key` known to the section (for "did you mean").
+  bool has(const std::string& key);
   /// The child node (marks the key as known); an undefined node when absent.
   YAML::Node get(const std::string& key);
-  /// The dotted path of `key` below this map.
+  /// The child node; when it is missing, throws "missing (`what`)", or, when the section holds an
+  /// unknown key that looks like a misspelling of it, an error naming that key.
+  YAML::Node require(const std::string& key, const std::string& what);
+  /// The reader of the mapping under `key` in every layer that has one.
+  MapReader sub(const std::string& key);
+  /// The dotted path of `key` below this map (in the layer that gives it).
   std::string path_of(const std::string& key) const;
   const std::string& file() const { return file_; }
-  const YAML::Node& node() const { return node_; }
+  const YAML::Node& node() const { return layers_.front().node; }
   /// Throws for the first key not read, with a suggestion when one is close.
   void finish() const;
 
@@ -80,17 +93,26 @@ class MapReader {
     fail(file_, n, path_of(key), "unknown value '" + text + "' (expected " + expected + ")");
   }
   template <class T>
-  void section(const char* key, T& sub) {
+  void section(const char* key, T& sub_struct) {
     if (!has(key)) return;
-    MapReader r(file_, get(key), path_of(key));
-    sub.serialize(r);
+    MapReader r = sub(key);
+    sub_struct.serialize(r);
     r.finish();
   }
 
  private:
+  struct Layer {
+    YAML::Node node;
+    std::string path;
+  };
+  MapReader(std::string file, std::vector<Layer> layers);
+  /// The layer holding `key`, or nullptr.
+  const Layer* layer_of(const std::string& key) const;
+  /// The known key closest to `key` (edit distance <= 2), or "".
+  std::string closest_known(const std::string& key) const;
+
   std::string file_;
-  YAML::Node node_;
-  std::string path_;
+  std::vector<Layer> layers_;
   std::set<std::string> known_;
 };
 

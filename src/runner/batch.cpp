@@ -5,98 +5,55 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
+#include <cstring>
+#include <exception>
 #include <fstream>
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <thread>
 
 #include "floornav/core/input_error.hpp"
 #include "floornav/io/atomic_file.hpp"
+#include "floornav/io/provenance.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/render/trajectory_html.hpp"
 #include "floornav/render/trajectory_svg.hpp"
 #include "floornav/runner/run_outputs.hpp"
-#include "floornav/world/shortest_path.hpp"
+#include "floornav/runner/run_summary.hpp"
 
 namespace floornav {
 
 namespace {
 
-/// The grid optimum of a case's scenario: a length in metres, or the reason there is none.
-Optimum case_optimum(const Scenario& s) {
-  if (!s.world) return {};
-  const RobotTask& t = s.robot();
-  return scenario_optimum(*s.world, t.robot.body_radius, t.start.position, t.goals);
-}
+using Json = nlohmann::ordered_json;
 
-nlohmann::ordered_json result_line(const BatchCase& c, const RunResult& r, bool timing,
-                                   const std::optional<Optimum>& optimum) {
-  nlohmann::ordered_json line;
+/// A batch line: the case, where it came from, then the run's summary (run_summary, the keys of
+/// summary.json) without the transition log.
+Json case_line(const BatchCase& c, const Json& summary, bool timing) {
+  Json line = Json::object();
   line["case"] = c.id;
   line["source"] = c.source;
-  line["controller"] = c.scenario.robot().controller.kind;
-  line["robot"] = c.scenario.robot().robot.preset;
-  const nlohmann::ordered_json summary = summary_to_json(r);
-  for (const auto& [k, v] : summary.items()) line[k] = v;
-  if (!timing) line["wall_time"] = 0.0;
-  line.erase("transitions");  // the per-case detail stays out of a batch's lines
-  line.erase("transitions_truncated");
-  std::optional<double> optimal = c.optimal_length;
-  if (optimum && optimum->status == OptimumStatus::Found) optimal = optimum->length;
-  if (c.optimal_length || optimum) {
-    line["optimal_length"] = optimal ? nlohmann::ordered_json(*optimal) : nullptr;
-    line["path_efficiency"] = optimal && r.reached_goal && r.path_length > 0
-                                  ? nlohmann::ordered_json(*optimal / r.path_length)
-                                  : nlohmann::ordered_json(nullptr);
-    line["optimal_source"] = c.optimal_length ? "scen" : "grid_astar";
+  for (const auto& [k, v] : summary.items()) {
+    if (k == "transitions" || k == "transitions_truncated") continue;
+    line[k] = v;
   }
-  if (optimum) {
-    if (optimum->status == OptimumStatus::Found)
-      line["optimal_octile_length"] = optimum->octile_length;
-    else
-      line["optimal_status"] = std::string(to_string(optimum->status));
-    line["optimal_cell_size"] = optimum->cell_size;
-  }
-  if (c.optimal_time) {
-    line["optimal_time"] = *c.optimal_time;
-    line["score"] = barn_score(r.reached_goal && !r.collided, r.sim_time, *c.optimal_time);
-  }
-  return line;
-}
-
-// A fleet case's line: the fleet's summary without each robot's (which can be thousands).
-nlohmann::ordered_json fleet_result_line(const BatchCase& c, const FleetResult& f, bool timing) {
-  nlohmann::ordered_json line;
-  line["case"] = c.id;
-  line["source"] = c.source;
-  line["controller"] = c.scenario.robot().controller.kind;
-  line["robot"] = c.scenario.robot().robot.preset;
-  nlohmann::ordered_json summary = fleet_summary_to_json(f);
-  summary.erase("robots");
-  for (auto& [k, v] : summary.items()) line[k] = std::move(v);
   if (!timing) line["wall_time"] = 0.0;
   return line;
 }
 
-// Reads a results.jsonl left by an earlier (interrupted) run: case index -> line.
-std::map<std::size_t, nlohmann::ordered_json> read_existing(const std::filesystem::path& path) {
-  std::map<std::size_t, nlohmann::ordered_json> out;
-  std::ifstream in(path);
-  std::string text;
-  for (std::size_t n = 1; std::getline(in, text); ++n) {
-    if (text.empty()) continue;
-    try {
-      auto j = nlohmann::ordered_json::parse(text);
-      out[j.at("case").get<std::size_t>()] = std::move(j);
-    } catch (const std::exception&) {
-      // A line cut short by the interruption: that case simply runs again.
-    }
-  }
-  return out;
+RunContext context_of(const BatchCase& c, const BatchOptions& o) {
+  RunContext ctx;
+  ctx.overrides = o.overrides;
+  ctx.optimal_length = c.optimal_length;
+  ctx.optimal_time = c.optimal_time;
+  ctx.swept = c.swept;
+  return ctx;
 }
 
 /// "case-00042-rectangle": the pictures' file name stem (the name cut to letters, digits, - _ .).
@@ -115,6 +72,91 @@ bool wants_picture(BatchPictures which, RunStatus status) {
          (which == BatchPictures::Failed && status != RunStatus::Reached);
 }
 
+/// Runs one case; nullopt when the user's stop or `halt` was set while it ran (the case is
+/// abandoned). With pictures asked for, the run records its trajectory and ranges as it goes
+/// (recording moves nothing), so that a failure is drawn without running it again.
+std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
+                             const std::atomic<bool>* halt) {
+  Scenario sc = c.scenario;  // shares the world; copies only small data
+  const bool pictures = o.pictures != BatchPictures::None;
+  sc.sim.record_trajectory = pictures;
+  if (pictures) prepare_outputs(sc);
+  const std::string stem = (o.pictures_dir / picture_stem(c)).string();
+  RunContext ctx = context_of(c, o);
+  if (sc.is_fleet()) {
+    // A fleet: one thread per case, like every case (the batch is parallel across cases).
+    auto f = run_fleet_timed(sc, 1, o.stop, halt);
+    if (!f) return std::nullopt;
+    if (wants_picture(o.pictures, f->status)) {
+      write_file_atomically(stem + ".svg", render_fleet_svg(sc, *f));
+      write_file_atomically(stem + ".html", render_fleet_html(sc, *f));
+    }
+    // The fleet's line holds the fleet's summary without each robot's (there can be thousands).
+    Json summary = fleet_run_summary(c.scenario, *f, ctx);
+    summary.erase("robots");
+    return case_line(c, summary, o.timing);
+  }
+  if (o.optimum && !c.optimal_length) ctx.optimum = compute_optimum(sc);
+  auto r = run_timed(sc, o.stop, halt);
+  if (!r) return std::nullopt;
+  if (wants_picture(o.pictures, r->status)) {
+    write_file_atomically(stem + ".svg", render_trajectory_svg(sc, *r));
+    write_file_atomically(stem + ".html", render_trajectory_html(sc, *r));
+  }
+  return case_line(c, run_summary(c.scenario, *r, ctx), o.timing);
+}
+
+std::string sweep_text(const SweepInfo& s, std::size_t shard_cases) {
+  Json j = Json::object();
+  j["sweep_id"] = s.id;
+  j["shard"] = s.shard;
+  j["shards"] = s.shards;
+  j["cases"] = s.cases;
+  j["shard_cases"] = shard_cases;
+  j["floornav_version"] = floornav_version();
+  return j.dump(2) + "\n";
+}
+
+/// sweep.json of a folder, or nullopt when it has none.
+std::optional<Json> read_sweep(const std::filesystem::path& dir) {
+  const auto path = dir / "sweep.json";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  std::ifstream in(path);
+  Json j = Json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("sweep_id") || !j["sweep_id"].is_string() ||
+      !j.contains("shard") || !j["shard"].is_number_integer() || !j.contains("shards") ||
+      !j["shards"].is_number_integer() || !j.contains("cases") || !j["cases"].is_number_unsigned())
+    throw InputError(path.string(), "", "not a sweep.json written by floornav batch");
+  return j;
+}
+
+/// The lines of a results.jsonl, by case number. A line cut short (an interrupted write) is
+/// skipped when `tolerate_cut` (resume: that case runs again), an error otherwise (merge).
+std::map<std::size_t, Json> read_results(const std::filesystem::path& path, bool tolerate_cut) {
+  std::map<std::size_t, Json> out;
+  std::ifstream in(path);
+  if (!in) {
+    if (tolerate_cut) return out;
+    throw InputError(path.string(), "", "cannot be read (is this a batch output folder?)");
+  }
+  std::string text;
+  for (std::size_t n = 1; std::getline(in, text); ++n) {
+    if (text.empty()) continue;
+    Json j = Json::parse(text, nullptr, false);
+    if (j.is_discarded() || !j.is_object() || !j.contains("case") ||
+        !j["case"].is_number_unsigned()) {
+      if (tolerate_cut) continue;
+      throw InputError(path.string(), "line " + std::to_string(n),
+                       "not a result line (cut short, or not written by floornav batch)");
+    }
+    // The case number first: the line itself is moved into the map only after it was read.
+    const auto id = j["case"].get<std::size_t>();
+    out[id] = std::move(j);
+  }
+  return out;
+}
+
 void draw_progress(std::size_t done, std::size_t total, double elapsed) {
   const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
   const double eta = rate > 0 ? static_cast<double>(total - done) / rate : 0.0;
@@ -127,17 +169,27 @@ void draw_progress(std::size_t done, std::size_t total, double elapsed) {
   std::fflush(stderr);
 }
 
+/// "case 7, 10, 13 and 5 more".
+std::string list_cases(const std::vector<std::size_t>& ids) {
+  std::string out;
+  const std::size_t shown = std::min<std::size_t>(ids.size(), 5);
+  for (std::size_t i = 0; i < shown; ++i) out += (i ? ", " : "") + std::to_string(ids[i]);
+  if (ids.size() > shown) out += fmt::format(" and {} more", ids.size() - shown);
+  return out;
+}
+
 }  // namespace
 
 nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_json>& lines) {
   struct Totals {
     std::size_t n = 0, reached = 0, collision = 0, timeout = 0, stuck = 0;
-    double time_sum = 0, path_sum = 0, clearance_min = 1e300;
+    double time_sum = 0, path_sum = 0;
+    std::optional<double> clearance_min;  // none until a line has a finite one
     std::size_t efficiency_n = 0, score_n = 0, optimum_n = 0;
     double efficiency_sum = 0, score_sum = 0, optimum_sum = 0;
     std::map<std::string, std::size_t> optimum_sources;
   };
-  auto add = [](Totals& t, const nlohmann::ordered_json& l) {
+  auto add = [](Totals& t, const Json& l) {
     ++t.n;
     const std::string s = l.value("status", "");
     if (s == "reached") {
@@ -156,11 +208,13 @@ nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_jso
     }
     if (l.contains("score") && l["score"].is_number())
       ++t.score_n, t.score_sum += l["score"].get<double>();
-    if (l.contains("min_clearance") && l["min_clearance"].is_number())
-      t.clearance_min = std::min(t.clearance_min, l["min_clearance"].get<double>());
+    if (l.contains("min_clearance") && l["min_clearance"].is_number()) {
+      const double c = l["min_clearance"].get<double>();
+      t.clearance_min = t.clearance_min ? std::min(*t.clearance_min, c) : c;
+    }
   };
   auto render = [](const Totals& t) {
-    nlohmann::ordered_json j;
+    Json j;
     const double n = t.n ? static_cast<double>(t.n) : 1.0;
     j["runs"] = t.n;
     j["reached"] = t.reached;
@@ -169,10 +223,10 @@ nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_jso
     j["timeout_rate"] = static_cast<double>(t.timeout) / n;
     j["stuck_rate"] = static_cast<double>(t.stuck) / n;
     j["mean_time_reached"] =
-        t.reached ? nlohmann::ordered_json(t.time_sum / static_cast<double>(t.reached)) : nullptr;
+        t.reached ? Json(t.time_sum / static_cast<double>(t.reached)) : Json(nullptr);
     j["mean_path_length_reached"] =
-        t.reached ? nlohmann::ordered_json(t.path_sum / static_cast<double>(t.reached)) : nullptr;
-    j["min_clearance"] = t.n ? nlohmann::ordered_json(t.clearance_min) : nullptr;
+        t.reached ? Json(t.path_sum / static_cast<double>(t.reached)) : Json(nullptr);
+    j["min_clearance"] = t.clearance_min ? Json(*t.clearance_min) : Json(nullptr);
     if (t.efficiency_n)
       j["mean_path_efficiency_reached"] = t.efficiency_sum / static_cast<double>(t.efficiency_n);
     if (t.optimum_n) {
@@ -189,25 +243,55 @@ nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_jso
     add(all, l);
     add(by_kind[l.value("controller", "unknown")], l);
   }
-  nlohmann::ordered_json out = render(all);
-  nlohmann::ordered_json kinds = nlohmann::ordered_json::object();
+  Json out = render(all);
+  Json kinds = Json::object();
   for (const auto& [k, t] : by_kind) kinds[k] = render(t);
   out["by_controller"] = kinds;
   return out;
 }
 
 BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& options) {
+  std::map<std::size_t, std::size_t> index;  // case id -> position in `cases`
+  CaseList list;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    index[cases[i].id] = i;
+    list.ids.push_back(cases[i].id);
+  }
+  std::sort(list.ids.begin(), list.ids.end());
+  list.make = [&](std::size_t id) { return cases[index.at(id)]; };
+  return run_batch(list, options);
+}
+
+BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
   ensure_directory(options.out_dir);
   if (options.pictures != BatchPictures::None) ensure_directory(options.pictures_dir);
   const auto results_path = options.out_dir / "results.jsonl";
-  const std::size_t n = cases.size();
-  std::vector<std::optional<nlohmann::ordered_json>> lines(n);
+  const auto sweep_path = options.out_dir / "sweep.json";
+  const std::size_t n = cases.ids.size();
+  std::vector<std::optional<Json>> lines(n);
+  std::size_t resumed = 0;
   if (options.resume) {
-    std::map<std::size_t, std::size_t> position;  // case id -> index in `cases`
-    for (std::size_t i = 0; i < n; ++i) position[cases[i].id] = i;
-    for (auto& [id, line] : read_existing(results_path))
-      if (auto it = position.find(id); it != position.end()) lines[it->second] = std::move(line);
+    // Only a folder of this very sweep and shard may be resumed: its lines are kept as they are.
+    if (auto old = read_sweep(options.out_dir)) {
+      if ((*old)["sweep_id"] != options.sweep.id || (*old)["shard"] != options.sweep.shard ||
+          (*old)["shards"] != options.sweep.shards)
+        throw InputError(
+            sweep_path.string(), "",
+            fmt::format("holds shard {}/{} of sweep {}, not shard {}/{} of this sweep ({}): "
+                        "give another --out, or leave out --resume to start again",
+                        (*old)["shard"].get<int>(), (*old)["shards"].get<int>(),
+                        (*old)["sweep_id"].get<std::string>(), options.sweep.shard,
+                        options.sweep.shards, options.sweep.id));
+    }
+    std::map<std::size_t, std::size_t> position;  // case id -> index in `ids`
+    for (std::size_t i = 0; i < n; ++i) position[cases.ids[i]] = i;
+    for (auto& [id, line] : read_results(results_path, true))
+      if (auto it = position.find(id); it != position.end()) {
+        lines[it->second] = std::move(line);
+        ++resumed;
+      }
   }
+  write_file_atomically(sweep_path, sweep_text(options.sweep, n));
 
   std::vector<std::size_t> todo;
   for (std::size_t i = 0; i < n; ++i)
@@ -215,54 +299,53 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
 
   // Lines are appended in case order; a finished case waits until all before it are written.
   // The file is rewritten (atomically) at the end, so resumed files end up identical too.
-  std::FILE* out = std::fopen(results_path.c_str(), options.resume ? "a" : "w");
-  if (!out) throw InputError(results_path.string(), "", "cannot open for writing");
+  // Resumed lines are rewritten first, so that the file never holds a case twice.
+  {
+    std::string kept;
+    for (const auto& l : lines)
+      if (l) kept += l->dump() + "\n";
+    write_file_atomically(results_path, kept);
+  }
+  std::FILE* out = std::fopen(results_path.c_str(), "a");
+  if (!out)
+    throw InputError(results_path.string(), "",
+                     std::string("cannot write: ") + std::strerror(errno));
 
   std::mutex mutex;
   std::condition_variable cv;
-  std::size_t next_job = 0, done = n - todo.size();
+  std::size_t next_job = 0, done = n - todo.size(), ran = 0;
   std::vector<bool> fresh(n, false);
+  std::atomic<bool> halt{false};  // the user's stop, or a failure: workers abandon their cases
+  std::exception_ptr failure;
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const int jobs = options.jobs > 0 ? options.jobs : static_cast<int>(hw);
-  auto stopped = [&] { return options.stop && options.stop->load(); };
+  auto user_stop = [&] { return options.stop && options.stop->load(); };
 
   auto worker = [&] {
     while (true) {
       std::size_t i;
       {
         std::lock_guard lock(mutex);
-        if (next_job >= todo.size() || stopped()) return;
+        if (next_job >= todo.size() || halt.load() || user_stop()) return;
         i = todo[next_job++];
       }
-      Scenario sc = cases[i].scenario;  // shares the world; copies only small data
-      const bool pictures = options.pictures != BatchPictures::None;
-      sc.sim.record_trajectory = pictures;
-      if (pictures) prepare_outputs(sc);
-      const std::filesystem::path stem = options.pictures_dir / picture_stem(cases[i]);
-      nlohmann::ordered_json line;
-      if (sc.is_fleet()) {
-        // A fleet: one thread per case, like every case (the batch is parallel across cases).
-        const FleetResult f = run_fleet_timed(sc, 1);
-        line = fleet_result_line(cases[i], f, options.timing);
-        if (wants_picture(options.pictures, f.status)) {
-          write_file_atomically(stem.string() + ".svg", render_fleet_svg(sc, f));
-          write_file_atomically(stem.string() + ".html", render_fleet_html(sc, f));
-        }
-      } else {
-        std::optional<Optimum> optimum;
-        if (options.optimum && !cases[i].optimal_length) optimum = case_optimum(sc);
-        const RunResult r = run_timed(sc);
-        line = result_line(cases[i], r, options.timing, optimum);
-        if (wants_picture(options.pictures, r.status)) {
-          write_file_atomically(stem.string() + ".svg", render_trajectory_svg(sc, r));
-          write_file_atomically(stem.string() + ".html", render_trajectory_html(sc, r));
-        }
+      std::optional<Json> line;
+      try {
+        const BatchCase c = cases.make(cases.ids[i]);
+        line = run_case(c, options, &halt);
+      } catch (...) {
+        std::lock_guard lock(mutex);
+        if (!failure) failure = std::current_exception();
+        halt.store(true);
       }
       {
         std::lock_guard lock(mutex);
-        lines[i] = std::move(line);
-        fresh[i] = true;
-        ++done;
+        if (line) {
+          lines[i] = std::move(line);
+          fresh[i] = true;
+          ++done;
+          ++ran;
+        }
       }
       cv.notify_one();
     }
@@ -273,50 +356,59 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
   const int workers = std::max(1, std::min<int>(jobs, static_cast<int>(todo.size())));
   for (int k = 0; k < workers && !todo.empty(); ++k) threads.emplace_back(worker);
 
-  // Writer loop: append finished lines in order while workers run.
+  // Writer loop: append finished lines in order while workers run. Every write and flush is
+  // checked: at the first failure (a full disk) the workers stop and nothing more is run.
   std::size_t written_upto = 0;  // fresh lines [0, written_upto) are on disk
+  std::string write_error;
+  auto append = [&](const Json& l) {
+    const std::string text = l.dump() + "\n";
+    if (std::fputs(text.c_str(), out) < 0 || std::fflush(out) != 0)
+      write_error = std::strerror(errno);
+  };
   while (true) {
     std::unique_lock lock(mutex);
     cv.wait_for(lock, std::chrono::milliseconds(100));
-    while (written_upto < n && lines[written_upto]) {
-      if (fresh[written_upto]) {
-        const std::string text = lines[written_upto]->dump() + "\n";
-        if (std::fputs(text.c_str(), out) < 0) {
-          std::fclose(out);
-          throw InputError(results_path.string(), "", "write failed (disk full?)");
-        }
-      }
+    if (user_stop()) halt.store(true);
+    while (write_error.empty() && written_upto < n && lines[written_upto]) {
+      if (fresh[written_upto]) append(*lines[written_upto]);
       ++written_upto;
     }
-    std::fflush(out);
+    if (!write_error.empty()) halt.store(true);
     const bool all_done = done == n;
-    const bool workers_idle = next_job >= todo.size() || stopped();
+    const bool idle = next_job >= todo.size() || halt.load();
     if (options.progress)
       draw_progress(done, n,
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    if (all_done || (workers_idle && stopped())) break;
+    if (all_done || (idle && halt.load())) break;
   }
   for (auto& t : threads) t.join();
   // Lines finished out of order before an interruption are kept too.
-  for (std::size_t i = written_upto; i < n; ++i)
-    if (lines[i] && fresh[i]) std::fputs((lines[i]->dump() + "\n").c_str(), out);
-  std::fclose(out);
+  for (std::size_t i = written_upto; i < n && write_error.empty(); ++i)
+    if (lines[i] && fresh[i]) append(*lines[i]);
+  if (std::fclose(out) != 0 && write_error.empty()) write_error = std::strerror(errno);
   if (options.progress) std::fprintf(stderr, "\n");
+  if (!write_error.empty())
+    throw InputError(results_path.string(), "",
+                     "cannot write: " + write_error + " (the batch stopped; --resume goes on)");
+  if (failure) std::rethrow_exception(failure);
 
   BatchOutcome outcome;
   outcome.total = n;
-  std::vector<nlohmann::ordered_json> finished;
+  outcome.resumed = resumed;
+  outcome.ran = ran;
+  std::vector<Json> finished;
   for (auto& l : lines)
     if (l) finished.push_back(*l);
   outcome.completed = finished.size();
   outcome.interrupted = outcome.completed < n;
   outcome.aggregate = aggregate_results(finished);
+  outcome.aggregate["sweep_id"] = options.sweep.id;
   outcome.aggregate["complete"] = !outcome.interrupted;
   if (!outcome.interrupted) {
     // Canonical form: every line in case order, whatever order resumed runs appended them in.
-    std::string all;
-    for (auto& l : finished) all += l.dump() + "\n";
-    write_file_atomically(results_path, all);
+    write_file_atomically(results_path, [&](const std::function<void(std::string_view)>& sink) {
+      for (const Json& l : finished) sink(l.dump() + "\n");
+    });
   }
   write_file_atomically(options.out_dir / "aggregate.json", outcome.aggregate.dump(2) + "\n");
   return outcome;
@@ -335,43 +427,117 @@ std::vector<BatchCase> select_shard(std::vector<BatchCase> cases, int k, int n) 
   return out;
 }
 
-nlohmann::ordered_json merge_batches(std::span<const std::filesystem::path> dirs,
-                                     const std::filesystem::path& out_dir) {
-  std::map<std::size_t, nlohmann::ordered_json> all;
+std::vector<std::size_t> shard_ids(std::size_t count, int k, int n) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = static_cast<std::size_t>(k - 1); i < count; i += static_cast<std::size_t>(n))
+    out.push_back(i);
+  return out;
+}
+
+MergeOutcome merge_batches(std::span<const std::filesystem::path> dirs,
+                           const std::filesystem::path& out_dir, bool allow_partial) {
+  if (dirs.empty()) throw InputError("", "merge", "no batch folders given");
+  struct Shard {
+    std::filesystem::path dir;
+    Json sweep;
+  };
+  std::vector<Shard> shards;
   for (const auto& d : dirs) {
-    const auto path = d / "results.jsonl";
-    std::ifstream in(path);
-    if (!in) throw InputError(path.string(), "", "cannot open for reading");
-    std::string text;
-    for (std::size_t n = 1; std::getline(in, text); ++n) {
-      if (text.empty()) continue;
-      nlohmann::ordered_json j;
-      try {
-        j = nlohmann::ordered_json::parse(text);
-      } catch (const std::exception&) {
-        throw InputError(path.string(), "line " + std::to_string(n), "not a JSON line");
-      }
-      if (!j.contains("case") || !j["case"].is_number_unsigned())
-        throw InputError(path.string(), "line " + std::to_string(n), "no case number");
-      const auto id = j["case"].get<std::size_t>();
-      if (auto it = all.find(id); it != all.end() && it->second != j)
-        throw InputError(path.string(), "line " + std::to_string(n),
-                         "case " + std::to_string(id) + " differs from another shard's");
-      all[id] = std::move(j);
-    }
+    std::error_code ec;
+    if (!std::filesystem::is_directory(d, ec))
+      throw InputError(d.string(), "",
+                       std::filesystem::exists(d, ec) ? "is not a directory (a batch --out folder)"
+                                                      : "does not exist");
+    auto s = read_sweep(d);
+    if (!s)
+      throw InputError(d.string(), "",
+                       "has no sweep.json: not a folder written by floornav batch (or by a version "
+                       "before sweeps were checked); its shards cannot be checked");
+    shards.push_back({d, std::move(*s)});
   }
-  ensure_directory(out_dir);
-  std::string text;
-  std::vector<nlohmann::ordered_json> lines;
-  for (auto& [id, j] : all) {
-    text += j.dump() + "\n";
-    lines.push_back(j);
+  // One sweep, one shard count, each shard once.
+  const Json& first = shards.front().sweep;
+  const std::string id = first["sweep_id"];
+  const int n = first["shards"];
+  const std::size_t total = first["cases"];
+  std::map<int, std::filesystem::path> by_shard;
+  for (const Shard& s : shards) {
+    if (s.sweep["sweep_id"] != id || s.sweep["cases"] != total)
+      throw InputError(
+          s.dir.string(), "",
+          fmt::format("is sweep {} ({} cases), but {} is sweep {} ({} cases): mixed "
+                      "sweeps cannot be merged",
+                      s.sweep["sweep_id"].get<std::string>(), s.sweep["cases"].get<std::size_t>(),
+                      shards.front().dir.string(), id, total));
+    if (s.sweep["shards"] != n)
+      throw InputError(s.dir.string(), "",
+                       fmt::format("is shard {}/{}, but {} is a shard of {}: the same sweep split "
+                                   "two ways cannot be merged",
+                                   s.sweep["shard"].get<int>(), s.sweep["shards"].get<int>(),
+                                   shards.front().dir.string(), n));
+    const int k = s.sweep["shard"];
+    if (k < 1 || k > n)
+      throw InputError((s.dir / "sweep.json").string(), "", fmt::format("shard {}/{}?", k, n));
+    if (auto [it, fresh] = by_shard.emplace(k, s.dir); !fresh)
+      throw InputError(s.dir.string(), "",
+                       fmt::format("is shard {}/{} again (so is {}): give each shard once", k, n,
+                                   it->second.string()));
   }
-  write_file_atomically(out_dir / "results.jsonl", text);
-  nlohmann::ordered_json aggregate = aggregate_results(lines);
-  aggregate["complete"] = true;  // as far as the shards given go
-  write_file_atomically(out_dir / "aggregate.json", aggregate.dump(2) + "\n");
-  return aggregate;
+  MergeOutcome outcome;
+  outcome.total = total;
+  for (int k = 1; k <= n; ++k)
+    if (!by_shard.count(k)) outcome.missing_shards.push_back(k);
+  if (!outcome.missing_shards.empty() && !allow_partial) {
+    std::string missing;
+    for (std::size_t i = 0; i < outcome.missing_shards.size(); ++i)
+      missing += (i ? ", " : "") + fmt::format("{}/{}", outcome.missing_shards[i], n);
+    throw InputError("", "merge",
+                     fmt::format("shard{} {} of sweep {} {} missing: give every shard's folder "
+                                 "(or --allow-partial to merge what there is, marked incomplete)",
+                                 outcome.missing_shards.size() == 1 ? "" : "s", missing, id,
+                                 outcome.missing_shards.size() == 1 ? "is" : "are"));
+  }
+  // Each shard holds exactly its own cases, and all of them.
+  std::map<std::size_t, Json> all;
+  for (const auto& [k, dir] : by_shard) {
+    const auto lines = read_results(dir / "results.jsonl", false);
+    const std::vector<std::size_t> ids = shard_ids(total, k, n);
+    const std::set<std::size_t> own(ids.begin(), ids.end());
+    for (const auto& [case_id, line] : lines)
+      if (!own.count(case_id))
+        throw InputError(
+            (dir / "results.jsonl").string(), "",
+            fmt::format("holds case {}, which is not a case of shard {}/{}", case_id, k, n));
+    std::vector<std::size_t> missing;
+    for (const std::size_t i : ids)
+      if (!lines.count(i)) missing.push_back(i);
+    if (!missing.empty() && !allow_partial)
+      throw InputError(dir.string(), "",
+                       fmt::format("shard {}/{} is incomplete: {} of its {} cases are missing "
+                                   "(case {}); finish it with --resume, or --allow-partial",
+                                   k, n, missing.size(), ids.size(), list_cases(missing)));
+    for (const auto& [case_id, line] : lines) all[case_id] = line;
+  }
+  std::vector<Json> lines;
+  lines.reserve(all.size());
+  for (auto& [case_id, j] : all) lines.push_back(std::move(j));
+  outcome.merged = lines.size();
+  outcome.complete = outcome.merged == total;
+  outcome.aggregate = aggregate_results(lines);
+  outcome.aggregate["sweep_id"] = id;
+  outcome.aggregate["complete"] = outcome.complete;
+  if (!outcome.complete) outcome.aggregate["missing_cases"] = total - outcome.merged;
+  // The merged folder is the whole sweep as one batch (shard 1 of 1): merged files equal one
+  // big run's. All three appear together.
+  OutputFolder folder(out_dir);
+  folder.write("results.jsonl", [&](const std::function<void(std::string_view)>& sink) {
+    for (const Json& l : lines) sink(l.dump() + "\n");
+  });
+  folder.write("aggregate.json", outcome.aggregate.dump(2) + "\n");
+  SweepInfo merged{id, 1, 1, total};
+  folder.write("sweep.json", sweep_text(merged, outcome.merged));
+  folder.commit();
+  return outcome;
 }
 
 }  // namespace floornav

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/crowd_csv.hpp"
@@ -15,16 +16,35 @@
 
 namespace floornav {
 
+namespace {
+/// A clearance for the one-line report: "none" when nothing was ever near enough to measure.
+std::string clearance_text(double c) {
+  return std::isfinite(c) ? fmt::format("{:.3f} m", c) : std::string("none");
+}
+}  // namespace
+
 void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,
                        const RunResult& result, const OutputSelection& which) {
-  ensure_directory(dir);
+  write_run_outputs(dir, scenario, result, RunContext{}, which);
+}
+
+void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,
+                       const RunResult& result, const RunContext& context,
+                       const OutputSelection& which) {
+  // Every file of the run appears together, or none does (a full disk, a signal).
+  OutputFolder out(dir);
   if (which.summary)
-    write_file_atomically(dir / "summary.json", summary_to_json(result).dump(2) + "\n");
-  if (which.csv) write_file_atomically(dir / "trajectory.csv", trajectory_to_csv(result));
-  if (which.svg)
-    write_file_atomically(dir / "trajectory.svg", render_trajectory_svg(scenario, result));
+    out.write("summary.json", run_summary(scenario, result, context).dump(2) + "\n");
+  if (which.csv)
+    out.write("trajectory.csv", [&](const std::function<void(std::string_view)>& sink) {
+      trajectory_csv_pieces(result, sink);
+    });
+  if (which.transitions)
+    out.write("transitions.csv", transitions_to_csv(result, scenario.robot().name));
+  if (which.svg) out.write("trajectory.svg", render_trajectory_svg(scenario, result));
   if (which.html && !result.trajectory.empty())
-    write_file_atomically(dir / "trajectory.html", render_trajectory_html(scenario, result));
+    out.write("trajectory.html", render_trajectory_html(scenario, result));
+  out.commit();
 }
 
 void prepare_outputs(Scenario& scenario, const OutputSelection& which) {
@@ -33,11 +53,10 @@ void prepare_outputs(Scenario& scenario, const OutputSelection& which) {
 }
 
 std::string describe_run(const RunResult& r) {
-  std::string out = fmt::format(
-      "{}: {} in {:.1f} s, path {:.2f} m, min clearance {:.3f} m, {} "
-      "switch{}",
-      r.scenario, to_string(r.status), r.sim_time, r.path_length, r.min_clearance, r.mode_switches,
-      r.mode_switches == 1 ? "" : "es");
+  std::string out =
+      fmt::format("{}: {} in {:.1f} s, path {:.2f} m, min clearance {}, {} switch{}", r.scenario,
+                  to_string(r.status), r.sim_time, r.path_length, clearance_text(r.min_clearance),
+                  r.mode_switches, r.mode_switches == 1 ? "" : "es");
   if (r.goal_count > 1) out += fmt::format(", {}/{} goals", r.goals_reached, r.goal_count);
   if (r.chatter_episodes > 0)
     out += fmt::format(", chatter (Zeno) from t = {:.2f} s", r.first_chatter_time);
@@ -51,32 +70,53 @@ RunResult run_timed(const Scenario& scenario) {
   return r;
 }
 
+std::optional<RunResult> run_timed(const Scenario& scenario, const std::atomic<bool>* stop,
+                                   const std::atomic<bool>* also) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Simulation sim = make_simulation(scenario);
+  // The stop flags are read once per step (relaxed loads): a case is abandoned mid-run, so that
+  // an interrupt never waits for a long case to end.
+  const auto stopped = [&] {
+    return (stop != nullptr && stop->load(std::memory_order_relaxed)) ||
+           (also != nullptr && also->load(std::memory_order_relaxed));
+  };
+  while (sim.step())
+    if (stopped()) return std::nullopt;
+  RunResult r = sim.result();
+  r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
 void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scenario,
                          const FleetResult& result, const OutputSelection& which) {
-  ensure_directory(dir);
+  write_fleet_outputs(dir, scenario, result, RunContext{}, which);
+}
+
+void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scenario,
+                         const FleetResult& result, const RunContext& context,
+                         const OutputSelection& which) {
+  OutputFolder out(dir);
   if (which.summary)
-    write_file_atomically(dir / "summary.json", fleet_summary_to_json(result).dump(2) + "\n");
+    out.write("summary.json", fleet_run_summary(scenario, result, context).dump(2) + "\n");
   if (which.csv)
-    write_file_atomically(dir / "trajectory.csv",
-                          [&](const std::function<void(std::string_view)>& sink) {
-                            trajectory_csv_pieces(result, sink);
-                          });
-  if (which.svg) write_file_atomically(dir / "trajectory.svg", render_fleet_svg(scenario, result));
+    out.write("trajectory.csv", [&](const std::function<void(std::string_view)>& sink) {
+      trajectory_csv_pieces(result, sink);
+    });
+  if (which.transitions) out.write("transitions.csv", transitions_to_csv(result));
+  if (which.svg) out.write("trajectory.svg", render_fleet_svg(scenario, result));
   const bool recorded = std::any_of(result.robots.begin(), result.robots.end(),
                                     [](const RunResult& r) { return !r.trajectory.empty(); });
-  if (which.html && recorded)
-    write_file_atomically(dir / "trajectory.html", render_fleet_html(scenario, result));
+  if (which.html && recorded) out.write("trajectory.html", render_fleet_html(scenario, result));
   // People and forklifts: their tracks beside the robots'.
-  if (which.csv && !result.crowd.empty())
-    write_file_atomically(dir / "crowd.csv", crowd_to_csv(result.crowd));
+  if (which.csv && !result.crowd.empty()) out.write("crowd.csv", crowd_to_csv(result.crowd));
+  out.commit();
 }
 
 std::string describe_fleet(const FleetResult& f) {
   std::string out = fmt::format(
-      "{}: {} robots, {} reached, {} collided, {}/{} deliveries in {:.1f} s, min clearance "
-      "{:.3f} m",
+      "{}: {} robots, {} reached, {} collided, {}/{} deliveries in {:.1f} s, min clearance {}",
       f.scenario, f.robots.size(), f.reached, f.collided, f.deliveries, f.delivery_count,
-      f.sim_time, f.min_clearance);
+      f.sim_time, clearance_text(f.min_clearance));
   if (!f.crowd.empty())
     out += fmt::format(", {} people, {} forklifts: {} person and {} forklift contacts",
                        f.crowd.people.size(), f.crowd.forklifts.size(),
@@ -87,6 +127,24 @@ std::string describe_fleet(const FleetResult& f) {
 FleetResult run_fleet_timed(const Scenario& scenario, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   FleetResult r = simulate_fleet(scenario, threads);
+  r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+std::optional<FleetResult> run_fleet_timed(const Scenario& scenario, int threads,
+                                           const std::atomic<bool>* stop,
+                                           const std::atomic<bool>* also) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FleetSimulation sim = make_fleet_simulation(scenario);
+  const auto stopped = [&] {
+    return (stop != nullptr && stop->load(std::memory_order_relaxed)) ||
+           (also != nullptr && also->load(std::memory_order_relaxed));
+  };
+  // A stop is looked at every 64 world steps (each step of a big fleet is long enough).
+  while (sim.run_steps(64, threads) > 0 && !sim.finished())
+    if (stopped()) return std::nullopt;
+  if (!sim.finished() && stopped()) return std::nullopt;
+  FleetResult r = sim.take_result();
   r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

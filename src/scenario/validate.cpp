@@ -48,7 +48,11 @@ void validate_sim(const SimConfig& sim, const std::string& file) {
   if (!(sim.dt > 0.0)) bad("sim.dt", fmt::format("must be positive, got {}", sim.dt));
   if (!(sim.t_max > 0.0) || sim.t_max > 1e6)
     bad("sim.t_max", fmt::format("must be in (0, 1e6] s, got {}", sim.t_max));
-  if (sim.t_max / sim.dt > 1e9) bad("sim.t_max", "more than 1e9 steps");
+  // Steps are bounded so that no file can make a run that never ends (the recorded trajectory is
+  // bounded again, more tightly, by whoever records it).
+  if (sim.t_max / sim.dt > kMaxSteps)
+    bad("sim.t_max", fmt::format("t_max / dt = {:.6g} steps, more than the {:.0e} a run may take",
+                                 sim.t_max / sim.dt, kMaxSteps));
   if (!(sim.stuck_window > 0.0)) bad("sim.stuck_window", "must be positive");
   if (sim.stuck_radius < 0.0) bad("sim.stuck_radius", "must not be negative");
   if (sim.record_ranges_every < 0)
@@ -128,7 +132,11 @@ void validate_controller(const NavigationParams& n, const RobotKeys& k) {
   if (n.chatter_switches < 2 || n.chatter_switches > ChatterMonitor::kCapacity)
     bad("chatter_switches", fmt::format("must be between 2 and {}", ChatterMonitor::kCapacity));
   if (!(n.chatter_window > 0.0)) bad("chatter_window", "must be positive");
-  if (n.heading_pid.integral_limit < 0.0) bad("pid.integral_limit", "must not be negative");
+  if (!(n.heading_pid.kp >= 0.0)) bad("pid.kp", "must not be negative");
+  if (!(n.heading_pid.ki >= 0.0)) bad("pid.ki", "must not be negative");
+  if (!(n.heading_pid.kd >= 0.0)) bad("pid.kd", "must not be negative");
+  if (!(n.heading_pid.integral_limit >= 0.0)) bad("pid.integral_limit", "must not be negative");
+  if (!(n.obstacle_range >= 0.0)) bad("obstacle_range", "must not be negative (0: use all)");
   validate_planner(n.planner, k);
   validate_dwa(n.dwa, k);
   if (!(n.avoidance_range > 0.0) || n.avoidance_range > 1000.0)

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "floornav/geometry/angle.hpp"
 #include "floornav/kinematics/unicycle.hpp"
 #include "floornav/nav/heading_tracker.hpp"
 #include "floornav/robot/body_clearance.hpp"
@@ -65,6 +66,7 @@ RobotAgent::RobotAgent(AgentSetup setup)
     r.guard_names = controller_->guard_names();
   }
   r.mode_time.assign(controller_->mode_names().size(), 0.0);
+  mode_steps_.assign(r.mode_time.size(), 0);
   if (log_transitions_) {
     r.transitions.reserve(kReservedTransitions);
     r.transition_x.reserve(kReservedTransitions);
@@ -82,6 +84,20 @@ RobotAgent::RobotAgent(AgentSetup setup)
       r.trajectory.reserve(static_cast<std::size_t>(std::min(steps, 2.0e6)));
     r.trajectory.push_back(
         {0.0, pose_.position.x(), pose_.position.y(), pose_.theta, 0.0, 0.0, 0.0, 0.0, mode_});
+    record_extras_ = sim_->record.any();
+    if (record_extras_) {
+      const RecordOptions& o = sim_->record;
+      auto& c = r.extra_columns;
+      if (o.command) c.insert(c.end(), {"u_x", "u_y", "v_cmd", "omega_cmd"});
+      if (o.heading) c.insert(c.end(), {"theta_d", "heading_error"});
+      if (o.clearance) c.push_back("clearance");
+      if (o.goal) c.insert(c.end(), {"goal_index", "goal_x", "goal_y"});
+      if (o.ranges)
+        for (std::size_t i = 0; i < n_sensors; ++i) c.push_back("range_" + std::to_string(i));
+      last_u_ = Vec2(std::nan(""), std::nan(""));
+      last_wanted_ = {std::nan(""), std::nan("")};
+      record_extras(nullptr);  // the start: no command yet, nothing sensed yet
+    }
   }
   if (goals_.empty())
     finish(RunStatus::Reached);
@@ -120,6 +136,32 @@ void RobotAgent::log_transition(double t, int to, int guard) {
   }
   ++r.mode_switches;
   chatter_.record(t, nav_->chatter_switches, nav_->chatter_window);
+}
+
+void RobotAgent::record_extras(const SensingScratch* scratch) {
+  const RecordOptions& o = sim_->record;
+  std::vector<double>& v = result_.extra;
+  const double nan = std::nan("");
+  if (o.command) v.insert(v.end(), {last_u_.x(), last_u_.y(), last_wanted_.v, last_wanted_.omega});
+  if (o.heading) {
+    // eqs. 5.28 and 5.14, as the pipeline of Fig 5.12 computed them (none for a still u).
+    const bool steered = std::isfinite(last_u_.x()) && last_u_.norm() > 1e-9;
+    const double theta_d = steered ? std::atan2(last_u_.y(), last_u_.x()) : nan;
+    v.insert(v.end(), {theta_d, steered ? wrap_angle(theta_d - last_theta_) : nan});
+  }
+  if (o.clearance) v.push_back(body_clearance(*world_, *robot_, pose_));
+  if (o.goal && goals_.empty()) v.insert(v.end(), {nan, nan, nan});
+  if (o.goal && !goals_.empty()) {
+    const std::size_t g = std::min(goal_index_, goals_.size() - 1);
+    v.insert(v.end(), {static_cast<double>(g), goals_[g].x(), goals_[g].y()});
+  }
+  if (o.ranges) {
+    const std::size_t n = robot_->sensors.size();
+    if (scratch == nullptr)
+      v.insert(v.end(), n, nan);
+    else
+      v.insert(v.end(), scratch->ranges.begin(), scratch->ranges.begin() + static_cast<long>(n));
+  }
 }
 
 void RobotAgent::collide_with_robot(double gap) {
@@ -199,7 +241,8 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
         d.guard >= static_cast<int>(controller_->guard_names().size()) || d.guard < -1)
       throw std::out_of_range(
           fmt_decision_error(d.mode, d.guard, modes, controller_->guard_names().size()));
-    if (d.mode != mode_ || d.guard >= 0) log_transition(t_ + dt, d.mode, d.guard);
+    if (d.mode != mode_ || d.guard >= 0)
+      log_transition(static_cast<double>(r.steps + 1) * dt, d.mode, d.guard);
     mode_ = d.mode;
     command = d.command;
   }
@@ -238,6 +281,12 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
       wanted = wheels_to_unicycle(robot.drive, command.wheel_speeds());
       break;
   }
+  if (record_extras_) {
+    last_u_ =
+        command.kind() == Command::Kind::Velocity ? command.u() : Vec2(std::nan(""), std::nan(""));
+    last_wanted_ = wanted;
+    last_theta_ = pose_.theta;
+  }
   const WheelSpeeds wheels = saturate_wheels(robot.drive, wanted);
   const UnicycleCommand driven = wheels_to_unicycle(robot.drive, wheels);
 
@@ -250,12 +299,15 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
   pose_ = next;
   t_ += dt;
   ++r.steps;
-  r.mode_time[static_cast<std::size_t>(mode_)] += dt;
+  // Counted in steps, like the clock: a sum of dt's drifts (15.149999999999721).
+  const auto m = static_cast<std::size_t>(mode_);
+  r.mode_time[m] = static_cast<double>(++mode_steps_[m]) * dt;
 
   // 7. record (before the checks, so the final row is the state the run ended in)
   if (sim_->record_trajectory)
     r.trajectory.push_back({recorded_time(r.steps), pose_.position.x(), pose_.position.y(),
                             pose_.theta, driven.v, driven.omega, wheels.left, wheels.right, mode_});
+  if (record_extras_) record_extras(&scratch);
 
   // 6. check. A disc body's clearance changes by at most the distance moved, so while that
   // lower bound stays above min_clearance the exact value could change neither min_clearance

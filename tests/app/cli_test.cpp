@@ -78,7 +78,7 @@ TEST(Cli, SetChangesTheController) {
 TEST(Cli, BadInputExitsWithStatus2AndOneMessage) {
   Output o = floornav("run /nonexistent.yaml");
   EXPECT_EQ(o.status, 2);
-  EXPECT_NE(o.text.find("/nonexistent.yaml: no such file"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("/nonexistent.yaml: does not exist"), std::string::npos) << o.text;
   o = floornav("run " + scenario("rectangle.yaml") + " --set controller.kind=zigzag --out " +
                temp_dir("bad").string());
   EXPECT_EQ(o.status, 2);
@@ -179,6 +179,18 @@ TEST(Cli, ResumeCompletesAPartialRunIdentically) {
   const Output o = floornav("batch " + files + " --no-timing --resume --out " + part.string());
   ASSERT_EQ(o.status, 0) << o.text;
   EXPECT_EQ(read(part / "results.jsonl"), read(full / "results.jsonl"));
+  // The finished case was kept, not run again: only the other two ran.
+  EXPECT_NE(o.text.find("3 of 3 cases (1 kept from before, 2 run now)"), std::string::npos)
+      << o.text;
+  // Resuming a complete folder runs nothing.
+  const Output again = floornav("batch " + files + " --no-timing --resume --out " + part.string());
+  EXPECT_NE(again.text.find("(3 kept from before, 0 run now)"), std::string::npos) << again.text;
+  EXPECT_EQ(read(part / "results.jsonl"), read(full / "results.jsonl"));
+  // A folder of another sweep is not resumed into.
+  const Output other = floornav("batch " + scenario("rectangle.yaml") +
+                                " --no-timing --resume --out " + part.string());
+  EXPECT_EQ(other.status, 2) << other.text;
+  EXPECT_NE(other.text.find("not shard 1/1 of this sweep"), std::string::npos) << other.text;
 }
 
 // Disk full: a 16 KiB tmpfs (needs root; skipped elsewhere). The run fails with exit 2 and one

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "floornav/core/input_error.hpp"
+#include "floornav/io/barn.hpp"
 #include "floornav/io/course_world.hpp"
 #include "floornav/io/movingai_map.hpp"
 #include "floornav/io/ros_map.hpp"
@@ -188,8 +189,8 @@ std::vector<BadCase> generated_cases() {
     for (int i = 0; i < copies; ++i) s += ", *" + anchor;
     return s + "]";
   };
-  add("scenario/alias_amplified_polygons.yaml", Via::Cli,
-      "the polygons have more than 100000 points in all", [aliases] {
+  add("scenario/alias_amplified_polygons.yaml", Via::Cli, "the polygons are too large in all",
+      [aliases] {
         std::string ring = "{polygon: [";
         for (int i = 0; i < 1000; ++i) {
           const double a = 2.0 * 3.14159265358979 * i / 1000.0;
@@ -204,11 +205,12 @@ std::vector<BadCase> generated_cases() {
     return "world: {bounds: [-1, -1, 5, 3]}\nrobot: {start: [0, 0, 0]}\ngoals: " +
            aliases("g", "[4, 1]", 10000) + "\n";
   });
-  add("scenario/alias_amplified_sensors.yaml", Via::Cli, "at most 100000 sensors", [aliases] {
+  add("scenario/alias_amplified_sensors.yaml", Via::Cli, "at most 4096 sensors", [aliases] {
     return "world: {bounds: [-1, -1, 5, 3]}\nrobot:\n  start: [0, 0, 0]\n  sensors: {mounts: " +
            aliases("m", "[0, 0, 0]", 100000) + "}\ngoal: [4, 1]\n";
   });
-  add("scenario/larger_than_16_mib.yaml", Via::Cli, "is too large for a scenario",
+  add("scenario/larger_than_16_mib.yaml", Via::Cli,
+      "more than the 16777216 a scenario file may have",
       [ok_scenario] { return ok_scenario + "# " + std::string(17u << 20, 'x') + "\n"; });
   add("ros_map/binary.yaml", Via::Loader, "invalid YAML",
       [] { return random_bytes(2048, 3, true); });
@@ -222,8 +224,10 @@ std::vector<BadCase> generated_cases() {
       [] { return png_header(10, 10, random_bytes(512, 6, true)); });
   add("ros_map/huge_header.png", Via::Loader, "too large",
       [] { return png_header(100000, 100000, ""); });
-  add("ros_map/header_promises_16384_squared.png", Via::Loader, "bytes cannot hold",
+  add("ros_map/header_promises_16384_squared.png", Via::Loader, "too large (limit 2^26",
       [] { return png_header(16384, 16384, png_chunk("IDAT", "x\x9c")); });
+  add("ros_map/header_promises_8192_squared.png", Via::Loader, "bytes cannot hold",
+      [] { return png_header(8192, 8192, png_chunk("IDAT", "x\x9c")); });
   add("ros_map/signature_only.png", Via::Loader, "no IHDR chunk",
       [] { return std::string("\x89PNG\r\n\x1a\n"); });
   add("movingai/binary.map", Via::Loader, "expected 'type octile'",
@@ -242,6 +246,47 @@ std::vector<BadCase> generated_cases() {
     std::string s = "<simulation><obstacle><pose x='0' y='0' theta='0'/><geometry>";
     for (int i = 0; i < 1001; ++i) s += "<point x='" + std::to_string(i) + "' y='0'/>";
     return s + "</geometry></obstacle></simulation>";
+  });
+  // BARN reference paths (.npy): the header is read strictly and the cells must be BARN's.
+  auto npy = [](const std::string& header, const std::vector<std::int64_t>& values) {
+    std::string h = header;
+    while ((10 + h.size() + 1) % 64 != 0) h += ' ';
+    h += '\n';
+    std::string out = std::string("\x93NUMPY\x01\x00", 8);
+    out += static_cast<char>(h.size() & 0xff);
+    out += static_cast<char>(h.size() >> 8);
+    out += h;
+    for (const std::int64_t v : values)
+      for (int b = 0; b < 8; ++b)
+        out += static_cast<char>((static_cast<std::uint64_t>(v) >> (8 * b)) & 0xff);
+    return out;
+  };
+  add("barn/three_dimensional.npy", Via::Loader, "got a 3-dimensional array", [npy] {
+    return npy("{'descr': '<i8', 'fortran_order': False, 'shape': (1, 2, 2), }", {1, 2, 3, 4});
+  });
+  add("barn/decoy_descr.npy", Via::Loader, "unknown key 'note'", [npy] {
+    return npy(
+        "{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2), 'note': \"'descr': "
+        "'<i8'\"}",
+        {1, 2});
+  });
+  add("barn/float_dtype.npy", Via::Loader, "expected dtype '<i8'", [npy] {
+    return npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2), }", {1, 2});
+  });
+  add("barn/extreme_values.npy", Via::Loader, "is outside BARN's 30 x 30 grid", [npy] {
+    return npy("{'descr': '<i8', 'fortran_order': False, 'shape': (2, 2), }",
+               {3, 4, std::int64_t{1} << 62, -5});
+  });
+  add("barn/data_too_short.npy", Via::Loader, "but shape (3, 2) needs 48", [npy] {
+    return npy("{'descr': '<i8', 'fortran_order': False, 'shape': (3, 2), }", {1, 2, 3, 4});
+  });
+  add("barn/empty_path.npy", Via::Loader, "an empty path",
+      [npy] { return npy("{'descr': '<i8', 'fortran_order': False, 'shape': (0, 2), }", {}); });
+  add("barn/fortran_order.npy", Via::Loader, "expected C order", [npy] {
+    return npy("{'descr': '<i8', 'fortran_order': True, 'shape': (1, 2), }", {1, 2});
+  });
+  add("barn/text_after_header.npy", Via::Loader, "text after the header's closing brace", [npy] {
+    return npy("{'descr': '<i8', 'fortran_order': False, 'shape': (1, 2), } x", {1, 2});
   });
   return out;
 }
@@ -363,6 +408,8 @@ void load_map(const fs::path& file) {
     (void)floornav::load_sdf_world(file);
   } else if (dir == "course_xml") {
     (void)floornav::load_course_world(file);
+  } else if (dir == "barn") {
+    (void)floornav::load_barn_path(file);
   } else {
     FAIL() << "no loader for " << file;
   }

@@ -112,7 +112,7 @@ TEST_F(CourseWorldTest, BadWorlds) {
     const fs::path p = write("bad.xml", cases[i].text);
     expect_input_error([&] { load_course_world(p); }, cases[i].needle);
   }
-  expect_input_error([&] { load_course_world(dir_ / "none.xml"); }, "cannot open");
+  expect_input_error([&] { load_course_world(dir_ / "none.xml"); }, "does not exist");
 }
 
 }  // namespace

@@ -74,7 +74,7 @@ TEST_F(MovingAiTest, BadMaps) {
   const fs::path ok = write("ok.map", kTinyMap);
   expect_input_error([&] { load_movingai_map(ok, 0.0); }, "cell_size");
   expect_input_error([&] { load_movingai_map(ok, std::nan("")); }, "cell_size");
-  expect_input_error([&] { load_movingai_map(dir_ / "none.map", 1.0); }, "cannot open");
+  expect_input_error([&] { load_movingai_map(dir_ / "none.map", 1.0); }, "does not exist");
 }
 
 TEST_F(MovingAiTest, TinyScen) {

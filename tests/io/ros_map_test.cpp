@@ -31,7 +31,8 @@ class RosMapTest : public test::TempDirTest {
   /// Writes a PNG with libpng; `rows` holds height rows of packed samples.
   fs::path write_png(const std::string& name, png_uint_32 width, png_uint_32 height, int bit_depth,
                      int color_type, const std::vector<std::vector<png_byte>>& rows,
-                     const std::vector<png_color>& palette = {}) {
+                     const std::vector<png_color>& palette = {},
+                     const std::vector<png_byte>& transparency = {}) {
     const fs::path p = dir_ / name;
     std::FILE* f = std::fopen(p.string().c_str(), "wb");
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
@@ -41,6 +42,12 @@ class RosMapTest : public test::TempDirTest {
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     if (!palette.empty()) {
       png_set_PLTE(png, info, palette.data(), static_cast<int>(palette.size()));
+    }
+    if (!transparency.empty()) {
+      png_color_16 gray_key{};  // for gray images: this gray value is transparent
+      gray_key.gray = transparency.front();
+      png_set_tRNS(png, info, transparency.data(), static_cast<int>(transparency.size()),
+                   color_type == PNG_COLOR_TYPE_PALETTE ? nullptr : &gray_key);
     }
     png_write_info(png, info);
     for (const auto& row : rows) png_write_row(png, row.data());  // header-only when empty
@@ -194,6 +201,20 @@ TEST_F(RosMapTest, PngColourTypes) {
   EXPECT_TRUE(pal.occupied(1, 0));
   EXPECT_FALSE(pal.occupied(2, 0));
 
+  // Palette with a tRNS chunk (a transparent entry, as GIMP saves maps): transparency is dropped
+  // like an alpha channel, the colours count.
+  write_png("pal_trns.png", 3, 1, 8, PNG_COLOR_TYPE_PALETTE, {{0, 1, 0}},
+            {png_color{255, 255, 255}, png_color{0, 0, 0}}, {0, 255});
+  const OccupancyGrid pal_trns = load_ros_image_map(dir_ / "pal_trns.png", 1.0);
+  EXPECT_FALSE(pal_trns.occupied(0, 0));
+  EXPECT_TRUE(pal_trns.occupied(1, 0));
+  EXPECT_FALSE(pal_trns.occupied(2, 0));
+  // Gray with a tRNS key: likewise.
+  write_png("gray_trns.png", 2, 1, 8, PNG_COLOR_TYPE_GRAY, {{255, 0}}, {}, {255});
+  const OccupancyGrid gray_trns = load_ros_image_map(dir_ / "gray_trns.png", 1.0);
+  EXPECT_FALSE(gray_trns.occupied(0, 0));
+  EXPECT_TRUE(gray_trns.occupied(1, 0));
+
   // 16-bit gray (big-endian samples).
   write_png("g16.png", 2, 1, 16, PNG_COLOR_TYPE_GRAY, {{0xff, 0xff, 0x00, 0x00}});
   const OccupancyGrid g16 = load_ros_image_map(dir_ / "g16.png", 1.0);
@@ -242,7 +263,7 @@ TEST_F(RosMapTest, BadImages) {
   write("cut.png", bytes.substr(0, bytes.size() / 2));
   // Either libpng's read error or its complaint about the missing data.
   expect_input_error([&] { load_ros_image_map(dir_ / "cut.png", 1.0); }, "cut.png: ");
-  expect_input_error([&] { load_ros_image_map(dir_ / "missing.pgm", 1.0); }, "cannot open");
+  expect_input_error([&] { load_ros_image_map(dir_ / "missing.pgm", 1.0); }, "does not exist");
   write("m.pgm", tiny_p5());
   expect_input_error([&] { load_ros_image_map(dir_ / "m.pgm", 0.0); }, "resolution");
   expect_input_error([&] { load_ros_image_map(dir_ / "m.pgm", std::nan("")); }, "resolution");
@@ -293,7 +314,7 @@ TEST_F(RosMapTest, BadYaml) {
     SCOPED_TRACE("case " + std::to_string(i));
     expect_input_error([&] { load_ros_map(yaml); }, cases[i].needle);
   }
-  expect_input_error([&] { load_ros_map(dir_ / "none.yaml"); }, "cannot open");
+  expect_input_error([&] { load_ros_map(dir_ / "none.yaml"); }, "does not exist");
   // The error carries the file and where.
   try {
     load_ros_map(write_yaml("w.yaml", "image: m.pgm\nresolution: -1\n" + keys));

@@ -140,6 +140,62 @@ TEST(ScenarioFile, MissingFile) {
     load_scenario_file("/nonexistent/floornav.yaml");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/floornav.yaml: does not exist"),
+              std::string::npos)
+        << e.what();
   }
+}
+
+// A message quoting megabytes of input stays one short line: its head and tail, with the number
+// of bytes cut, and never a cut inside a UTF-8 character.
+TEST(InputErrorMessage, LongMessagesAreCutToOneShortLine) {
+  const std::string huge(5u << 20, 'x');
+  const InputError e("f.yaml", "line 1", "expected a number, got '" + huge + "\xc3\xa9'");
+  const std::string what = e.what();
+  EXPECT_LT(what.size(), 600u);
+  EXPECT_EQ(what.rfind("f.yaml:line 1: expected a number, got 'xxx", 0), 0u) << what;
+  EXPECT_NE(what.find(" bytes cut ...] "), std::string::npos) << what;
+  EXPECT_EQ(what.substr(what.size() - 3), "\xc3\xa9'");
+  EXPECT_EQ(what.find('\n'), std::string::npos);
+  // A command-line value has no file: the message starts with it.
+  EXPECT_STREQ(InputError("", "--set sim.dt=-1", "must be positive").what(),
+               "--set sim.dt=-1: must be positive");
+}
+
+// --set on a node that YAML aliases elsewhere changes that place only, not every alias.
+TEST(ScenarioFile, SetOnAnAliasedNodeChangesOnlyThatPlace) {
+  const std::string text = R"(
+world: {bounds: [-1, -1, 5, 3]}
+robots:
+  - {start: [0, 0, 0], goals: &route [[4, 1], [4, 2]]}
+  - {start: [1, 0, 0], goals: *route}
+)";
+  const Scenario s = load(text, {"robots[0].goals[0]=[3,1]"});
+  EXPECT_EQ(s.robots[0].goals[0], Vec2(3, 1));
+  EXPECT_EQ(s.robots[1].goals[0], Vec2(4, 1));
+  EXPECT_EQ(s.robots[1].goals[1], Vec2(4, 2));
+  const Scenario t = load(text, {"robots[1].goals=[[2,2]]"});
+  EXPECT_EQ(t.robots[0].goals.size(), 2u);
+  EXPECT_EQ(t.robots[1].goals.size(), 1u);
+}
+
+// A fleet's shared robot section is read as a layer under each entry: the entry's keys win,
+// sensors merge key by key, and an unknown key in the shared section is named there.
+TEST(ScenarioFile, FleetEntriesLayerOverTheSharedRobot) {
+  const std::string text = R"(
+world: {bounds: [-1, -1, 5, 3]}
+robot: {preset: khepera3, radius: 0.05, sensors: {max_range: 0.15, noise: 0.01}}
+robots:
+  - {start: [0, 0, 0], goal: [4, 1]}
+  - {start: [1, 0, 0], goal: [4, 2], radius: 0.06, sensors: {max_range: 0.18}}
+)";
+  const Scenario s = load(text);
+  EXPECT_DOUBLE_EQ(s.robots[0].robot.body_radius, 0.05);
+  EXPECT_DOUBLE_EQ(s.robots[1].robot.body_radius, 0.06);
+  EXPECT_DOUBLE_EQ(s.robots[0].robot.sensors[0].max_range, 0.15);
+  EXPECT_DOUBLE_EQ(s.robots[1].robot.sensors[0].max_range, 0.18);
+  EXPECT_DOUBLE_EQ(s.robots[1].robot.sensor_noise, 0.01);  // merged from the shared sensors
+  EXPECT_EQ(s.robots[1].robot.preset, "khepera3");
+  expect_error(replace(text, "noise: 0.01", "nosie: 0.01"),
+               {"line 3", "robot.sensors.nosie", "did you mean 'robot.sensors.noise'"});
 }

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "floornav/core/input_error.hpp"
+#include "floornav/io/barn.hpp"
 #include "support/loader_test_support.hpp"
 
 namespace floornav {
@@ -100,11 +101,14 @@ TEST_F(SdfWorldTest, ComposesPosesAndPrefersTheState) {
   EXPECT_EQ(w.circles[0].radius, 0.2);
   expect_point(w.circles[1].center, 10.0, 1.0);
   EXPECT_EQ(w.circles[1].radius, 0.5);
-  // The include, the non-static robot and the mesh are reported; the ground plane is not.
-  ASSERT_EQ(w.skipped.size(), 3u);
-  EXPECT_EQ(w.skipped[0], "include 'model://sun'");
-  EXPECT_EQ(w.skipped[1], "model 'robot': not static");
-  EXPECT_EQ(w.skipped[2], "model 'statue::l': <mesh> collision");
+  // The non-static robot and the mesh are reported, with their lines; the sun and the ground
+  // plane hold nothing to hit and are not.
+  ASSERT_EQ(w.skipped.size(), 2u);
+  EXPECT_NE(w.skipped[0].find(": model 'robot' is not static"), std::string::npos) << w.skipped[0];
+  EXPECT_EQ(w.skipped[0].rfind("line ", 0), 0u);
+  EXPECT_NE(w.skipped[1].find("model 'statue::l': a <mesh> collision cannot be read"),
+            std::string::npos)
+      << w.skipped[1];
 }
 
 TEST_F(SdfWorldTest, BareModelFileAndDegrees) {
@@ -161,7 +165,7 @@ TEST_F(SdfWorldTest, BadWorlds) {
     const fs::path p = write("bad.world", cases[i].text);
     expect_input_error([&] { load_sdf_world(p); }, cases[i].needle);
   }
-  expect_input_error([&] { load_sdf_world(dir_ / "none.world"); }, "cannot open");
+  expect_input_error([&] { load_sdf_world(dir_ / "none.world"); }, "does not exist");
 }
 
 fs::path barn() {
@@ -202,6 +206,23 @@ TEST(SdfWorldRealFiles, BarnWorlds) {
   ASSERT_GT(w.circles.size(), 100u);
   EXPECT_EQ(w.circles[100].center, Vec2(-4.425, 5.775));
   EXPECT_EQ(w.circles[100].radius, 0.075);
+}
+
+// BARN's reference paths load strictly: every real path_N.npy is an (n, 2) int64 array of cells
+// inside the 30 x 30 grid.
+TEST(SdfWorldRealFiles, BarnPaths) {
+  const fs::path dir = fs::path(FLOORNAV_SHARED_MAPS_DIR) / "barn/path_files";
+  if (!fs::is_directory(dir)) GTEST_SKIP() << "no " << dir.string();
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const auto cells = load_barn_path(e.path());
+    EXPECT_FALSE(cells.empty());
+    ++files;
+  }
+  EXPECT_EQ(files, 300);
+  // path_0.npy starts at cell (26, 0) (its first 16 bytes of data, read by hand).
+  EXPECT_EQ(load_barn_path(dir / "path_0.npy").front()[0], 26);
+  EXPECT_EQ(load_barn_path(dir / "path_0.npy").front()[1], 0);
 }
 
 }  // namespace

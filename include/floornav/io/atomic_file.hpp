@@ -5,7 +5,9 @@
 
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace floornav {
 
@@ -24,5 +26,42 @@ void write_file_atomically(
 /// Creates `dir` and its missing parents. Throws InputError(dir, "", "cannot create directory:
 /// <reason>") when that fails or when `dir` exists but is not a directory.
 void ensure_directory(const std::filesystem::path& dir);
+
+/// The files of one output folder, which appear together or not at all. Each is written (with
+/// every write checked) into a staging folder beside `dir`, on the same filesystem; commit()
+/// then renames the staging folder to `dir` (one atomic step when `dir` does not exist yet) or
+/// moves each file into it. A failure before commit(), or no commit() at all, leaves `dir` as it
+/// was and removes the staging folder. (A process killed outright between two renames of
+/// commit() can still leave part of a set: microseconds, not the seconds a write takes.)
+class OutputFolder {
+ public:
+  /// Throws InputError when `dir` exists and is not a directory.
+  explicit OutputFolder(std::filesystem::path dir);
+  ~OutputFolder();
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+
+  /// Writes the file `name` (a plain file name) into the set.
+  void write(const std::string& name, std::string_view content);
+  void write(const std::string& name,
+             const std::function<void(const std::function<void(std::string_view)>& sink)>& produce);
+  /// Makes every file of the set appear in `dir` (created if needed), replacing older ones.
+  void commit();
+
+  const std::filesystem::path& dir() const { return dir_; }
+
+ private:
+  void stage();
+  std::filesystem::path dir_;
+  std::filesystem::path staging_;
+  std::vector<std::string> names_;
+  bool committed_{false};
+};
+
+/// `name` as a safe folder or file name: letters, digits, '-', '_' and '.' kept, anything else
+/// (a '/', "..", a control character) replaced by '_', no leading '.', at most 120 bytes, never
+/// empty. A scenario's name is used for its output folder (out/<name>) through this, so that no
+/// name can write outside out/.
+std::string safe_file_name(std::string_view name);
 
 }  // namespace floornav

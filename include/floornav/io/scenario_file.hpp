@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "floornav/core/input_error.hpp"
 #include "floornav/scenario/scenario.hpp"
@@ -15,12 +16,44 @@
 
 namespace floornav {
 
-/// Loads and validates the scenario in `path`, after applying `overrides` ("a.b=value").
+/// A value set from outside the scenario file, as `--set` does: `assignment` is "dotted.key=VALUE"
+/// (VALUE is YAML). An error about the key names `file` and `where` instead of the scenario file:
+/// the user's --set is file "" and where "--set KEY=VALUE"; a value that a batch source sets
+/// names that source (the .scen file and its line).
+struct ScenarioOverride {
+  std::string assignment;
+  std::string file;
+  std::string where;
+};
+
+/// The user's `--set` values as overrides that errors blame on their `--set`.
+std::vector<ScenarioOverride> user_overrides(std::span<const std::string> sets);
+
+/// Loads and validates the scenario in `path`, after applying the --set values `overrides`
+/// ("a.b=value").
 Scenario load_scenario_file(const std::filesystem::path& path,
                             std::span<const std::string> overrides = {});
 
 /// The same from YAML text; `origin` names it in errors and anchors relative paths.
 Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& origin,
                             std::span<const std::string> overrides = {});
+
+/// load_scenario_file with overrides from any source (see ScenarioOverride), applied in order.
+Scenario load_scenario_with_overrides(const std::filesystem::path& path,
+                                      std::span<const ScenarioOverride> overrides);
+Scenario load_scenario_text_with_overrides(std::string_view yaml,
+                                           const std::filesystem::path& origin,
+                                           std::span<const ScenarioOverride> overrides);
+
+/// The limits a scenario file is held to (docs/SCENARIOS.md, "Limits"), checked before anything
+/// is allocated for what they bound.
+inline constexpr std::size_t kMaxRobots = 100000;
+inline constexpr std::size_t kMaxGoalsPerRobot = 10000;
+inline constexpr std::size_t kMaxGoalsInAll = 1000000;
+inline constexpr std::size_t kMaxSensorsPerRobot = 4096;
+/// Rays one robot casts per step: sensors times their cone_rays.
+inline constexpr std::size_t kMaxRaysPerRobot = 4096;
+/// Rays a whole fleet casts per step.
+inline constexpr std::size_t kMaxRaysInAll = 20000000;
 
 }  // namespace floornav

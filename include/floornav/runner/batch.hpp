@@ -1,10 +1,13 @@
 #pragma once
 /// @file
 /// Many runs in parallel: `results.jsonl` (one summary per line, in case order, written as the
-/// cases finish) and `aggregate.json` (the totals).
+/// cases finish), `aggregate.json` (the totals) and `sweep.json` (which sweep, and which shard of
+/// it, the folder holds). Shards of one sweep are joined by merge_batches, which refuses anything
+/// but all the shards of one sweep (or says that the result is partial).
 
 #include <atomic>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -18,17 +21,30 @@ namespace floornav {
 
 /// Which cases of a batch get pictures (an SVG and an HTML replay).
 enum class BatchPictures { None, Failed, All };
+/// Which sweep a batch belongs to. The id is a fingerprint of everything the sweep's lines depend
+/// on (inputs, their content, options, floornav's version; not the shard, the job count or
+/// --limit), so that the shards of one sweep, and a single run of it, carry the same id; `cases`
+/// says how many cases the sweep has (merge requires the same count in every shard).
+struct SweepInfo {
+  std::string id;  ///< "" when the caller has none (then merge cannot check the shards)
+  int shard{1};    ///< this batch is shard `shard` of `shards` (1-based)
+  int shards{1};
+  std::size_t cases{0};  ///< cases in the whole sweep (after --limit)
+};
 
 struct BatchOptions {
   int jobs{0};                    ///< worker threads; 0 = all cores
-  std::filesystem::path out_dir;  ///< results.jsonl and aggregate.json go here
+  std::filesystem::path out_dir;  ///< results.jsonl, aggregate.json and sweep.json go here
   bool progress{false};           ///< a progress bar on stderr
   bool timing{true};              ///< false: wall_time is written as 0, so files compare equal
-  bool resume{false};             ///< skip cases already in results.jsonl
+  bool resume{false};             ///< keep the cases already in results.jsonl; run only the rest
   /// Cases without a given `optimal_length` get the grid optimum (scenario_optimum: octile A*
   /// on a raster of the world, string-pulled) as `optimal_length`, source "grid_astar".
   bool optimum{true};
-  const std::atomic<bool>* stop{nullptr};  ///< set (e.g. by SIGINT) to stop taking new cases
+  /// Set (e.g. by SIGINT) to stop: running cases are abandoned within a step, none is written.
+  const std::atomic<bool>* stop{nullptr};
+  std::vector<std::string> overrides;  ///< the --set values as given, for each line's provenance
+  SweepInfo sweep;                     ///< written to sweep.json; checked by --resume and merge
   /// Failed (status other than reached) or all cases get `case-NNNNN-<name>.svg` and `.html` in
   /// pictures_dir. Those runs record their trajectory and ranges as they go (the same results:
   /// recording moves nothing), so a failure is drawn without running it again.
@@ -44,6 +60,14 @@ struct BatchCase {
   /// driven. Without it, run_batch computes the grid optimum unless options.optimum is off.
   std::optional<double> optimal_length;
   std::optional<double> optimal_time;  ///< s, for the BARN score
+  std::vector<std::string> swept;      ///< a parameter sweep's "key=value" settings of this case
+};
+
+/// Cases made when they run, so that a sweep of a million .scen rows never holds a million
+/// scenarios: `ids` are the case numbers to run (ascending), `make(id)` makes one.
+struct CaseList {
+  std::vector<std::size_t> ids;
+  std::function<BatchCase(std::size_t id)> make;
 };
 
 /// The BARN challenge's score: success * t_opt / clip(t, 2 t_opt, 8 t_opt).
@@ -52,19 +76,37 @@ double barn_score(bool success, double time, double optimal_time);
 /// Keeps the cases of shard `k` of `n` (1-based): every n-th case starting at k - 1.
 std::vector<BatchCase> select_shard(std::vector<BatchCase> cases, int k, int n);
 
-/// Joins the results.jsonl of several (sharded) batch folders into `out_dir`, in case order;
-/// returns the aggregate. Throws InputError for unreadable or inconsistent inputs.
-nlohmann::ordered_json merge_batches(std::span<const std::filesystem::path> dirs,
-                                     const std::filesystem::path& out_dir);
+/// The case numbers of shard `k` of `n` among `count` cases: k - 1, k - 1 + n, ...
+std::vector<std::size_t> shard_ids(std::size_t count, int k, int n);
+
+struct MergeOutcome {
+  nlohmann::ordered_json aggregate;
+  std::size_t merged{0};            ///< cases in the merged results.jsonl
+  std::size_t total{0};             ///< cases in the sweep
+  std::vector<int> missing_shards;  ///< shards not given (with allow_partial)
+  bool complete{false};
+};
+
+/// Joins the results.jsonl of batch folders into `out_dir`, in case order, after checking that
+/// they are shards of one sweep (sweep.json: the same id and shard count, each shard once, each
+/// complete, each line a case of its shard). Anything else throws InputError naming what is
+/// wrong or missing; with `allow_partial`, missing shards and unfinished cases are allowed and
+/// the aggregate says `complete: false`.
+MergeOutcome merge_batches(std::span<const std::filesystem::path> dirs,
+                           const std::filesystem::path& out_dir, bool allow_partial = false);
 
 struct BatchOutcome {
   std::size_t completed{0};  ///< cases with a result line (including resumed ones)
   std::size_t total{0};
+  std::size_t resumed{0};  ///< lines kept from an earlier run (--resume): these did not run
+  std::size_t ran{0};      ///< cases simulated by this call
   bool interrupted{false};
   nlohmann::ordered_json aggregate;
 };
 
-/// Runs every case; throws InputError when the output cannot be written.
+/// Runs every case; throws InputError when the output cannot be written (at the first failed
+/// write: the workers are stopped, nothing more runs).
+BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options);
 BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& options);
 
 /// The totals of a list of result lines (as written to results.jsonl).

@@ -3,9 +3,12 @@
 /// Writing a run's files (summary.json, trajectory.csv, trajectory.svg, trajectory.html) and its
 /// one-line report.
 
+#include <atomic>
 #include <filesystem>
+#include <optional>
 #include <string>
 
+#include "floornav/runner/run_summary.hpp"
 #include "floornav/scenario/scenario.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/run_result.hpp"
@@ -17,7 +20,8 @@ struct OutputSelection {
   bool summary{true};
   bool csv{true};
   bool svg{true};
-  bool html{true};  ///< trajectory.html, the replay (only when the trajectory was recorded)
+  bool html{true};         ///< trajectory.html, the replay (only when the trajectory was recorded)
+  bool transitions{true};  ///< transitions.csv
 };
 
 /// Makes `scenario` record what the selected files need: with html, the sensor ranges for the
@@ -25,7 +29,13 @@ struct OutputSelection {
 /// Recording changes no result.
 void prepare_outputs(Scenario& scenario, const OutputSelection& which = {});
 
-/// Writes the selected files into `dir` (created if needed), each atomically.
+/// Writes the selected files into `dir` (created if needed), all together or none
+/// (OutputFolder): summary.json (run_summary with `context`), trajectory.csv, transitions.csv,
+/// trajectory.svg and trajectory.html.
+void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,
+                       const RunResult& result, const RunContext& context,
+                       const OutputSelection& which = {});
+/// The same without provenance overrides or an optimum (RunContext{}).
 void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,
                        const RunResult& result, const OutputSelection& which = {});
 
@@ -35,8 +45,16 @@ std::string describe_run(const RunResult& result);
 /// Times `simulate` and fills in the result's wall_time.
 RunResult run_timed(const Scenario& scenario);
 
-/// A fleet's files in `dir`: summary.json (fleet_summary_to_json), trajectory.csv (with a robot
-/// column), trajectory.svg (every robot's path) and trajectory.html (the replay).
+/// The same, abandoned (nullopt) as soon as `stop` or `also` is set: both are read at every step.
+std::optional<RunResult> run_timed(const Scenario& scenario, const std::atomic<bool>* stop,
+                                   const std::atomic<bool>* also = nullptr);
+
+/// A fleet's files in `dir`, all together or none: summary.json (fleet_run_summary),
+/// trajectory.csv (with a robot column), transitions.csv, trajectory.svg (every robot's path),
+/// trajectory.html (the replay) and crowd.csv (people and forklifts, when there are any).
+void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scenario,
+                         const FleetResult& result, const RunContext& context,
+                         const OutputSelection& which = {});
 void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scenario,
                          const FleetResult& result, const OutputSelection& which = {});
 
@@ -45,5 +63,10 @@ std::string describe_fleet(const FleetResult& result);
 
 /// Times `simulate_fleet` on `threads` threads (0: all cores) and fills in wall_time.
 FleetResult run_fleet_timed(const Scenario& scenario, int threads = 0);
+
+/// The same, abandoned (nullopt) once `stop` or `also` is set: read every 64 world steps.
+std::optional<FleetResult> run_fleet_timed(const Scenario& scenario, int threads,
+                                           const std::atomic<bool>* stop,
+                                           const std::atomic<bool>* also = nullptr);
 
 }  // namespace floornav

@@ -4,7 +4,9 @@
 /// the simulation runs. Built by the io layer from a YAML file, or directly in code. A lone robot
 /// is a fleet of one: `robots` always holds every robot.
 
+#include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,16 @@
 #include "floornav/world/world.hpp"
 
 namespace floornav {
+
+/// Where a world's map came from, so that the resolved configuration of a run can name the file
+/// again rather than list its cells. The io layer fills it in; a world built in code has none.
+struct WorldMapSource {
+  std::string path;         ///< the map file (absolute)
+  double cell_size{0.0};    ///< world.cell_size, m per cell, when the format takes one (0: none)
+  std::string unknown;      ///< world.unknown as given ("occupied", "free"; "" when not given)
+  std::size_t circles{0};   ///< how many of the world's circles the map added (the last ones)
+  std::size_t polygons{0};  ///< how many of its polygons the map added (the last ones)
+};
 
 struct Scenario {
   std::string name{"scenario"};
@@ -25,6 +37,8 @@ struct Scenario {
   bool robots_listed{false};
   /// People and forklifts moving on the floor (`people:`, `people_file:`, `forklifts:`).
   CrowdSpec crowd{};
+  /// The file behind `world`'s map, if it has one (see WorldMapSource).
+  std::optional<WorldMapSource> world_map;
 
   /// Outputs and runs as a fleet (FleetSimulation) rather than a lone robot (Simulation): also
   /// a lone robot among people or forklifts (only a fleet simulates them).

@@ -11,6 +11,9 @@
 
 namespace floornav {
 
+/// The most steps (t_max / dt) a run may take.
+inline constexpr double kMaxSteps = 1e8;
+
 /// Throws InputError naming `file` and the key at fault, as the file spells it: `robot.start`,
 /// `goal` and `controller.d_o` for a lone robot; `robots[2].start`, `robots[2].goal` and
 /// `controller.d_o (robots[2])` for a robots list.

@@ -122,6 +122,8 @@ class RobotAgent {
   void finish(RunStatus status);
   /// Logs a transition of the controller at time t (mode change or a named guard).
   void log_transition(double t, int to, int guard);
+  /// Appends the extra columns (SimConfig::record) of the row just recorded.
+  void record_extras(const SensingScratch* scratch);
 
   const World* world_;
   const RobotSpec* robot_;
@@ -149,6 +151,12 @@ class RobotAgent {
   /// m: a lower bound on the body's clearance to the world at pose_ (exact right after it is
   /// computed). Disc bodies only; it lets a step skip the clearance query and the inside test.
   double clearance_bound_{0.0};
+  std::vector<long long> mode_steps_;  ///< steps spent in each mode: mode_time = steps * dt
+  bool record_extras_{false};  ///< SimConfig::record asks for extra columns (and rows are kept)
+  /// The last step's command, for record_extras: u (NaN unless a velocity), (V, omega) asked.
+  Vec2 last_u_{Vec2::Zero()};
+  UnicycleCommand last_wanted_{};
+  double last_theta_{0.0};  ///< rad, the heading the command was decided at
   RunResult result_{};
 };
 

@@ -63,6 +63,11 @@ struct RunResult {
   /// ranges[k * sensors + i] for sensor i.
   std::vector<int> range_steps;
   std::vector<float> ranges;
+  /// The extra columns recorded with the trajectory (SimConfig::record), by name, and their
+  /// values: extra_columns.size() per trajectory row, row-major; NaN where a value does not apply
+  /// (no velocity command, the first row's command and ranges).
+  std::vector<std::string> extra_columns;
+  std::vector<double> extra;
   double final_x{0.0}, final_y{0.0}, final_theta{0.0};
 };
 

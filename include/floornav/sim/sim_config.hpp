@@ -7,6 +7,19 @@
 
 namespace floornav {
 
+/// Extra columns recorded with each trajectory row (only when SimConfig::record_trajectory is on):
+/// what the controller saw and asked for. An output choice, not part of a scenario: not in
+/// serialize(), so a scenario file cannot set it (the command line's `--record` does).
+struct RecordOptions {
+  bool command{false};  ///< u_x, u_y (m/s, the velocity asked for), v_cmd (m/s), omega_cmd (rad/s)
+  bool heading{false};  ///< theta_d (rad, atan2 of u), heading_error (rad, theta_d - theta wrapped)
+  bool clearance{false};  ///< m, the body's clearance at the recorded pose
+  bool goal{false};       ///< goal_index, goal_x, goal_y (m): the goal being driven to
+  bool ranges{false};     ///< range_0 ... range_{n-1} (m): each sensor's reading the step used
+
+  bool any() const { return command || heading || clearance || goal || ranges; }
+};
+
 /// How a run is simulated.
 struct SimConfig {
   double dt{0.01};               ///< s, fixed control and integration step
@@ -19,6 +32,7 @@ struct SimConfig {
   /// Steps between two recordings of every sensor's range (RunResult::ranges, for the HTML
   /// replay); 0 (the default) records none and costs nothing.
   int record_ranges_every{0};
+  RecordOptions record{};        ///< extra trajectory columns (not a scenario key; see above)
 
   template <class Archive>
   void serialize(Archive& a) {

@@ -1,7 +1,9 @@
 #include "floornav/io/course_world.hpp"
 
+#include <fmt/format.h>
 #include <tinyxml2.h>
 
+#include <cmath>
 #include <string>
 
 #include "floornav/core/input_error.hpp"
@@ -28,9 +30,17 @@ Pose2 read_pose(const XMLElement* parent, const std::string& file) {
     throw InputError(file, io_detail::where_of(pose->NextSiblingElement("pose")),
                      std::string("<") + parent->Name() + "> has more than one <pose>");
   }
+  const double theta = io_detail::number_attribute(pose, "theta", file);
+  if (std::abs(theta) > 2.0 * kPi + 1e-9) {
+    throw InputError(
+        file, io_detail::where_of(pose),
+        fmt::format("<pose theta=\"{:.6g}\">: beyond +-2 pi: angles are in radians (if "
+                    "you meant {:.6g} degrees, write {:.6g})",
+                    theta, theta, deg_to_rad(theta)));
+  }
   return Pose2{
       {io_detail::number_attribute(pose, "x", file), io_detail::number_attribute(pose, "y", file)},
-      wrap_angle(io_detail::number_attribute(pose, "theta", file))};
+      wrap_angle(theta)};
 }
 
 }  // namespace
@@ -45,9 +55,13 @@ CourseWorld load_course_world(const std::filesystem::path& xml) {
                      "expected a <simulation> root element");
   }
   CourseWorld world;
+  // The Sim.I.Am/pySimiam world elements; any other (a typo like <obstcle>) is an error, never
+  // an obstacle dropped without a word.
+  io_detail::check_children(sim, {"robot", "obstacle", "marker"}, file);
   for (const XMLElement* e = sim->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
     const std::string name = e->Name();
     if (name == "robot") {
+      io_detail::check_children(e, {"supervisor", "pose"}, file);
       CourseRobot robot;
       const char* type = e->Attribute("type");
       if (type == nullptr || std::string(type).empty()) {
@@ -60,11 +74,13 @@ CourseWorld load_course_world(const std::filesystem::path& xml) {
       }
       world.robots.push_back(std::move(robot));
     } else if (name == "obstacle") {
+      io_detail::check_children(e, {"pose", "geometry", "color"}, file);
       const Pose2 pose = read_pose(e, file);
-      const XMLElement* geometry = e->FirstChildElement("geometry");
+      const XMLElement* geometry = io_detail::single_child(e, "geometry", file);
       if (geometry == nullptr) {
         throw InputError(file, io_detail::where_of(e), "<obstacle> lacks a <geometry>");
       }
+      io_detail::check_children(geometry, {"point"}, file);
       std::vector<Vec2> polygon;
       for (const XMLElement* p = geometry->FirstChildElement("point"); p != nullptr;
            p = p->NextSiblingElement("point")) {
@@ -88,7 +104,7 @@ CourseWorld load_course_world(const std::filesystem::path& xml) {
       }
       world.obstacles.push_back(std::move(polygon));
     }
-    // Anything else (<marker>, comments, future elements) does not block a robot: ignored.
+    // A <marker> (a goal flag of the course simulator) does not block a robot.
   }
   return world;
 }

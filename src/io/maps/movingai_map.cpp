@@ -9,7 +9,10 @@
 #include <string_view>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "floornav/core/input_error.hpp"
+#include "io/input_file.hpp"
 #include "io/maps/raster_image.hpp"
 #include "io/maps/text_parse.hpp"
 
@@ -19,9 +22,12 @@ namespace {
 /// Line-by-line reading that strips a trailing CR and counts lines from 1.
 class LineReader {
  public:
-  LineReader(const std::filesystem::path& path, const char* what)
-      : in_(path, std::ios::binary), file_(path.string()) {
-    if (!in_) throw InputError(file_, "", std::string("cannot open the ") + what);
+  /// Checks first that `path` is a file of at most `max_bytes` (never a FIFO or a device).
+  LineReader(const std::filesystem::path& path, const char* what, std::uint64_t max_bytes)
+      : file_(path.string()) {
+    io_detail::check_input_file(path, what, max_bytes);
+    in_.open(path, std::ios::binary);
+    if (!in_) throw InputError(file_, "", std::string("cannot open the ") + what + " file");
   }
 
   bool next(std::string& line) {
@@ -39,6 +45,9 @@ class LineReader {
   std::ifstream in_;
   std::string file_;
   int line_no_{0};
+
+ public:
+  int line() const { return line_no_; }
 };
 
 /// Splits "word value" into its two space-separated parts.
@@ -51,8 +60,23 @@ bool split_pair(std::string_view line, std::string_view& word, std::string_view&
   return true;
 }
 
-bool is_free(char c) {
-  return c == '.' || c == 'G' || c == 'S';
+/// MovingAI's terrain: '.' and 'G' ground, 'S' swamp (passable); '@' and 'O' out of bounds,
+/// 'T' trees, 'W' water (not passable by a ground robot). Anything else is not a map character.
+enum class Terrain { Free, Blocked, Unknown };
+Terrain terrain(char c) {
+  switch (c) {
+    case '.':
+    case 'G':
+    case 'S':
+      return Terrain::Free;
+    case '@':
+    case 'O':
+    case 'T':
+    case 'W':
+      return Terrain::Blocked;
+    default:
+      return Terrain::Unknown;
+  }
 }
 
 }  // namespace
@@ -60,26 +84,27 @@ bool is_free(char c) {
 OccupancyGrid load_movingai_map(const std::filesystem::path& map, double cell_size) {
   if (!(cell_size > 0.0) || !std::isfinite(cell_size)) {
     throw InputError(map.string(), "cell_size",
-                     "must be a positive finite number, got " + std::to_string(cell_size));
+                     fmt::format("must be a positive finite number, got {:.6g}", cell_size));
   }
-  LineReader in(map, "MovingAI map");
+  LineReader in(map, "MovingAI map", io_detail::kMaxMovingAiMapBytes);
   std::string line;
   if (!in.next(line)) in.fail("empty file: expected 'type octile'");
   std::string_view word, value;
   if (!split_pair(line, word, value) || word != "type") in.fail("expected 'type octile'");
   if (value != "octile")
-    in.fail("unsupported map type '" + std::string(value) + "' (expected octile)");
+    in.fail("unsupported map type " + io_detail::quote_input(value) + " (expected octile)");
 
   long long width = -1;
   long long height = -1;
   for (int k = 0; k < 2; ++k) {
     if (!in.next(line)) in.fail("file ends in the header: expected 'height H' and 'width W'");
     if (!split_pair(line, word, value) || (word != "height" && word != "width")) {
-      in.fail("expected 'height H' or 'width W', got '" + line + "'");
+      in.fail("expected 'height H' or 'width W', got " + io_detail::quote_input(line));
     }
     const auto n = io_detail::parse_int(value);
     if (!n || *n <= 0)
-      in.fail(std::string(word) + " must be a positive integer, got '" + std::string(value) + "'");
+      in.fail(std::string(word) + " must be a positive integer, got " +
+              io_detail::quote_input(value));
     long long& slot = word == "height" ? height : width;
     if (slot >= 0) in.fail("'" + std::string(word) + "' given twice");
     slot = *n;
@@ -90,7 +115,8 @@ OccupancyGrid load_movingai_map(const std::filesystem::path& map, double cell_si
   if (w64 > io_detail::kMaxMapCells || h64 > io_detail::kMaxMapCells ||
       w64 * h64 > io_detail::kMaxMapCells) {
     in.fail("map of " + std::to_string(width) + " x " + std::to_string(height) +
-            " cells is too large (limit 2^28)");
+            " cells is too large (limit 2^26 = " + std::to_string(io_detail::kMaxMapCells) +
+            " cells)");
   }
   if (!in.next(line) || io_detail::trim(line) != "map") in.fail("expected 'map'");
   // Refuse a header that promises more cells than the file holds before allocating for them.
@@ -113,7 +139,19 @@ OccupancyGrid load_movingai_map(const std::filesystem::path& map, double cell_si
               " characters, expected width " + std::to_string(w));
     }
     std::uint8_t* row = occ.data() + static_cast<std::size_t>(h - 1 - y) * w;
-    for (int x = 0; x < w; ++x) row[x] = is_free(line[x]) ? 0 : 1;
+    for (int x = 0; x < w; ++x) {
+      const Terrain t = terrain(line[x]);
+      if (t == Terrain::Unknown) {
+        const auto c = static_cast<unsigned char>(line[x]);
+        in.fail(
+            fmt::format("map row {}, column {}: {} is not a MovingAI terrain character "
+                        "(. G S free; @ O T W blocked)",
+                        y, x,
+                        c >= 0x20 && c < 0x7f ? fmt::format("'{}'", line[x])
+                                              : fmt::format("byte 0x{:02x}", c)));
+      }
+      row[x] = t == Terrain::Free ? 0 : 1;
+    }
   }
   while (in.next(line)) {
     if (!io_detail::trim(line).empty()) {
@@ -124,13 +162,13 @@ OccupancyGrid load_movingai_map(const std::filesystem::path& map, double cell_si
 }
 
 std::vector<MovingAiCase> load_movingai_scen(const std::filesystem::path& scen) {
-  LineReader in(scen, "MovingAI scenario");
+  LineReader in(scen, "MovingAI scenario", io_detail::kMaxScenBytes);
   std::string line;
   if (!in.next(line)) in.fail("empty file: expected 'version 1'");
   {
     std::string_view word, value;
     if (!split_pair(line, word, value) || word != "version" || (value != "1" && value != "1.0")) {
-      in.fail("expected 'version 1' or 'version 1.0', got '" + line + "'");
+      in.fail("expected 'version 1' or 'version 1.0', got " + io_detail::quote_input(line));
     }
   }
   static constexpr const char* kFields[9] = {"bucket",     "map",     "map width",
@@ -147,6 +185,9 @@ std::vector<MovingAiCase> load_movingai_scen(const std::filesystem::path& scen) 
       if (tab == std::string_view::npos) break;
       rest.remove_prefix(tab + 1);
     }
+    if (cases.size() >= kMaxScenRows)
+      in.fail(fmt::format("more than {} rows: a .scen file holds at most that many cases",
+                          kMaxScenRows));
     if (f.size() != 9) {
       in.fail("expected 9 tab-separated fields, got " + std::to_string(f.size()));
     }
@@ -154,11 +195,12 @@ std::vector<MovingAiCase> load_movingai_scen(const std::filesystem::path& scen) 
       const auto v = io_detail::parse_int(f[k]);
       if (!v || *v < lo || *v > hi) {
         in.fail(std::string(kFields[k]) + " must be an integer in [" + std::to_string(lo) + ", " +
-                std::to_string(hi) + "], got '" + std::string(f[k]) + "'");
+                std::to_string(hi) + "], got " + io_detail::quote_input(f[k]));
       }
       return static_cast<int>(*v);
     };
     MovingAiCase c;
+    c.line = in.line();
     c.bucket = integer(0, 0, 1 << 30);
     c.map_file = std::string(io_detail::trim(f[1]));
     if (c.map_file.empty()) in.fail("map file name is empty");
@@ -174,9 +216,7 @@ std::vector<MovingAiCase> load_movingai_scen(const std::filesystem::path& scen) 
       if (const auto size = io_detail::magnitude_problem(f[8])) {
         what += *size;
       } else {
-        what += '\'';
-        what.append(f[8]);
-        what += '\'';
+        what += io_detail::quote_input(f[8]);
       }
       in.fail(what);
     }

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "floornav/core/input_error.hpp"
+#include "io/input_file.hpp"
 #include "io/maps/raster_image.hpp"
 
 namespace floornav::io_detail {
@@ -83,6 +84,7 @@ class PgmTokenizer {
 
 RasterImage read_pgm(const std::filesystem::path& path) {
   const std::string file = path.string();
+  check_input_file(path, "PGM image", kMaxImageBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(file, "", "cannot open the image file");
   char magic[2] = {0, 0};
@@ -104,7 +106,7 @@ RasterImage read_pgm(const std::filesystem::path& path) {
   if (width > kMaxMapCells || height > kMaxMapCells || width * height > kMaxMapCells) {
     throw InputError(file, tok.where(),
                      "image of " + std::to_string(width) + " x " + std::to_string(height) +
-                         " pixels is too large (limit 2^28 = " + std::to_string(kMaxMapCells) +
+                         " pixels is too large (limit 2^26 = " + std::to_string(kMaxMapCells) +
                          " cells)");
   }
   if (maxval == 0 || maxval > 65535) {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "floornav/core/input_error.hpp"
+#include "io/input_file.hpp"
 #include "io/maps/raster_image.hpp"
 
 namespace floornav::io_detail {
@@ -60,7 +61,11 @@ bool read_header(PngReader* r, PngHeader* h) {
   if (bit_depth == 16) png_set_strip_16(r->png);
   if (color_type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(r->png);
   if (color_type == PNG_COLOR_TYPE_GRAY && bit_depth < 8) png_set_expand_gray_1_2_4_to_8(r->png);
-  if ((color_type & PNG_COLOR_MASK_ALPHA) != 0) png_set_strip_alpha(r->png);
+  // A tRNS chunk (transparency of a palette entry or of one gray/RGB value) is expanded to an
+  // alpha channel by the transforms above; like an alpha channel, it is dropped.
+  const bool transparency = png_get_valid(r->png, r->info, PNG_INFO_tRNS) != 0;
+  if (transparency) png_set_tRNS_to_alpha(r->png);
+  if ((color_type & PNG_COLOR_MASK_ALPHA) != 0 || transparency) png_set_strip_alpha(r->png);
   png_set_interlace_handling(r->png);
   png_read_update_info(r->png, r->info);
   h->channels = png_get_channels(r->png, r->info);
@@ -79,7 +84,7 @@ void check_size(const std::string& file, std::uint64_t width, std::uint64_t heig
   if (width * height > kMaxMapCells) {
     throw InputError(file, "header",
                      "image of " + std::to_string(width) + " x " + std::to_string(height) +
-                         " pixels is too large (limit 2^28 = " + std::to_string(kMaxMapCells) +
+                         " pixels is too large (limit 2^26 = " + std::to_string(kMaxMapCells) +
                          " cells)");
   }
 }
@@ -88,6 +93,7 @@ void check_size(const std::string& file, std::uint64_t width, std::uint64_t heig
 
 RasterImage read_png(const std::filesystem::path& path) {
   const std::string file = path.string();
+  check_input_file(path, "PNG image", kMaxImageBytes);
   PngReader r;
   r.file = std::fopen(file.c_str(), "rb");
   if (r.file == nullptr) throw InputError(file, "", "cannot open the image file");
@@ -149,6 +155,7 @@ RasterImage read_png(const std::filesystem::path& path) {
 
 RasterImage read_raster_image(const std::filesystem::path& path) {
   const std::string file = path.string();
+  check_input_file(path, "map image", kMaxImageBytes);
   std::FILE* f = std::fopen(file.c_str(), "rb");
   if (f == nullptr) throw InputError(file, "", "cannot open the image file");
   unsigned char head[8] = {};

@@ -9,9 +9,11 @@
 
 namespace floornav::io_detail {
 
-/// Largest image (in pixels) a map may have: 2^28, a 16384 x 16384 map. Larger headers are
-/// refused before any pixel is read.
-inline constexpr std::uint64_t kMaxMapCells = std::uint64_t{1} << 28;
+/// Largest grid (in cells) a map may have: 2^26, an 8192 x 8192 map. A grid costs about 12 bytes
+/// per cell once loaded (the occupancy, the distance transform, the free runs), so this bounds a
+/// map at about 0.8 GB, whatever its file's size (a 55 kB 1-bit PNG can promise 2^28 pixels).
+/// Larger headers are refused before any pixel is read.
+inline constexpr std::uint64_t kMaxMapCells = std::uint64_t{1} << 26;
 
 /// An image as 8-bit samples, row 0 at the top, `channels` (1 = gray, 3 = RGB) per pixel, alpha
 /// already dropped.
@@ -35,9 +37,10 @@ struct RasterImage {
 /// to nearest). Throws InputError naming `path`.
 RasterImage read_pgm(const std::filesystem::path& path);
 
-/// Reads any PNG libpng can (gray, gray + alpha, RGB, RGBA, palette; 1..16 bits) as 8-bit gray
-/// or RGB: 16-bit samples are stripped to their high byte and alpha is dropped, as SDL_image
-/// (used by ROS 1 map_server) does. Throws InputError naming `path`.
+/// Reads any PNG libpng can (gray, gray + alpha, RGB, RGBA, palette, each also with a tRNS
+/// transparency chunk; 1..16 bits) as 8-bit gray or RGB: 16-bit samples are stripped to their
+/// high byte and alpha is dropped, as SDL_image (used by ROS 1 map_server) does. Throws InputError
+/// naming `path`.
 RasterImage read_png(const std::filesystem::path& path);
 
 /// Reads a PGM or PNG, chosen by the file's first bytes (not its name).

@@ -1,16 +1,21 @@
 #include "floornav/io/ros_map.hpp"
 
+#include <fmt/format.h>
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "floornav/core/input_error.hpp"
 #include "floornav/geometry/angle.hpp"
+#include "io/input_file.hpp"
 #include "io/maps/raster_image.hpp"
 #include "io/maps/text_parse.hpp"
 
@@ -89,11 +94,15 @@ class YamlKeys {
 
 RosMapMeta read_meta(const std::filesystem::path& yaml) {
   const std::string file = yaml.string();
+  const std::string text =
+      io_detail::read_input_file(yaml, "ROS map yaml", io_detail::kMaxMapYamlBytes);
   YAML::Node root;
   try {
-    root = YAML::LoadFile(file);
-  } catch (const YAML::BadFile&) {
-    throw InputError(file, "", "cannot open the map yaml");
+    const std::vector<YAML::Node> docs = YAML::LoadAll(text);
+    if (docs.size() > 1)
+      throw InputError(file, "line " + std::to_string(docs[1].Mark().line + 1),
+                       "a second YAML document: a map yaml is one document");
+    if (!docs.empty()) root.reset(docs[0]);
   } catch (const YAML::DeepRecursion& e) {
     throw InputError(file, e.mark.is_null() ? "" : "line " + std::to_string(e.mark.line + 1),
                      "invalid YAML: nested too deeply");
@@ -108,6 +117,18 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
   for (const auto& kv : root) {
     if (kv.first.IsScalar() && !seen.insert(kv.first.Scalar()).second)
       keys.fail(kv.first, kv.first.Scalar(), "given twice");
+  }
+
+  // Every key of map_server's format; any other (a typo such as `negative:`) is an error.
+  for (const auto& kv : root) {
+    const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string("?");
+    const std::initializer_list<std::string_view> kKeys = {
+        "image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh", "mode"};
+    if (std::find(kKeys.begin(), kKeys.end(), key) == kKeys.end())
+      keys.fail(kv.first, key.substr(0, 64),
+                "unknown key" + io_detail::did_you_mean(key, kKeys) +
+                    " (a map_server yaml has image, resolution, origin, negate, occupied_thresh, "
+                    "free_thresh and mode)");
   }
 
   RosMapMeta meta;
@@ -125,19 +146,26 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
   if (!origin.IsSequence() || origin.size() != 3) {
     keys.fail(origin, "origin", "expected a list [x, y, yaw]");
   }
-  meta.origin = Pose2{{keys.number(origin[0], "origin"), keys.number(origin[1], "origin")},
-                      wrap_angle(keys.number(origin[2], "origin"))};
+  const double yaw = keys.number(origin[2], "origin");
+  if (std::abs(yaw) > 2.0 * kPi + 1e-9)
+    keys.fail(origin[2], "origin",
+              fmt::format("yaw {:.6g} is beyond +-2 pi: angles are in radians (if you meant {:.6g} "
+                          "degrees, write {:.6g})",
+                          yaw, yaw, deg_to_rad(yaw)));
+  meta.origin =
+      Pose2{{keys.number(origin[0], "origin"), keys.number(origin[1], "origin")}, wrap_angle(yaw)};
 
+  // map_server reads negate as 0 or 1 (ROS 2: also a boolean); 2 is a typo, not "true".
   const YAML::Node negate = keys.require("negate");
   if (!negate.IsScalar()) keys.fail(negate, "negate", "expected 0, 1, true or false");
-  if (const auto i = io_detail::parse_int(negate.Scalar())) {
-    meta.negate = *i != 0;
+  const std::string n = std::string(io_detail::trim(negate.Scalar()));
+  if (n == "1" || n == "true" || n == "True" || n == "TRUE") {
+    meta.negate = true;
+  } else if (n == "0" || n == "false" || n == "False" || n == "FALSE") {
+    meta.negate = false;
   } else {
-    bool b = false;
-    if (!YAML::convert<bool>::decode(negate, b)) {
-      keys.fail(negate, "negate", "expected 0, 1, true or false, got '" + negate.Scalar() + "'");
-    }
-    meta.negate = b;
+    keys.fail(negate, "negate",
+              "expected 0, 1, true or false, got " + io_detail::quote_input(negate.Scalar()));
   }
 
   for (const char* key : {"occupied_thresh", "free_thresh"}) {
@@ -149,8 +177,8 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
   if (meta.free_thresh > meta.occupied_thresh) {
     // A pixel between the two would be both free and occupied.
     keys.fail(keys.require("free_thresh"), "free_thresh",
-              "must not be above occupied_thresh (" + std::to_string(meta.occupied_thresh) +
-                  "), got " + keys.require("free_thresh").Scalar());
+              fmt::format("must not be above occupied_thresh ({:.6g}), got {}",
+                          meta.occupied_thresh, keys.require("free_thresh").Scalar()));
   }
 
   if (keys.has("mode")) {
@@ -167,10 +195,10 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
     }
   }
 
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(meta.image, ec)) {
+  if (auto problem =
+          io_detail::input_file_problem(meta.image, "map image", io_detail::kMaxImageBytes)) {
     keys.fail(keys.require("image"), "image",
-              "image file '" + meta.image.string() + "' does not exist");
+              "image file '" + meta.image.string() + "' " + *problem);
   }
   return meta;
 }
@@ -228,7 +256,7 @@ OccupancyGrid load_ros_image_map(const std::filesystem::path& image, double reso
                                  const RosMapOptions& options) {
   if (!(resolution > 0.0) || !std::isfinite(resolution)) {
     throw InputError(image.string(), "resolution",
-                     "must be a positive finite number, got " + std::to_string(resolution));
+                     fmt::format("must be a positive finite number, got {:.6g}", resolution));
   }
   RosMapMeta meta;  // map_server's defaults
   meta.image = image;

@@ -1,5 +1,6 @@
 #include "floornav/io/sdf_world.hpp"
 
+#include <fmt/format.h>
 #include <tinyxml2.h>
 
 #include <map>
@@ -65,7 +66,17 @@ Pose2 parse_pose(const XMLElement* pose, const std::string& file) {
                      std::string("<pose rotation_format='") + format + "'> is not supported");
   }
   const std::vector<double> v = numbers(pose, 6, file);
-  const bool degrees = pose->BoolAttribute("degrees", false);
+  bool degrees = false;
+  if (const char* d = pose->Attribute("degrees")) {
+    const std::string_view t = io_detail::trim(d);
+    if (t == "true" || t == "1") {
+      degrees = true;
+    } else if (t != "false" && t != "0") {
+      throw InputError(file, io_detail::where_of(pose),
+                       "<pose degrees='" + std::string(t.substr(0, 64)) +
+                           "'>: expected true, false, 1 or 0 (SDF's boolean)");
+    }
+  }
   return Pose2{{v[0], v[1]}, wrap_angle(degrees ? deg_to_rad(v[5]) : v[5])};
 }
 
@@ -78,10 +89,22 @@ Pose2 child_pose(const XMLElement* parent, const std::string& file) {
 /// A positive size or radius.
 double positive(const XMLElement* e, double v, const std::string& file) {
   if (!(v > 0.0)) {
-    throw InputError(file, io_detail::where_of(e),
-                     std::string("<") + e->Name() + "> must be positive, got " + std::to_string(v));
+    throw InputError(
+        file, io_detail::where_of(e),
+        std::string("<") + e->Name() + "> must be positive, got " + fmt::format("{:.6g}", v));
   }
   return v;
+}
+
+/// Whether `m` or a model nested in it has a <collision>.
+bool has_collision(const XMLElement* m) {
+  for (const XMLElement* link = m->FirstChildElement("link"); link != nullptr;
+       link = link->NextSiblingElement("link"))
+    if (link->FirstChildElement("collision") != nullptr) return true;
+  for (const XMLElement* sub = m->FirstChildElement("model"); sub != nullptr;
+       sub = sub->NextSiblingElement("model"))
+    if (has_collision(sub)) return true;
+  return false;
 }
 
 class SdfReader {
@@ -104,7 +127,11 @@ class SdfReader {
       }
     }
     if (!is_static) {
-      out_.skipped.push_back("model '" + name + "': not static");
+      // A model that may move: its collisions are not a fixed obstacle. Reported (a robot would
+      // drive through it) unless it has none.
+      if (has_collision(m))
+        out_.skipped.push_back(io_detail::where_of(m) + ": model '" + name +
+                               "' is not static, so its collisions are not read");
       return;
     }
     for (const XMLElement* link = m->FirstChildElement("link"); link != nullptr;
@@ -150,8 +177,18 @@ class SdfReader {
       }
       out_.circles.push_back(
           Circle{pose.position, positive(radius, numbers(radius, 1, file_)[0], file_)});
-    } else if (kind != "plane") {
-      out_.skipped.push_back("model '" + owner + "': <" + kind + "> collision");
+    } else if (kind == "plane") {
+      // The ground, unless it stands up: a vertical plane is a wall floornav cannot represent.
+      if (const XMLElement* normal = shape->FirstChildElement("normal")) {
+        const std::vector<double> n = numbers(normal, 3, file_);
+        if (n[0] != 0.0 || n[1] != 0.0)
+          out_.skipped.push_back(io_detail::where_of(shape) + ": model '" + owner +
+                                 "': a <plane> that is not the ground (normal not 0 0 1)");
+      }
+    } else {
+      out_.skipped.push_back(io_detail::where_of(shape) + ": model '" + owner + "': a <" + kind +
+                             "> collision cannot be read (only <box>, <cylinder> and "
+                             "<sphere>)");
     }
   }
 
@@ -201,9 +238,15 @@ SdfWorld load_sdf_world(const std::filesystem::path& path) {
        e = e->NextSiblingElement()) {
     const std::string_view kind = e->Name();
     if (kind == "include") {
+      // The sun and the ground plane hold nothing a robot could hit; anything else included
+      // (a model from Gazebo's database) is not read.
       const XMLElement* uri = e->FirstChildElement("uri");
       const char* text = uri != nullptr ? uri->GetText() : nullptr;
-      out.skipped.push_back("include '" + std::string(text != nullptr ? text : "") + "'");
+      const std::string_view u = io_detail::trim(text != nullptr ? text : "");
+      if (u != "model://sun" && u != "model://ground_plane")
+        out.skipped.push_back(io_detail::where_of(e) + ": <include> of '" +
+                              std::string(u.substr(0, 200)) +
+                              "' is not read (only models written in the file are)");
       continue;
     }
     if (kind != "model") continue;

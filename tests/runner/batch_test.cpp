@@ -1,0 +1,374 @@
+// The batch runner's mechanisms, watched from inside: which cases really run (a controller that
+// counts its steps per case), what --resume keeps, what a stop abandons, what merge refuses, and
+// that a run's files appear together or not at all.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "floornav/core/input_error.hpp"
+#include "floornav/geometry/angle.hpp"
+#include "floornav/io/atomic_file.hpp"
+#include "floornav/io/scenario_file.hpp"
+#include "floornav/io/trajectory_csv.hpp"
+#include "floornav/robot/body_clearance.hpp"
+#include "floornav/runner/batch.hpp"
+#include "floornav/runner/run_outputs.hpp"
+#include "floornav/scenario/simulate.hpp"
+
+namespace floornav {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d =
+      fs::temp_directory_path() / ("floornav_batch_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  return d;
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<nlohmann::json> lines_of(const fs::path& p) {
+  std::vector<nlohmann::json> out;
+  std::istringstream in(read(p));
+  for (std::string l; std::getline(in, l);) out.push_back(nlohmann::json::parse(l));
+  return out;
+}
+
+/// Counts, per case, the steps its controller took; a case's controller may also raise `stop`
+/// at a given step.
+struct StepCounter {
+  std::map<std::size_t, std::shared_ptr<std::atomic<long>>> steps;
+  std::atomic<bool> stop{false};
+  std::map<std::size_t, long> stop_at;  ///< case -> raise `stop` at this step
+
+  std::atomic<long>& of(std::size_t id) {
+    auto& p = steps[id];
+    if (!p) p = std::make_shared<std::atomic<long>>(0);
+    return *p;
+  }
+};
+
+/// Case `id`: a robot driving straight to a goal 1 m away (about 700 steps), its controller
+/// counting into `counter`. `t_max` makes a case long (it then never reaches the goal).
+BatchCase counting_case(StepCounter& counter, std::size_t id, double t_max = 60.0,
+                        double goal_x = 1.0) {
+  BatchCase c;
+  c.scenario = load_scenario_text(
+      "world: {bounds: [-1, -1, " + std::to_string(goal_x + 2.0) +
+          ", 1]}\nrobot: {start: [0, 0, 0]}\ngoal: [" +
+          std::to_string(goal_x) + ", 0]\nsim: {t_max: " + std::to_string(t_max) + "}\n",
+      "counting.yaml");
+  std::atomic<long>* steps = &counter.of(id);
+  std::atomic<bool>* stop = &counter.stop;
+  const long stop_at = counter.stop_at.count(id) ? counter.stop_at[id] : -1;
+  c.scenario.set_controller("counting", make_controller([=](const Observation& o) {
+                              const long n = ++*steps;
+                              if (n == stop_at) stop->store(true);
+                              return o.goal_distance() < 0.05 ? Command::goal_reached()
+                                                              : Command::unicycle(0.15, 0.0);
+                            }));
+  c.source = "case" + std::to_string(id);
+  c.id = id;
+  return c;
+}
+
+BatchOptions options_for(const fs::path& dir, StepCounter* counter = nullptr) {
+  BatchOptions o;
+  o.jobs = 2;
+  o.out_dir = dir;
+  o.timing = false;
+  o.optimum = false;
+  o.stop = counter ? &counter->stop : nullptr;
+  o.sweep = {"test-sweep", 1, 1, 5};
+  return o;
+}
+
+// --resume runs only the cases without a line: the finished ones are never simulated again.
+TEST(Batch, ResumeRunsOnlyTheUnfinishedCases) {
+  const fs::path dir = fresh_dir("resume");
+  StepCounter counter;
+  std::vector<BatchCase> cases;
+  for (std::size_t i = 0; i < 5; ++i) cases.push_back(counting_case(counter, i));
+  // A first, partial run: cases 0 and 1 only.
+  const auto first = run_batch(std::span(cases).subspan(0, 2), options_for(dir));
+  EXPECT_EQ(first.ran, 2u);
+  const long steps0 = counter.of(0), steps1 = counter.of(1);
+  ASSERT_GT(steps0, 100);
+  // Resume the whole sweep: 0 and 1 are kept, 2..4 run.
+  BatchOptions o = options_for(dir);
+  o.resume = true;
+  const auto second = run_batch(cases, o);
+  EXPECT_EQ(second.resumed, 2u);
+  EXPECT_EQ(second.ran, 3u);
+  EXPECT_EQ(counter.of(0), steps0);  // not one more step
+  EXPECT_EQ(counter.of(1), steps1);
+  for (std::size_t i = 2; i < 5; ++i) EXPECT_EQ(counter.of(i), steps0) << i;  // each ran once
+  const auto lines = lines_of(dir / "results.jsonl");
+  ASSERT_EQ(lines.size(), 5u);
+  for (std::size_t i = 0; i < 5; ++i) EXPECT_EQ(lines[i]["case"], i);
+  EXPECT_EQ(nlohmann::json::parse(read(dir / "aggregate.json"))["runs"], 5);
+  // Resuming a complete folder runs nothing at all.
+  const auto third = run_batch(cases, o);
+  EXPECT_EQ(third.ran, 0u);
+  for (std::size_t i = 0; i < 5; ++i) EXPECT_EQ(counter.of(i), steps0) << i;
+  fs::remove_all(dir);
+}
+
+// A resume that is itself interrupted leaves every case once: no duplicate lines, and an
+// aggregate that counts what the file holds. A later resume runs only what is still missing.
+TEST(Batch, AnInterruptedResumeLeavesNoDuplicates) {
+  const fs::path dir = fresh_dir("resume_interrupted");
+  StepCounter counter;
+  counter.stop_at[3] = 50;  // case 3 raises the stop 50 steps in
+  std::vector<BatchCase> cases;
+  for (std::size_t i = 0; i < 5; ++i) cases.push_back(counting_case(counter, i));
+  run_batch(std::span(cases).subspan(0, 2), options_for(dir));
+  BatchOptions o = options_for(dir, &counter);
+  o.resume = true;
+  o.jobs = 1;
+  const auto interrupted = run_batch(cases, o);
+  EXPECT_TRUE(interrupted.interrupted);
+  const auto lines = lines_of(dir / "results.jsonl");
+  std::set<std::size_t> ids;
+  for (const auto& l : lines) EXPECT_TRUE(ids.insert(l["case"].get<std::size_t>()).second);
+  EXPECT_FALSE(ids.count(3));  // abandoned, not written
+  EXPECT_EQ(nlohmann::json::parse(read(dir / "aggregate.json"))["runs"], lines.size());
+  EXPECT_EQ(nlohmann::json::parse(read(dir / "aggregate.json"))["complete"], false);
+  // Finish it: the cases already written do not run again.
+  std::map<std::size_t, long> before;
+  for (std::size_t i = 0; i < 5; ++i) before[i] = counter.of(i);
+  counter.stop = false;
+  counter.stop_at.clear();
+  std::vector<BatchCase> again;
+  for (std::size_t i = 0; i < 5; ++i) again.push_back(counting_case(counter, i));
+  const auto done = run_batch(again, o);
+  EXPECT_FALSE(done.interrupted);
+  EXPECT_EQ(done.ran, 5u - ids.size());
+  for (const std::size_t i : ids) EXPECT_EQ(counter.of(i), before[i]) << "case " << i << " re-ran";
+  EXPECT_EQ(lines_of(dir / "results.jsonl").size(), 5u);
+  fs::remove_all(dir);
+}
+
+// A stop abandons a running case at once instead of waiting for it: a case of 10^8 steps is
+// left after a handful of steps (it would otherwise run them all), and it gets no line.
+TEST(Batch, AStopAbandonsARunningCase) {
+  const fs::path dir = fresh_dir("stop");
+  StepCounter counter;
+  counter.stop_at[0] = 1000;
+  std::vector<BatchCase> cases{counting_case(counter, 0, 1e6, 50.0)};  // never reached: 1e8 steps
+  const auto o = run_batch(cases, options_for(dir, &counter));
+  EXPECT_TRUE(o.interrupted);
+  EXPECT_EQ(o.completed, 0u);
+  EXPECT_LT(counter.of(0), 100'000'000);
+  EXPECT_TRUE(read(dir / "results.jsonl").empty());
+  fs::remove_all(dir);
+}
+
+// run_timed with a stop flag reads it at every step: set during step 1000, the run ends there.
+TEST(Batch, RunTimedReadsTheStopFlagEveryStep) {
+  StepCounter counter;
+  counter.stop_at[0] = 1000;
+  const BatchCase c = counting_case(counter, 0, 1e6, 50.0);
+  EXPECT_FALSE(run_timed(c.scenario, &counter.stop).has_value());
+  EXPECT_EQ(counter.of(0), 1000);
+}
+
+/// Runs shard k of n of the 5 counting cases into its own folder.
+fs::path run_shard(StepCounter& counter, const std::string& name, int k, int n,
+                   const std::string& sweep = "test-sweep") {
+  const fs::path dir = fresh_dir(name);
+  CaseList list{shard_ids(5, k, n), [&](std::size_t id) { return counting_case(counter, id); }};
+  BatchOptions o = options_for(dir);
+  o.sweep = {sweep, k, n, 5};
+  run_batch(list, o);
+  return dir;
+}
+
+std::string merge_error(std::vector<fs::path> dirs, const fs::path& out) {
+  try {
+    merge_batches(dirs, out);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// merge joins the shards of one sweep into exactly one big run's files, and refuses a partial,
+// mixed or overlapping set, naming what is wrong; --allow-partial says complete: false.
+TEST(Batch, MergeAcceptsOnlyAllShardsOfOneSweep) {
+  StepCounter counter;
+  const fs::path all = fresh_dir("merge_all");
+  {
+    std::vector<BatchCase> cases;
+    for (std::size_t i = 0; i < 5; ++i) cases.push_back(counting_case(counter, i));
+    run_batch(cases, options_for(all));
+  }
+  const fs::path s1 = run_shard(counter, "s1", 1, 3), s2 = run_shard(counter, "s2", 2, 3),
+                 s3 = run_shard(counter, "s3", 3, 3);
+  EXPECT_EQ(read(s2 / "results.jsonl").find("\"case\":1,"), 1u);  // shard 2/3 holds cases 1, 4
+  const fs::path merged = fresh_dir("merged");
+  const MergeOutcome ok = merge_batches(std::vector{s3, s1, s2}, merged);
+  EXPECT_TRUE(ok.complete);
+  EXPECT_EQ(ok.merged, 5u);
+  for (const char* f : {"results.jsonl", "aggregate.json", "sweep.json"})
+    EXPECT_EQ(read(merged / f), read(all / f)) << f;
+
+  const fs::path out = fresh_dir("merge_out");
+  std::string e = merge_error({s1, s2}, out);
+  EXPECT_NE(e.find("shard 3/3 of sweep test-sweep is missing"), std::string::npos) << e;
+  EXPECT_FALSE(fs::exists(out));
+  e = merge_error({s1, s2, s2}, out);
+  EXPECT_NE(e.find("is shard 2/3 again"), std::string::npos) << e;
+  const fs::path other = run_shard(counter, "other", 3, 3, "another-sweep");
+  e = merge_error({s1, s2, other}, out);
+  EXPECT_NE(e.find("mixed sweeps"), std::string::npos) << e;
+  const fs::path halves = run_shard(counter, "halves", 2, 2);
+  e = merge_error({s1, s2, halves}, out);
+  EXPECT_NE(e.find("split two ways"), std::string::npos) << e;
+  // A shard that lost its line is incomplete.
+  std::ofstream(s3 / "results.jsonl", std::ios::trunc).close();
+  e = merge_error({s1, s2, s3}, out);
+  EXPECT_NE(e.find("shard 3/3 is incomplete: 1 of its 1 cases are missing (case 2)"),
+            std::string::npos)
+      << e;
+  EXPECT_FALSE(fs::exists(out));
+  // --allow-partial merges what there is, and says so.
+  const MergeOutcome partial = merge_batches(std::vector{s1, s2}, out, true);
+  EXPECT_FALSE(partial.complete);
+  EXPECT_EQ(partial.merged, 4u);
+  EXPECT_EQ(partial.missing_shards, std::vector<int>{3});
+  const auto agg = nlohmann::json::parse(read(out / "aggregate.json"));
+  EXPECT_EQ(agg["complete"], false);
+  EXPECT_EQ(agg["missing_cases"], 1);
+  for (const fs::path& d : {all, s1, s2, s3, merged, out, other, halves}) fs::remove_all(d);
+}
+
+// A world with nothing near the robot: no clearance is ever measured; the aggregate says null,
+// never 1e+300.
+TEST(Batch, AggregateOfNoMeasuredClearanceIsNull) {
+  const auto agg = aggregate_results(
+      {nlohmann::ordered_json{{"status", "reached"}, {"min_clearance", nullptr}}});
+  EXPECT_TRUE(agg["min_clearance"].is_null());
+  EXPECT_EQ(aggregate_results({})["min_clearance"], nullptr);
+}
+
+// The files of one output folder appear together or not at all.
+TEST(OutputFolderTest, AllFilesOrNone) {
+  const fs::path dir = fresh_dir("folder");
+  {
+    OutputFolder out(dir);
+    out.write("a.txt", "first\n");
+    EXPECT_THROW(out.write("b.txt",
+                           [](const std::function<void(std::string_view)>& sink) {
+                             sink("half");
+                             throw InputError("x", "", "the producer failed");
+                           }),
+                 InputError);
+    // Not committed: nothing appears, and no staging folder is left beside it.
+  }
+  EXPECT_FALSE(fs::exists(dir));
+  for (const auto& e : fs::directory_iterator(dir.parent_path()))
+    EXPECT_EQ(e.path().filename().string().find("." + dir.filename().string() + ".staging"),
+              std::string::npos)
+        << e.path();
+  // Into an existing folder: the old files stay as they were until the new set is complete.
+  fs::create_directories(dir);
+  std::ofstream(dir / "a.txt") << "old\n";
+  {
+    OutputFolder out(dir);
+    out.write("a.txt", "new\n");
+    EXPECT_EQ(read(dir / "a.txt"), "old\n");
+    out.write("b.txt", "new b\n");
+    out.commit();
+  }
+  EXPECT_EQ(read(dir / "a.txt"), "new\n");
+  EXPECT_EQ(read(dir / "b.txt"), "new b\n");
+  EXPECT_THROW(OutputFolder(dir / "a.txt"), InputError);  // a file, not a folder
+  fs::remove_all(dir);
+}
+
+TEST(OutputFolderTest, SafeFileNames) {
+  EXPECT_EQ(safe_file_name("rectangle"), "rectangle");
+  EXPECT_EQ(safe_file_name("../../etc"), "_._.._etc");
+  EXPECT_EQ(safe_file_name("/abs/path"), "_abs_path");
+  EXPECT_EQ(safe_file_name(".."), "_.");
+  EXPECT_EQ(safe_file_name(""), "_");
+  EXPECT_EQ(safe_file_name("a\nb c"), "a_b_c");
+  EXPECT_EQ(safe_file_name(std::string(500, 'x')).size(), 120u);
+}
+
+// --record's columns hold what the pipeline of Fig 5.12 computed, worked again here from the
+// recorded rows: theta_d = atan2(u_y, u_x) (eq. 5.28), the heading error wrapped (eq. 5.14)
+// against the heading the step started from, the body's clearance at the row's pose, the goal,
+// and each sensor's reading.
+TEST(Record, ExtraColumnsHoldWhatTheControllerSawAndAskedFor) {
+  Scenario s = load_scenario_file(std::string(FLOORNAV_SCENARIO_DIR) + "/rectangle.yaml");
+  s.sim.record = {true, true, true, true, true};
+  const RunResult r = simulate(s);
+  const auto& c = r.extra_columns;
+  ASSERT_EQ(c.size(), 4u + 2u + 1u + 3u + 5u);
+  ASSERT_EQ(r.extra.size(), c.size() * r.trajectory.size());
+  auto col = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(c.begin(), c.end(), name) - c.begin());
+  };
+  auto at = [&](std::size_t row, const std::string& name) {
+    return r.extra[row * c.size() + col(name)];
+  };
+  EXPECT_TRUE(std::isnan(at(0, "u_x")));  // the start: nothing asked yet
+  EXPECT_TRUE(std::isnan(at(0, "range_0")));
+  std::size_t checked = 0;
+  for (std::size_t row = 1; row < r.trajectory.size(); ++row) {
+    const double ux = at(row, "u_x"), uy = at(row, "u_y");
+    ASSERT_TRUE(std::isfinite(ux)) << row;  // the built-in controllers ask for velocities
+    if (std::hypot(ux, uy) > 1e-9) {
+      const double theta_d = std::atan2(uy, ux);
+      EXPECT_EQ(at(row, "theta_d"), theta_d);
+      EXPECT_EQ(at(row, "heading_error"), wrap_angle(theta_d - r.trajectory[row - 1].theta));
+      ++checked;
+    }
+    const TrajectorySample& p = r.trajectory[row];
+    EXPECT_EQ(at(row, "clearance"),
+              body_clearance(*s.world, s.robot().robot, Pose2{{p.x, p.y}, p.theta}));
+    EXPECT_EQ(at(row, "goal_x"), 2.4);
+    EXPECT_EQ(at(row, "goal_index"), 0.0);
+    for (int k = 0; k < 5; ++k) {
+      const double range = at(row, "range_" + std::to_string(k));
+      EXPECT_GE(range, 0.04);
+      EXPECT_LE(range, 0.3);
+    }
+  }
+  EXPECT_GT(checked, 1000u);
+  // The CSV carries them, with the start's empty fields empty.
+  const std::string csv = trajectory_to_csv(r);
+  EXPECT_NE(csv.find(",range_4\n"), std::string::npos);
+  // Off (the default): no extra columns, and the same trajectory bit for bit.
+  s.sim.record = {};
+  const RunResult plain = simulate(s);
+  EXPECT_TRUE(plain.extra_columns.empty());
+  EXPECT_TRUE(plain.extra.empty());
+  ASSERT_EQ(plain.trajectory.size(), r.trajectory.size());
+  EXPECT_EQ(plain.trajectory.back().x, r.trajectory.back().x);
+}
+
+}  // namespace
+}  // namespace floornav
