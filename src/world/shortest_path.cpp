@@ -97,25 +97,21 @@ std::optional<RasterFrame> choose_frame(const World& world, double r, const Vec2
   return f;
 }
 
-FreeRaster rasterise(const World& world, double r, const RasterFrame& f) {
+// The raster by one `world.clearance` query per cell centre: the definition, and the way for
+// the cases the direct one below does not cover (a negative radius). Clearance is 1-Lipschitz: a
+// centre with clearance c decides the next cells of its row up to |c - r| away without more
+// queries (free ones stay above r, blocked ones at most r). The margin keeps a rounding error from
+// flipping a cell that a query would decide otherwise.
+FreeRaster rasterise_by_queries(const World& world, double r, const RasterFrame& f) {
   FreeRaster raster;
   raster.width = f.width;
   raster.height = f.height;
   raster.free.assign(static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height), 0);
-  const OccupancyGrid* grid = world.grid();
-  // Clearance is 1-Lipschitz: a centre with clearance c decides the next cells of its row up to
-  // |c - r| away without more queries (free ones stay above r, blocked ones at most r). The
-  // margin keeps a rounding error from flipping a cell that a query would decide otherwise.
   constexpr double kMargin = 1e-9;
   const double max_skip = static_cast<double>(f.width);
   for (int iy = 0; iy < f.height; ++iy) {
     const std::size_t row = static_cast<std::size_t>(iy) * static_cast<std::size_t>(f.width);
     for (int ix = 0; ix < f.width;) {
-      // An occupied map cell is blocked whatever else the world holds: skip the query.
-      if (grid && grid->occupied(ix, iy)) {
-        ++ix;
-        continue;
-      }
       const double c = world.clearance(f.to_world(Vec2(ix + 0.5, iy + 0.5)));
       const bool is_free = c > r;
       const double reach = is_free ? c - r - kMargin : r - c - kMargin;  // NaN: no skipping
@@ -129,6 +125,193 @@ FreeRaster rasterise(const World& world, double r, const RasterFrame& f) {
         std::fill(raster.free.begin() + static_cast<std::ptrdiff_t>(row + ix),
                   raster.free.begin() + static_cast<std::ptrdiff_t>(row + end), 1);
       ix = end;
+    }
+  }
+  return raster;
+}
+
+/// The world-frame centres of a raster's cells, computed exactly as RasterFrame::to_world does
+/// (the same products and sums, the rotation's sine and cosine taken once).
+class CellCentres {
+ public:
+  explicit CellCentres(const RasterFrame& f)
+      : f_(f), c_(std::cos(f.origin.theta)), s_(std::sin(f.origin.theta)) {}
+  Vec2 operator()(int ix, int iy) const {
+    const Vec2 v = Vec2(ix + 0.5, iy + 0.5) * f_.cell;
+    return f_.origin.position + Vec2(c_ * v.x() - s_ * v.y(), s_ * v.x() + c_ * v.y());
+  }
+
+ private:
+  const RasterFrame& f_;
+  double c_, s_;
+};
+
+/// Cell-frame box [x0, x1] x [y0, y1] (inclusive, clamped to the raster) of the cells whose
+/// centres may lie within `reach` metres of the world-frame box [lo, hi]: one cell of margin, far
+/// above any rounding of the frame change.
+struct CellBox {
+  int x0, x1, y0, y1;
+  bool empty() const { return x0 > x1 || y0 > y1; }
+};
+CellBox cells_near(const RasterFrame& f, const Vec2& lo, const Vec2& hi, double reach) {
+  Vec2 a = f.to_cells(lo), b = a;
+  for (const Vec2& corner : {Vec2(hi.x(), lo.y()), Vec2(lo.x(), hi.y()), hi}) {
+    const Vec2 c = f.to_cells(corner);
+    a = a.cwiseMin(c);
+    b = b.cwiseMax(c);
+  }
+  const double m = reach / f.cell + 1.0;
+  auto lower = [&](double v, int n) {
+    return static_cast<int>(std::clamp(std::floor(v - m - 0.5), 0.0, static_cast<double>(n)));
+  };
+  auto upper = [&](double v, int n) {
+    return static_cast<int>(std::clamp(std::ceil(v + m - 0.5), -1.0, static_cast<double>(n - 1)));
+  };
+  return {lower(a.x(), f.width), upper(b.x(), f.width), lower(a.y(), f.height),
+          upper(b.y(), f.height)};
+}
+
+// The raster a clearance query per cell centre gives (rasterise_by_queries), computed from the
+// obstacles instead: each cell is as free as that query says, no more, no less (tested on random
+// worlds). A centre is blocked when the world's clearance there is at most r, that is when
+//  - the occupancy grid's clearance is at most r: decided by the grid's own distance transform
+//    (the nearest occupied centre) where it is clear by far, by the grid's query elsewhere;
+//  - or a wall, polygon edge or circle lies within r: World::clearance takes the minimum of the
+//    same `distance` / `signed_distance` values over them, so each is computed for the cells near
+//    it only and compared with r;
+//  - or the centre lies inside a solid shape or outside the bounds: World::is_inside_obstacle,
+//    asked only for the still free cells that may be.
+FreeRaster rasterise(const World& world, double r, const RasterFrame& f) {
+  if (!(r >= 0.0) || !is_finite(f.origin.position) || !std::isfinite(f.origin.theta))
+    return rasterise_by_queries(world, r, f);
+  FreeRaster raster;
+  raster.width = f.width;
+  raster.height = f.height;
+  const std::size_t w = static_cast<std::size_t>(f.width);
+  raster.free.assign(w * static_cast<std::size_t>(f.height), 1);
+  std::uint8_t* free = raster.free.data();
+  const CellCentres centre(f);
+
+  if (const OccupancyGrid* g = world.grid()) {
+    const bool own_cells = g->origin().position == f.origin.position &&
+                           g->origin().theta == f.origin.theta && g->resolution() == f.cell &&
+                           g->width() == f.width && g->height() == f.height;
+    // Far above the rounding of the grid query's frame change (relative 1e-16 of the origin).
+    const double margin = 1e-9 + 1e-12 * (f.origin.position.norm() + f.cell * (w + f.height));
+    const double res = f.cell;
+    for (int iy = 0; iy < f.height; ++iy)
+      for (int ix = 0; ix < f.width; ++ix) {
+        std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
+        if (own_cells) {
+          if (g->occupied(ix, iy)) {
+            cell = 0;
+            continue;
+          }
+          const std::int32_t q = g->nearest_occupied_index(ix, iy);
+          if (q < 0) continue;  // no occupied cell: the grid's clearance is infinite
+          const int dx = std::abs(q % f.width - ix), dy = std::abs(q / f.width - iy);
+          // The nearest occupied square is at least the nearest occupied centre less half a
+          // diagonal away, and at most as far as that centre's own square.
+          const double centres = std::sqrt(static_cast<double>(dx * dx + dy * dy));
+          const double ex = std::max(dx - 0.5, 0.0), ey = std::max(dy - 0.5, 0.0);
+          const double upper = std::sqrt(ex * ex + ey * ey) * res;
+          const double lower = (centres - 0.7071067811865476) * res;
+          if (lower > r + margin) continue;
+          if (upper < r - margin) {
+            cell = 0;
+            continue;
+          }
+        }
+        if (!(g->clearance(centre(ix, iy)) > r)) cell = 0;
+      }
+  }
+
+  // Walls, polygon edges and circles: each marks the cells it comes within r of.
+  for (const Segment& s : world.segments()) {
+    const CellBox b = cells_near(f, s.a.cwiseMin(s.b), s.a.cwiseMax(s.b), r);
+    for (int iy = b.y0; iy <= b.y1; ++iy)
+      for (int ix = b.x0; ix <= b.x1; ++ix) {
+        std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
+        if (cell && distance(s, centre(ix, iy)) <= r) cell = 0;
+      }
+  }
+  for (const Circle& c : world.circles()) {
+    const Vec2 half(c.radius, c.radius);
+    const CellBox b = cells_near(f, c.center - half, c.center + half, r);
+    for (int iy = b.y0; iy <= b.y1; ++iy)
+      for (int ix = b.x0; ix <= b.x1; ++ix) {
+        std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
+        // Inside the disc or within r of it (its |signed distance| when outside).
+        if (cell && signed_distance(c, centre(ix, iy)) <= r) cell = 0;
+      }
+  }
+
+  // Cells still free that may lie inside a polygon. Unrotated, each row of centres is a line
+  // y = const: the polygon's edges cross it at points in increasing x, and a centre is inside
+  // when an odd number of crossings lie left of it (the half-open rule counts a vertex on the
+  // line once). A still free centre is farther than r from every edge, so from every crossing;
+  // only one within `margin` of a crossing (possible for r ~ 0) asks the world.
+  auto inside_test = [&](int ix, int iy) {
+    std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
+    if (cell && world.is_inside_obstacle(centre(ix, iy))) cell = 0;
+  };
+  std::vector<double> crossings;
+  const double margin = 1e-9 + 1e-12 * (f.origin.position.norm() + f.cell * (w + f.height));
+  for (const auto& poly : world.polygons()) {
+    if (poly.empty()) continue;
+    Vec2 lo = poly.front(), hi = poly.front();
+    for (const Vec2& v : poly) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const CellBox b = cells_near(f, lo, hi, 0.0);
+    for (int iy = b.y0; iy <= b.y1; ++iy) {
+      if (f.origin.theta != 0.0) {
+        for (int ix = b.x0; ix <= b.x1; ++ix) inside_test(ix, iy);
+        continue;
+      }
+      const double y = centre(0, iy).y();
+      crossings.clear();
+      for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+        const Vec2 &p = poly[i], &q = poly[j];
+        if ((p.y() > y) != (q.y() > y))
+          crossings.push_back(p.x() + (y - p.y()) * (q.x() - p.x()) / (q.y() - p.y()));
+      }
+      std::sort(crossings.begin(), crossings.end());
+      std::size_t left = 0;  // crossings left of the centre
+      for (int ix = b.x0; ix <= b.x1; ++ix) {
+        const double x = centre(ix, iy).x();
+        while (left < crossings.size() && crossings[left] < x) ++left;
+        const bool near_left = left > 0 && x - crossings[left - 1] <= margin;
+        const bool near_right = left < crossings.size() && crossings[left] - x <= margin;
+        if (near_left || near_right)
+          inside_test(ix, iy);
+        else if (left % 2 == 1)
+          free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)] = 0;
+      }
+    }
+  }
+  if (const auto& bounds = world.bounds()) {
+    // Unrotated, a centre's x depends on its column only and its y on its row only.
+    std::vector<std::uint8_t> column_in, row_in;
+    if (f.origin.theta == 0.0) {
+      column_in.resize(w);
+      row_in.resize(static_cast<std::size_t>(f.height));
+      for (int ix = 0; ix < f.width; ++ix) {
+        const double x = centre(ix, 0).x();
+        column_in[static_cast<std::size_t>(ix)] = x >= bounds->min.x() && x <= bounds->max.x();
+      }
+      for (int iy = 0; iy < f.height; ++iy) {
+        const double y = centre(0, iy).y();
+        row_in[static_cast<std::size_t>(iy)] = y >= bounds->min.y() && y <= bounds->max.y();
+      }
+    }
+    for (int iy = 0; iy < f.height; ++iy) {
+      std::uint8_t* row = free + static_cast<std::size_t>(iy) * w;
+      if (!row_in.empty()) {
+        if (!row_in[static_cast<std::size_t>(iy)]) std::fill(row, row + w, 0);
+        for (std::size_t ix = 0; ix < w; ++ix) row[ix] &= column_in[ix];
+        continue;
+      }
+      for (int ix = 0; ix < f.width; ++ix)
+        if (row[ix] && !bounds->contains(centre(ix, iy))) row[ix] = 0;
     }
   }
   return raster;
