@@ -4,8 +4,6 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <queue>
-#include <tuple>
 #include <utility>
 
 #include "floornav/world/occupancy_grid.hpp"
@@ -343,53 +341,112 @@ FreeRaster free_cells(const World& world, double body_radius, const Pose2& origi
   return rasterise(world, body_radius, RasterFrame{origin, cell, width, height});
 }
 
+namespace {
+
+/// An open-list entry: lowest f first; among equal f the deepest node (-g lowest), then the
+/// lowest index, so that the order of expansion (and the path) is deterministic.
+struct OpenEntry {
+  double f;
+  double neg_g;
+  std::uint32_t index;
+  bool operator>(const OpenEntry& o) const {
+    if (f != o.f) return f > o.f;
+    if (neg_g != o.neg_g) return neg_g > o.neg_g;
+    return index > o.index;
+  }
+};
+
+/// A* working memory, kept per thread so that a search allocates nothing once the thread's
+/// buffers fit its raster (a batch runs thousands). `mark[v]` says what this search knows of
+/// cell v: 2 * search + 1 closed, 2 * search open (g and parent valid), anything else untouched,
+/// so nothing is cleared between searches.
+struct SearchBuffers {
+  std::vector<double> g;
+  std::vector<std::int32_t> parent;
+  std::vector<std::uint32_t> mark;
+  std::vector<OpenEntry> open;
+  std::uint32_t search{0};
+
+  void begin(std::size_t n) {
+    if (mark.size() < n || search >= 0x7FFFFFFEu) {
+      g.assign(std::max(n, g.size()), kInf);
+      parent.assign(g.size(), -1);
+      mark.assign(g.size(), 0);
+      search = 0;
+    }
+    ++search;
+    open.clear();
+  }
+};
+
+}  // namespace
+
 std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, GridCell goal) {
   if (!raster.is_free(start.x, start.y) || !raster.is_free(goal.x, goal.y)) return std::nullopt;
-  const std::size_t w = static_cast<std::size_t>(raster.width);
-  const std::size_t n = w * static_cast<std::size_t>(raster.height);
+  const int width = raster.width, height = raster.height;
+  const std::size_t w = static_cast<std::size_t>(width);
+  const std::size_t n = w * static_cast<std::size_t>(height);
+  thread_local SearchBuffers buffers;
+  SearchBuffers& b = buffers;
+  b.begin(n);
+  const std::uint32_t open_mark = 2 * b.search, closed_mark = open_mark + 1;
+  const std::uint8_t* free = raster.free.data();
   auto index = [w](int x, int y) {
     return static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x);
   };
-  std::vector<double> g(n, kInf);
-  std::vector<std::int32_t> parent(n, -1);
-  std::vector<std::uint8_t> closed(n, 0);
-  // (f, -g, index): lowest f first; among equal f the deepest node, then the lowest index, so
-  // the order (and the path) is deterministic.
-  using Entry = std::tuple<double, double, std::size_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  const std::greater<OpenEntry> later;
+  auto push = [&](double f, double g, std::size_t v) {
+    b.open.push_back({f, -g, static_cast<std::uint32_t>(v)});
+    std::push_heap(b.open.begin(), b.open.end(), later);
+  };
   const std::size_t s = index(start.x, start.y), t = index(goal.x, goal.y);
-  g[s] = 0.0;
-  open.emplace(octile_distance(goal.x - start.x, goal.y - start.y), -0.0, s);
+  b.g[s] = 0.0;
+  b.parent[s] = -1;
+  b.mark[s] = open_mark;
+  push(octile_distance(goal.x - start.x, goal.y - start.y), 0.0, s);
   constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
   constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
-  while (!open.empty()) {
-    const auto [f, neg_g, u] = open.top();
-    open.pop();
-    if (closed[u]) continue;
-    closed[u] = 1;
+  const std::ptrdiff_t sw = static_cast<std::ptrdiff_t>(w);
+  const std::ptrdiff_t kStep[8] = {1, -1, sw, -sw, sw + 1, -sw + 1, sw - 1, -sw - 1};
+  while (!b.open.empty()) {
+    std::pop_heap(b.open.begin(), b.open.end(), later);
+    const std::size_t u = b.open.back().index;
+    b.open.pop_back();
+    if (b.mark[u] == closed_mark) continue;
+    b.mark[u] = closed_mark;
     if (u == t) break;
     const int ux = static_cast<int>(u % w), uy = static_cast<int>(u / w);
+    // Away from the raster's border every neighbour exists: no bounds checks.
+    const bool inner = ux > 0 && uy > 0 && ux + 1 < width && uy + 1 < height;
+    const double gu = b.g[u];
     for (int k = 0; k < 8; ++k) {
       const int vx = ux + kDx[k], vy = uy + kDy[k];
-      if (!raster.is_free(vx, vy)) continue;
-      const bool diagonal = kDx[k] != 0 && kDy[k] != 0;
-      if (diagonal && (!raster.is_free(ux + kDx[k], uy) || !raster.is_free(ux, uy + kDy[k])))
-        continue;  // no corner cutting
+      const bool diagonal = k >= 4;
+      if (inner) {
+        if (!free[u + kStep[k]]) continue;
+        if (diagonal && (!free[u + kDx[k]] || !free[u + kStep[k] - kDx[k]])) continue;
+      } else {
+        if (!raster.is_free(vx, vy)) continue;
+        if (diagonal && (!raster.is_free(ux + kDx[k], uy) || !raster.is_free(ux, uy + kDy[k])))
+          continue;  // no corner cutting
+      }
       const std::size_t v = index(vx, vy);
-      if (closed[v]) continue;
-      const double gv = g[u] + (diagonal ? kSqrt2 : 1.0);
-      if (gv < g[v]) {
-        g[v] = gv;
-        parent[v] = static_cast<std::int32_t>(u);
-        open.emplace(gv + octile_distance(goal.x - vx, goal.y - vy), -gv, v);
+      const std::uint32_t m = b.mark[v];
+      if (m == closed_mark) continue;
+      const double gv = gu + (diagonal ? kSqrt2 : 1.0);
+      if (m != open_mark || gv < b.g[v]) {
+        b.g[v] = gv;
+        b.parent[v] = static_cast<std::int32_t>(u);
+        b.mark[v] = open_mark;
+        push(gv + octile_distance(goal.x - vx, goal.y - vy), gv, v);
       }
     }
   }
-  if (!closed[t]) return std::nullopt;
+  if (b.mark[t] != closed_mark) return std::nullopt;
   GridPath path;
-  path.length = g[t];
+  path.length = b.g[t];
   for (std::int64_t v = static_cast<std::int64_t>(t); v >= 0;
-       v = parent[static_cast<std::size_t>(v)])
+       v = b.parent[static_cast<std::size_t>(v)])
     path.cells.push_back({static_cast<int>(static_cast<std::size_t>(v) % w),
                           static_cast<int>(static_cast<std::size_t>(v) / w)});
   std::reverse(path.cells.begin(), path.cells.end());

@@ -111,6 +111,29 @@ TEST(OctileAstar, MatchesTheOctileDistanceInOpenSpaceAndIsDeterministic) {
   EXPECT_EQ(a->cells, b->cells);
 }
 
+// Searches reuse their working memory (per thread, nothing cleared between searches): a search
+// after others on larger and smaller rasters, some failing half-way, finds what it found first.
+TEST(OctileAstar, ASearchAfterOthersOnOtherRastersFindsTheSamePath) {
+  Rng rng(5);
+  std::vector<std::array<int, 2>> blocked;
+  for (int k = 0; k < 300; ++k)
+    blocked.push_back(
+        {static_cast<int>(rng.uniform(0.0, 40.0)), static_cast<int>(rng.uniform(0.0, 30.0))});
+  FreeRaster r = raster(40, 30, {});
+  for (const auto& [x, y] : blocked)
+    if ((x > 1 || y > 1) && (x < 38 || y < 28)) r.free[static_cast<std::size_t>(y * 40 + x)] = 0;
+  const auto first = octile_astar(r, {0, 0}, {39, 29});
+  ASSERT_TRUE(first);
+  EXPECT_TRUE(octile_astar(raster(200, 150, {}), {0, 0}, {199, 149}));
+  EXPECT_FALSE(
+      octile_astar(raster(5, 5, {{2, 0}, {2, 1}, {2, 2}, {2, 3}, {2, 4}}), {0, 0}, {4, 4}));
+  EXPECT_TRUE(octile_astar(raster(7, 3, {}), {6, 2}, {0, 0}));
+  const auto again = octile_astar(r, {0, 0}, {39, 29});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->cells, first->cells);
+  EXPECT_EQ(again->length, first->length);
+}
+
 // The MovingAI benchmark's own optima (octile, no corner cutting), row by row: octile_astar on the
 // map's cells, and scenario_optimum's octile length on the map as a world (1 m cells, r = 0.1 m, so
 // every free cell's centre is free: its clearance is at least half a cell).
