@@ -1,6 +1,7 @@
 #include "floornav/sim/fleet_simulation.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <barrier>
 #include <cmath>
 #include <limits>
@@ -29,6 +30,9 @@ double sensing_reach(const RobotSpec& robot) {
 
 // Rays a thread should have per step before a fleet is split across threads.
 constexpr std::size_t kRaysPerThread = 2000;
+// Robots a thread takes at a time: enough to make the shared counter rare, few enough that the
+// threads end a step together.
+constexpr std::size_t kChunk = 16;
 
 }  // namespace
 
@@ -77,9 +81,12 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     box.max = box.max.cwiseMax(p);
   }
   grid_.reset(box, std::max(max_reach + max_radius_, 2.0 * max_radius_), n);
+  sense_grid_.reset(box, std::max(max_reach + max_radius_, 2.0 * max_radius_), n);
   positions_.resize(n);
   present_.assign(n, 0);
   moving_.assign(n, 0);
+  stepped_.assign(n, 0);
+  touching_.assign(n, 0);
   gap_.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) positions_[i] = agents_[i].pose().position;
   update_snapshot();
@@ -89,38 +96,44 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
   steps_ = 0;
 }
 
-void FleetSimulation::update_snapshot() {
+bool FleetSimulation::update_presence() {
   running_ = 0;
   const bool park = sim_.park_finished;
-  bool presence_changed = false;
+  bool changed = false;
   for (std::size_t i = 0; i < agents_.size(); ++i) {
     const RobotAgent& a = agents_[i];
-    moving_[i] = !a.finished();
     const std::uint8_t present = !a.finished() || park || a.result().collided;
-    presence_changed = presence_changed || present != present_[i];
+    changed = changed || present != present_[i];
     present_[i] = present;
-    running_ += moving_[i];
+    running_ += !a.finished();
   }
+  return changed;
+}
+
+void FleetSimulation::update_snapshot() {
+  for (std::size_t i = 0; i < agents_.size(); ++i) moving_[i] = !agents_[i].finished();
   // prepare_contacts() filed the positions already; only robots that left need a rebuild.
-  if (presence_changed) grid_.build(positions_, present_);
+  if (update_presence()) grid_.build(positions_, present_);
+}
+
+void FleetSimulation::step_robot(std::size_t i, const RobotNeighbourGrid& grid,
+                                 std::size_t thread) {
+  std::vector<Circle>& others = others_[thread];
+  // The bodies this robot's sensors could reach, as they stood at the start of the step.
+  others.clear();
+  const Vec2 p = positions_[i];
+  const double reach = reach_[i];
+  grid.for_each_near(p, reach + max_radius_, [&](std::size_t j) {
+    if (j == i) return;
+    const double r = reach + radius_[j];
+    if ((positions_[j] - p).squaredNorm() < r * r) others.push_back({positions_[j], radius_[j]});
+  });
+  agents_[i].step(scratch_[thread], others);
 }
 
 void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_t thread) {
-  SensingScratch& scratch = scratch_[thread];
-  std::vector<Circle>& others = others_[thread];
-  for (std::size_t i = begin; i < end; ++i) {
-    if (!moving_[i]) continue;
-    // The bodies this robot's sensors could reach, as they stood at the start of the step.
-    others.clear();
-    const Vec2 p = positions_[i];
-    const double reach = reach_[i];
-    grid_.for_each_near(p, reach + max_radius_, [&](std::size_t j) {
-      if (j == i) return;
-      const double r = reach + radius_[j];
-      if ((positions_[j] - p).squaredNorm() < r * r) others.push_back({positions_[j], radius_[j]});
-    });
-    agents_[i].step(scratch, others);
-  }
+  for (std::size_t i = begin; i < end; ++i)
+    if (moving_[i]) step_robot(i, grid_, thread);
 }
 
 void FleetSimulation::prepare_contacts() {
@@ -146,31 +159,46 @@ void FleetSimulation::measure_gaps(std::size_t begin, std::size_t end) {
     if (moving_[i]) gap_[i] = nearest_gap(i);
 }
 
-void FleetSimulation::apply_gaps() {
+void FleetSimulation::log_world_collisions() {
   // World collisions of this step (robot contacts are not applied yet).
   for (std::size_t i = 0; i < agents_.size(); ++i)
     if (moving_[i] && agents_[i].result().collided)
       collisions_.push_back({agents_[i].time(), static_cast<int>(i), -1});
-  // Contacts between bodies at the positions after the move. Robots that stopped or left this
-  // step still count: they were there while the others moved.
+}
+
+void FleetSimulation::apply_gap(std::size_t i) {
+  RobotAgent& a = agents_[i];
+  const double gap = gap_[i];
+  if (gap > 0.0) {
+    if (gap < std::numeric_limits<double>::infinity()) a.note_robot_gap(gap);
+    return;
+  }
+  touching_[i] = 1;  // logged by log_contacts
+  a.collide_with_robot(gap);
+}
+
+void FleetSimulation::log_contacts() {
+  // Contacts between bodies at the positions after the move (in grid_). Robots that stopped or
+  // left this step still count: they were there while the others moved. Each touching pair is
+  // logged once, by its lower index unless that robot was not moving.
   for (std::size_t i = 0; i < agents_.size(); ++i) {
-    if (!moving_[i]) continue;
-    RobotAgent& a = agents_[i];
-    const double gap = gap_[i];
-    if (gap > 0.0) {
-      if (gap < std::numeric_limits<double>::infinity()) a.note_robot_gap(gap);
-      continue;
-    }
-    // Touching (rare): each touching pair is logged once, by its lower index unless that robot
-    // was not moving.
+    if (!touching_[i]) continue;
+    touching_[i] = 0;
     const Vec2 p = positions_[i];
+    const double t = agents_[i].time();
     grid_.for_each_near(p, radius_[i] + max_radius_, [&](std::size_t j) {
       if (j == i || (moving_[j] && j < i)) return;
       if ((positions_[j] - p).norm() - radius_[i] - radius_[j] <= 0.0)
-        collisions_.push_back({a.time(), static_cast<int>(i), static_cast<int>(j)});
+        collisions_.push_back({t, static_cast<int>(i), static_cast<int>(j)});
     });
-    a.collide_with_robot(gap);
   }
+}
+
+void FleetSimulation::apply_gaps() {
+  log_world_collisions();
+  for (std::size_t i = 0; i < agents_.size(); ++i)
+    if (moving_[i]) apply_gap(i);
+  log_contacts();
   update_snapshot();
 }
 
@@ -218,29 +246,52 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     others_.emplace_back();
     others_.back().reserve(agents_.size());
   }
-  // Each thread steps a fixed slice of the robots; the barrier's completion (one thread, once
-  // per step) does the serial part. A robot's result does not depend on the slicing.
-  // Two phases per step: move, then measure the gaps between bodies; the serial parts (filing
-  // positions, applying contacts) run as the barrier's completion between them.
+  // One barrier per step. Between barriers the threads take chunks of robots in turn (an atomic
+  // counter; a robot's result does not depend on which thread steps it) and, for each robot that
+  // moved in the step before, first measure its gap to the other bodies at the positions after
+  // that step and apply it (a contact ends its run), then step it if it still runs. So robot i
+  // reads only the positions and grids filed by the barrier's completion, and writes only its
+  // own state. The completion (one thread) logs the contacts and world collisions in robot order,
+  // files the new positions and counts the step: every result is what step() gives.
+  const std::size_t n = agents_.size();
+  std::atomic<std::size_t> next{0};
+  bool contacts_pending = false;  // the gaps of the last step are measured in the next phase
   bool done = running_ == 0 || max_steps <= 0;
-  bool moved = true;  // which phase the barrier is completing
+  const RobotNeighbourGrid* sense_grid = &grid_;  // where the robots sense each other
   auto completion = [&]() noexcept {
-    if (moved) {
-      prepare_contacts();
-    } else {
-      apply_gaps();
-      done = running_ == 0 || steps_ - first >= max_steps;
+    next.store(0, std::memory_order_relaxed);
+    if (contacts_pending) log_contacts();
+    std::swap(moving_, stepped_);  // moving_: the robots that moved in this step
+    bool any = false;
+    for (std::size_t i = 0; i < n; ++i) any = any || moving_[i];
+    contacts_pending = any;
+    if (!any) {  // every running robot ended in a contact: no step was taken
+      done = true;
+      return;
     }
-    moved = !moved;
+    log_world_collisions();
+    prepare_contacts();  // positions after the move, grid_ with the robots present before it
+    sense_grid = &grid_;
+    if (update_presence()) {
+      sense_grid_.build(positions_, present_);
+      sense_grid = &sense_grid_;
+    }
+    done = running_ == 0 || steps_ - first >= max_steps;
   };
   std::barrier sync(static_cast<std::ptrdiff_t>(n_threads), completion);
   auto work = [&](std::size_t t) {
-    const std::size_t n = agents_.size();
-    const std::size_t begin = n * t / n_threads, end = n * (t + 1) / n_threads;
     while (!done) {
-      step_robots(begin, end, t);
-      sync.arrive_and_wait();
-      measure_gaps(begin, end);
+      for (std::size_t begin; (begin = next.fetch_add(kChunk, std::memory_order_relaxed)) < n;) {
+        const std::size_t end = std::min(n, begin + kChunk);
+        for (std::size_t i = begin; i < end; ++i) {
+          if (contacts_pending && moving_[i]) {
+            gap_[i] = nearest_gap(i);
+            apply_gap(i);
+          }
+          stepped_[i] = !agents_[i].finished();
+          if (stepped_[i]) step_robot(i, *sense_grid, t);
+        }
+      }
       sync.arrive_and_wait();
     }
   };
@@ -249,6 +300,16 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     for (std::size_t t = 1; t < n_threads; ++t) workers.emplace_back(work, t);
     work(0);
   }
+  // The gaps after the last step, as step() measures them (grid_ holds the robots present
+  // before it); then grid_ becomes the grid of the robots present now, as step() leaves it.
+  if (contacts_pending) {
+    measure_gaps(0, n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (moving_[i]) apply_gap(i);
+    log_contacts();
+  }
+  if (sense_grid != &grid_) std::swap(grid_, sense_grid_);
+  update_snapshot();
   return steps_ - first;
 }
 

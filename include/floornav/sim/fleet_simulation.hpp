@@ -78,14 +78,22 @@ class FleetSimulation {
   FleetResult take_result();
 
  private:
+  /// Steps robot i, sensing the other robots filed in `grid`, with thread `thread`'s scratch.
+  void step_robot(std::size_t i, const RobotNeighbourGrid& grid, std::size_t thread);
   void step_robots(std::size_t begin, std::size_t end, std::size_t thread);
-  // The serial and parallel parts of a step after the robots moved: file the new positions,
-  // measure each robot's gap to the nearest other body (parallel), apply contacts and gaps.
+  // The parts of a step after the robots moved: file the new positions (and count the step),
+  // measure each moving robot's gap to the nearest other body, log world collisions, apply each
+  // gap (a contact ends the run), log the touching pairs, take the snapshot for the next step.
   void prepare_contacts();
   double nearest_gap(std::size_t i) const;
   void measure_gaps(std::size_t begin, std::size_t end);
+  void log_world_collisions();
+  void apply_gap(std::size_t i);  ///< robot i's own state only; marks it in touching_
+  void log_contacts();
   void apply_gaps();
   void after_step();
+  /// present_ and running_ from the robots' states; true when presence changed.
+  bool update_presence();
   void update_snapshot();
   /// The fleet's result from each robot's run (in robot order), names filled in.
   FleetResult make_result(std::vector<RunResult> runs) const;
@@ -97,14 +105,19 @@ class FleetSimulation {
   std::vector<RobotAgent> agents_;
   // The fleet as the robots see it at the start of a step (contiguous, for the grid).
   std::vector<Vec2> positions_;
-  std::vector<std::uint8_t> present_;  ///< still an obstacle to the others
-  std::vector<std::uint8_t> moving_;   ///< running at the start of the step
+  std::vector<std::uint8_t> present_;   ///< still an obstacle to the others
+  std::vector<std::uint8_t> moving_;    ///< running at the start of the step
+  std::vector<std::uint8_t> stepped_;   ///< moved in the phase under way (threaded run)
+  std::vector<std::uint8_t> touching_;  ///< touched another body (contact not logged yet)
   std::vector<double> radius_;
   std::vector<double> gap_;    ///< m to the nearest other body after the move (moving robots)
   std::vector<double> reach_;  ///< m from the centre: the farthest a sensor of robot i sees
   double max_radius_{0.0};
   std::size_t rays_per_step_{0};  ///< over all robots: the work of a step, to size the threads
   RobotNeighbourGrid grid_;
+  /// The robots present after a step, when some left it (threaded run: grid_ still holds those
+  /// present during it, for the contacts measured in the next phase).
+  RobotNeighbourGrid sense_grid_;
   std::vector<SensingScratch> scratch_;      ///< per thread
   std::vector<std::vector<Circle>> others_;  ///< per thread, reserved for every robot
   std::vector<FleetCollision> collisions_;
