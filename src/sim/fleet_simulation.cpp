@@ -32,7 +32,11 @@ double sensing_reach(const RobotSpec& robot) {
 constexpr std::size_t kRaysPerThread = 2000;
 // Robots a thread takes at a time: enough to make the shared counter rare, few enough that the
 // threads end a step together.
-constexpr std::size_t kChunk = 16;
+constexpr std::size_t kChunk = 32;
+
+// status_ bits.
+constexpr std::uint8_t kFinished = 1;
+constexpr std::uint8_t kCollided = 2;
 
 }  // namespace
 
@@ -87,8 +91,10 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
   moving_.assign(n, 0);
   stepped_.assign(n, 0);
   touching_.assign(n, 0);
+  status_.assign(n, 0);
   gap_.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) positions_[i] = agents_[i].pose().position;
+  next_positions_ = positions_;
   update_snapshot();
 
   // Robots that start touching each other have collided before the first step.
@@ -233,64 +239,112 @@ std::size_t FleetSimulation::threads_for(int requested) const {
   return std::min(wanted, std::max<std::size_t>(1, rays_per_step_ / kRaysPerThread));
 }
 
+void FleetSimulation::advance(std::size_t i, bool contacts_pending,
+                              const RobotNeighbourGrid& sense_grid, std::size_t thread) {
+  RobotAgent& a = agents_[i];
+  if (contacts_pending && moving_[i]) {
+    gap_[i] = nearest_gap(i);
+    apply_gap(i);
+  }
+  const bool running = !a.finished();
+  stepped_[i] = running;
+  if (running) step_robot(i, sense_grid, thread);
+  // What the serial part of the step needs, copied while the robot's state is in this core's
+  // cache: the serial part then reads contiguous arrays, not a thousand robots' states.
+  next_positions_[i] = a.pose().position;
+  status_[i] = static_cast<std::uint8_t>((a.finished() ? kFinished : 0) |
+                                         (a.result().collided ? kCollided : 0));
+}
+
+bool FleetSimulation::end_phase(bool& contacts_pending, const RobotNeighbourGrid*& sense_grid) {
+  const std::size_t n = agents_.size();
+  if (contacts_pending) log_contacts();
+  std::swap(moving_, stepped_);  // moving_: the robots that moved in this step
+  bool any = false;
+  for (std::size_t i = 0; i < n; ++i) any = any || moving_[i];
+  contacts_pending = any;
+  if (!any) return false;  // every running robot ended in a contact: no step was taken
+  // World collisions of this step (robot contacts are measured in the next phase).
+  for (std::size_t i = 0; i < n; ++i)
+    if (moving_[i] && (status_[i] & kCollided))
+      collisions_.push_back({agents_[i].time(), static_cast<int>(i), -1});
+  ++steps_;
+  std::swap(positions_, next_positions_);
+  grid_.build(positions_, present_);  // the robots present during the step, for its contacts
+  // Who is present and running now (contacts change neither: a robot they end was running, and
+  // collided robots stay).
+  running_ = 0;
+  bool changed = false;
+  const bool park = sim_.park_finished;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool finished = status_[i] & kFinished;
+    const std::uint8_t present = !finished || park || (status_[i] & kCollided);
+    changed = changed || present != present_[i];
+    present_[i] = present;
+    running_ += !finished;
+  }
+  sense_grid = &grid_;
+  if (changed) {
+    sense_grid_.build(positions_, present_);
+    sense_grid = &sense_grid_;
+  }
+  return running_ > 0;
+}
+
+void FleetSimulation::settle(bool contacts_pending, const RobotNeighbourGrid* sense_grid) {
+  // The gaps after the last step, as step() measures them (grid_ holds the robots present
+  // during it); then grid_ becomes the grid of the robots present now, as step() leaves it.
+  const std::size_t n = agents_.size();
+  if (contacts_pending) {
+    measure_gaps(0, n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (moving_[i]) apply_gap(i);
+    log_contacts();
+  }
+  if (sense_grid != &grid_) std::swap(grid_, sense_grid_);
+  update_snapshot();
+}
+
 long long FleetSimulation::run_steps(long long max_steps, int threads) {
   const long long first = steps_;
   const std::size_t n_threads = threads_for(threads);
-  if (n_threads <= 1) {
-    while (steps_ - first < max_steps && step()) {
-    }
-    return steps_ - first;
-  }
   while (scratch_.size() < n_threads) {
     scratch_.emplace_back(scratch_.front().beams.size());
     others_.emplace_back();
     others_.back().reserve(agents_.size());
   }
-  // One barrier per step. Between barriers the threads take chunks of robots in turn (an atomic
-  // counter; a robot's result does not depend on which thread steps it) and, for each robot that
-  // moved in the step before, first measure its gap to the other bodies at the positions after
-  // that step and apply it (a contact ends its run), then step it if it still runs. So robot i
-  // reads only the positions and grids filed by the barrier's completion, and writes only its
-  // own state. The completion (one thread) logs the contacts and world collisions in robot order,
-  // files the new positions and counts the step: every result is what step() gives.
+  // A step as one pass over the robots: for each robot that moved in the step before, first its
+  // gap to the other bodies at the positions after that step is measured and applied (a contact
+  // ends its run), then the robot steps if it still runs. Robot i reads only what the serial
+  // part between passes filed (positions, grids) and writes only its own state. The serial part
+  // (end_phase) logs contacts and world collisions in robot order, files the positions and counts
+  // the step; settle() measures the last step's gaps. Every result is what step() gives.
   const std::size_t n = agents_.size();
-  std::atomic<std::size_t> next{0};
-  bool contacts_pending = false;  // the gaps of the last step are measured in the next phase
-  bool done = running_ == 0 || max_steps <= 0;
+  bool contacts_pending = false;
   const RobotNeighbourGrid* sense_grid = &grid_;  // where the robots sense each other
+  bool done = running_ == 0 || max_steps <= 0;
+  if (n_threads <= 1) {
+    while (!done) {
+      for (std::size_t i = 0; i < n; ++i) advance(i, contacts_pending, *sense_grid, 0);
+      done = !end_phase(contacts_pending, sense_grid) || steps_ - first >= max_steps;
+    }
+    settle(contacts_pending, sense_grid);
+    return steps_ - first;
+  }
+  // On threads: one barrier per step, whose completion (one thread) is the serial part. Between
+  // barriers the threads take chunks of robots from a shared counter (a robot's result does not
+  // depend on which thread steps it), so they end a step together.
+  std::atomic<std::size_t> next{0};
   auto completion = [&]() noexcept {
     next.store(0, std::memory_order_relaxed);
-    if (contacts_pending) log_contacts();
-    std::swap(moving_, stepped_);  // moving_: the robots that moved in this step
-    bool any = false;
-    for (std::size_t i = 0; i < n; ++i) any = any || moving_[i];
-    contacts_pending = any;
-    if (!any) {  // every running robot ended in a contact: no step was taken
-      done = true;
-      return;
-    }
-    log_world_collisions();
-    prepare_contacts();  // positions after the move, grid_ with the robots present before it
-    sense_grid = &grid_;
-    if (update_presence()) {
-      sense_grid_.build(positions_, present_);
-      sense_grid = &sense_grid_;
-    }
-    done = running_ == 0 || steps_ - first >= max_steps;
+    done = !end_phase(contacts_pending, sense_grid) || steps_ - first >= max_steps;
   };
   std::barrier sync(static_cast<std::ptrdiff_t>(n_threads), completion);
   auto work = [&](std::size_t t) {
     while (!done) {
       for (std::size_t begin; (begin = next.fetch_add(kChunk, std::memory_order_relaxed)) < n;) {
         const std::size_t end = std::min(n, begin + kChunk);
-        for (std::size_t i = begin; i < end; ++i) {
-          if (contacts_pending && moving_[i]) {
-            gap_[i] = nearest_gap(i);
-            apply_gap(i);
-          }
-          stepped_[i] = !agents_[i].finished();
-          if (stepped_[i]) step_robot(i, *sense_grid, t);
-        }
+        for (std::size_t i = begin; i < end; ++i) advance(i, contacts_pending, *sense_grid, t);
       }
       sync.arrive_and_wait();
     }
@@ -300,16 +354,7 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     for (std::size_t t = 1; t < n_threads; ++t) workers.emplace_back(work, t);
     work(0);
   }
-  // The gaps after the last step, as step() measures them (grid_ holds the robots present
-  // before it); then grid_ becomes the grid of the robots present now, as step() leaves it.
-  if (contacts_pending) {
-    measure_gaps(0, n);
-    for (std::size_t i = 0; i < n; ++i)
-      if (moving_[i]) apply_gap(i);
-    log_contacts();
-  }
-  if (sense_grid != &grid_) std::swap(grid_, sense_grid_);
-  update_snapshot();
+  settle(contacts_pending, sense_grid);
   return steps_ - first;
 }
 

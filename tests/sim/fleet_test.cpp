@@ -282,11 +282,11 @@ TEST(Fleet, LidarFleetOnTwoThreadsGivesTheSameResult) {
   EXPECT_EQ(fleet_summary_to_json(one.result()).dump(), fleet_summary_to_json(two.result()).dump());
 }
 
-// The threaded run steps the robots in chunks and measures each robot's contacts at the start
-// of its next step: the same bits as step() after step(), for any way of cutting the run into
-// run_steps calls. A crowded hall: half the robots ignore the others (go_to_goal), so pairs
-// touch and end; some hit walls and pillars; finished robots leave the floor (park_finished
-// off), so who is present changes while robots still move.
+// run_steps measures each robot's contacts at the start of its next step (on threads, robots
+// stepped in chunks): the same bits as step() after step(), on one thread or two, for any way of
+// cutting the run into run_steps calls. A crowded hall: half the robots ignore the others
+// (go_to_goal), so pairs touch and end; some hit walls and pillars; finished robots leave the floor
+// (park_finished off), so who is present changes while robots still move.
 TEST(Fleet, ContactsCollisionsAndLeavingRobotsOnTwoThreadsGiveTheSameBitsAsStep) {
   std::string yaml =
       "world: {bounds: [0, 0, 6, 6], obstacles: [{circle: {center: [3, 3], radius: 0.5}},"
@@ -312,13 +312,14 @@ TEST(Fleet, ContactsCollisionsAndLeavingRobotsOnTwoThreadsGiveTheSameBitsAsStep)
     }
   const Scenario s = load_scenario_text(yaml, "crowd.yaml");
   FleetSimulation serial = make_fleet_simulation(s), whole = make_fleet_simulation(s),
-                  pieces = make_fleet_simulation(s);
+                  pieces = make_fleet_simulation(s), one = make_fleet_simulation(s);
   ASSERT_EQ(whole.threads_for(2), 2u);
   while (serial.step()) {
   }
   whole.run(2);
   for (long long k = 1; !pieces.finished(); k = k % 7 + 1) pieces.run_steps(k, 2);
-  const FleetResult a = serial.result(), b = whole.result(), c = pieces.result();
+  for (long long k = 1; !one.finished(); k = k % 5 + 1) one.run_steps(k, 1);
+  const FleetResult a = serial.result(), b = whole.result(), c = pieces.result(), d = one.result();
   // The scenario does what it is meant to: contacts, world collisions, robots that finish.
   int pairs = 0, walls = 0;
   for (const FleetCollision& col : a.collisions) (col.other >= 0 ? pairs : walls) += 1;
@@ -330,6 +331,7 @@ TEST(Fleet, ContactsCollisionsAndLeavingRobotsOnTwoThreadsGiveTheSameBitsAsStep)
   const std::string json = fleet_summary_to_json(a).dump();
   EXPECT_EQ(json, fleet_summary_to_json(b).dump());
   EXPECT_EQ(json, fleet_summary_to_json(c).dump());
+  EXPECT_EQ(json, fleet_summary_to_json(d).dump());
   ASSERT_EQ(a.collisions.size(), b.collisions.size());
   for (std::size_t k = 0; k < a.collisions.size(); ++k) {
     EXPECT_EQ(a.collisions[k].time, b.collisions[k].time) << k;
@@ -339,7 +341,9 @@ TEST(Fleet, ContactsCollisionsAndLeavingRobotsOnTwoThreadsGiveTheSameBitsAsStep)
   for (std::size_t i = 0; i < a.robots.size(); ++i) {
     EXPECT_EQ(a.robots[i].min_clearance, b.robots[i].min_clearance) << i;
     EXPECT_EQ(a.robots[i].min_clearance, c.robots[i].min_clearance) << i;
+    EXPECT_EQ(a.robots[i].min_clearance, d.robots[i].min_clearance) << i;
     EXPECT_EQ(a.robots[i].final_x, c.robots[i].final_x) << i;
+    EXPECT_EQ(a.robots[i].final_x, d.robots[i].final_x) << i;
     EXPECT_EQ(a.robots[i].final_theta, c.robots[i].final_theta) << i;
   }
 }

@@ -95,6 +95,12 @@ class FleetSimulation {
   /// present_ and running_ from the robots' states; true when presence changed.
   bool update_presence();
   void update_snapshot();
+  // run_steps' pass over the robots: robot i's pending gap, then its step (advance); the serial
+  // part after each pass (end_phase: false when no robot runs any more); the last gaps (settle).
+  void advance(std::size_t i, bool contacts_pending, const RobotNeighbourGrid& sense_grid,
+               std::size_t thread);
+  bool end_phase(bool& contacts_pending, const RobotNeighbourGrid*& sense_grid);
+  void settle(bool contacts_pending, const RobotNeighbourGrid* sense_grid);
   /// The fleet's result from each robot's run (in robot order), names filled in.
   FleetResult make_result(std::vector<RunResult> runs) const;
 
@@ -109,6 +115,8 @@ class FleetSimulation {
   std::vector<std::uint8_t> moving_;    ///< running at the start of the step
   std::vector<std::uint8_t> stepped_;   ///< moved in the phase under way (threaded run)
   std::vector<std::uint8_t> touching_;  ///< touched another body (contact not logged yet)
+  std::vector<Vec2> next_positions_;    ///< after the pass under way (run_steps)
+  std::vector<std::uint8_t> status_;    ///< finished / collided after the pass (run_steps)
   std::vector<double> radius_;
   std::vector<double> gap_;    ///< m to the nearest other body after the move (moving robots)
   std::vector<double> reach_;  ///< m from the centre: the farthest a sensor of robot i sees
