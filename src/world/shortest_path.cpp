@@ -1,6 +1,8 @@
 #include "floornav/world/shortest_path.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -225,13 +227,32 @@ FreeRaster rasterise(const World& world, double r, const RasterFrame& f) {
   }
 
   // Walls, polygon edges and circles: each marks the cells it comes within r of.
+  // Per row, only the columns where the segment comes within r + 1 cell of the row's centres
+  // (the part of it within that height, widened by as much): the cell of margin is far above the
+  // rounding of the frame change and of the division.
+  const double reach_cells = r / f.cell + 1.0;
   for (const Segment& s : world.segments()) {
     const CellBox b = cells_near(f, s.a.cwiseMin(s.b), s.a.cwiseMax(s.b), r);
-    for (int iy = b.y0; iy <= b.y1; ++iy)
-      for (int ix = b.x0; ix <= b.x1; ++ix) {
+    const Vec2 a = f.to_cells(s.a), d = f.to_cells(s.b) - a;
+    for (int iy = b.y0; iy <= b.y1; ++iy) {
+      const double y = iy + 0.5;
+      double t0 = 0.0, t1 = 1.0;
+      if (d.y() != 0.0) {
+        t0 = (y - reach_cells - a.y()) / d.y();
+        t1 = (y + reach_cells - a.y()) / d.y();
+        if (t0 > t1) std::swap(t0, t1);
+        t0 = std::max(t0, 0.0);
+        t1 = std::min(t1, 1.0);
+        if (t0 > t1) continue;
+      }
+      const double xa = a.x() + t0 * d.x(), xb = a.x() + t1 * d.x();
+      const int x0 = std::max(b.x0, static_cast<int>(std::floor(std::min(xa, xb) - reach_cells)));
+      const int x1 = std::min(b.x1, static_cast<int>(std::ceil(std::max(xa, xb) + reach_cells)));
+      for (int ix = x0; ix <= x1; ++ix) {
         std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
         if (cell && distance(s, centre(ix, iy)) <= r) cell = 0;
       }
+    }
   }
   for (const Circle& c : world.circles()) {
     const Vec2 half(c.radius, c.radius);
@@ -356,6 +377,70 @@ struct OpenEntry {
   }
 };
 
+/// The open list, a radix heap on f: A* with a consistent heuristic pops f in increasing order, so
+/// an entry whose f differs from the last popped one first in bit b (of f's IEEE pattern, which
+/// orders non-negative doubles as unsigned integers do) waits in bucket b + 1, unsorted, until
+/// everything below it is gone. Bucket 0 holds the entries with f at most the last popped one, as
+/// a binary heap on (f, -g, index): equal f (and the odd entry a rounding puts an ulp lower) in
+/// exactly the binary heap's order. Pops come out in the order of one binary heap over all
+/// entries; each entry moves down the buckets a few times instead of sifting through a big heap.
+class OpenList {
+ public:
+  void clear() {
+    for (auto& b : buckets_) b.clear();
+    last_ = 0;
+    size_ = 0;
+  }
+  bool empty() const { return size_ == 0; }
+  void push(const OpenEntry& e) {
+    ++size_;
+    const std::uint64_t key = bits(e.f);
+    if (key <= last_) {
+      push_ordered(e);
+      return;
+    }
+    buckets_[bucket_of(key)].push_back(e);
+  }
+  OpenEntry pop() {
+    --size_;
+    auto& zero = buckets_[0];
+    if (zero.empty()) {
+      std::size_t b = 1;
+      while (buckets_[b].empty()) ++b;
+      auto& from = buckets_[b];
+      std::uint64_t least = bits(from.front().f);
+      for (const OpenEntry& e : from) least = std::min(least, bits(e.f));
+      last_ = least;
+      for (const OpenEntry& e : from) {
+        const std::uint64_t key = bits(e.f);
+        if (key == least)
+          push_ordered(e);
+        else
+          buckets_[bucket_of(key)].push_back(e);  // a lower bucket: they share the top bits
+      }
+      from.clear();
+    }
+    std::pop_heap(zero.begin(), zero.end(), std::greater<OpenEntry>{});
+    const OpenEntry top = zero.back();
+    zero.pop_back();
+    return top;
+  }
+
+ private:
+  static std::uint64_t bits(double f) { return std::bit_cast<std::uint64_t>(f); }
+  std::size_t bucket_of(std::uint64_t key) const {
+    return static_cast<std::size_t>(64 - std::countl_zero(key ^ last_));
+  }
+  void push_ordered(const OpenEntry& e) {
+    buckets_[0].push_back(e);
+    std::push_heap(buckets_[0].begin(), buckets_[0].end(), std::greater<OpenEntry>{});
+  }
+
+  std::array<std::vector<OpenEntry>, 65> buckets_;
+  std::uint64_t last_{0};
+  std::size_t size_{0};
+};
+
 /// A* working memory, kept per thread so that a search allocates nothing once the thread's
 /// buffers fit its raster (a batch runs thousands). `mark[v]` says what this search knows of
 /// cell v: 2 * search + 1 closed, 2 * search open (g and parent valid), anything else untouched,
@@ -364,7 +449,7 @@ struct SearchBuffers {
   std::vector<double> g;
   std::vector<std::int32_t> parent;
   std::vector<std::uint32_t> mark;
-  std::vector<OpenEntry> open;
+  OpenList open;
   std::uint32_t search{0};
 
   void begin(std::size_t n) {
@@ -394,10 +479,8 @@ std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, G
   auto index = [w](int x, int y) {
     return static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x);
   };
-  const std::greater<OpenEntry> later;
   auto push = [&](double f, double g, std::size_t v) {
-    b.open.push_back({f, -g, static_cast<std::uint32_t>(v)});
-    std::push_heap(b.open.begin(), b.open.end(), later);
+    b.open.push({f, -g, static_cast<std::uint32_t>(v)});
   };
   const std::size_t s = index(start.x, start.y), t = index(goal.x, goal.y);
   b.g[s] = 0.0;
@@ -409,9 +492,7 @@ std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, G
   const std::ptrdiff_t sw = static_cast<std::ptrdiff_t>(w);
   const std::ptrdiff_t kStep[8] = {1, -1, sw, -sw, sw + 1, -sw + 1, sw - 1, -sw - 1};
   while (!b.open.empty()) {
-    std::pop_heap(b.open.begin(), b.open.end(), later);
-    const std::size_t u = b.open.back().index;
-    b.open.pop_back();
+    const std::size_t u = b.open.pop().index;
     if (b.mark[u] == closed_mark) continue;
     b.mark[u] = closed_mark;
     if (u == t) break;
