@@ -23,11 +23,24 @@ namespace floornav {
 
 namespace {
 
+/// A worker's last optimum raster: consecutive cases on the same world and robot radius (the
+/// rows of a .scen file, a sweep over one map) search one raster instead of building it each.
+struct OptimumCache {
+  std::shared_ptr<const World> world;  ///< held, so that the key cannot be a reused address
+  double radius{0.0};
+  std::optional<OptimumRaster> raster;
+};
+
 /// The grid optimum of a case's scenario: a length in metres, or the reason there is none.
-Optimum case_optimum(const Scenario& s) {
+Optimum case_optimum(const Scenario& s, OptimumCache& cache) {
   if (!s.world) return {};
   const RobotTask& t = s.robot();
-  return scenario_optimum(*s.world, t.robot.body_radius, t.start.position, t.goals);
+  const double r = t.robot.body_radius;
+  if (cache.world != s.world || cache.radius != r) {
+    cache = {s.world, r, optimum_raster(*s.world, r)};
+  }
+  if (!cache.raster) return scenario_optimum(*s.world, r, t.start.position, t.goals);
+  return scenario_optimum(*cache.raster, t.start.position, t.goals);
 }
 
 nlohmann::ordered_json result_line(const BatchCase& c, const RunResult& r, bool timing,
@@ -207,6 +220,7 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
   auto stopped = [&] { return options.stop && options.stop->load(); };
 
   auto worker = [&] {
+    OptimumCache optimum_cache;
     while (true) {
       std::size_t i;
       {
@@ -222,7 +236,7 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
         line = fleet_result_line(cases[i], run_fleet_timed(sc, 1), options.timing);
       } else {
         std::optional<Optimum> optimum;
-        if (options.optimum && !cases[i].optimal_length) optimum = case_optimum(sc);
+        if (options.optimum && !cases[i].optimal_length) optimum = case_optimum(sc, optimum_cache);
         line = result_line(cases[i], run_timed(sc), options.timing, optimum);
       }
       {

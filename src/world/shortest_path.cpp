@@ -586,29 +586,72 @@ std::string_view to_string(OptimumStatus s) {
   return "invalid_input";
 }
 
+namespace {
+
+bool valid_route(const Vec2& start, std::span<const Vec2> goals) {
+  return !goals.empty() && is_finite(start) &&
+         std::all_of(goals.begin(), goals.end(), [](const Vec2& g) { return is_finite(g); });
+}
+
+bool valid_radius(double body_radius, const OptimumOptions& options) {
+  return std::isfinite(body_radius) && body_radius >= 0.0 && options.cell_size > 0.0;
+}
+
+OptimumRaster make_raster(const World& world, double body_radius,
+                          const std::optional<RasterFrame>& frame) {
+  OptimumRaster r;
+  if (!frame) {
+    r.status = OptimumStatus::RasterTooLarge;
+    return r;
+  }
+  r.status = OptimumStatus::Found;
+  r.origin = frame->origin;
+  r.cell = frame->cell;
+  r.raster = rasterise(world, body_radius, *frame);
+  return r;
+}
+
+}  // namespace
+
+std::optional<OptimumRaster> optimum_raster(const World& world, double body_radius,
+                                            const OptimumOptions& options) {
+  // Without bounds or a grid, the raster spans the route too.
+  if (!world.bounds() && !world.grid()) return std::nullopt;
+  if (!valid_radius(body_radius, options)) return OptimumRaster{};
+  const Vec2 any = Vec2::Zero();  // the frame of a bounded or gridded world ignores the route
+  return make_raster(
+      world, body_radius,
+      choose_frame(world, body_radius, any, std::span<const Vec2>(&any, 1), options));
+}
+
 Optimum scenario_optimum(const World& world, double body_radius, const Vec2& start,
                          std::span<const Vec2> goals, const OptimumOptions& options) {
+  if (!valid_route(start, goals) || !valid_radius(body_radius, options)) return {};
+  return scenario_optimum(
+      make_raster(world, body_radius, choose_frame(world, body_radius, start, goals, options)),
+      start, goals, options);
+}
+
+Optimum scenario_optimum(const OptimumRaster& grid, const Vec2& start, std::span<const Vec2> goals,
+                         const OptimumOptions& options) {
   Optimum out;
-  if (goals.empty() || !is_finite(start) || !std::isfinite(body_radius) || body_radius < 0.0 ||
-      !(options.cell_size > 0.0) ||
-      !std::all_of(goals.begin(), goals.end(), [](const Vec2& g) { return is_finite(g); }))
-    return out;
-  const auto frame = choose_frame(world, body_radius, start, goals, options);
-  if (!frame) {
-    out.status = OptimumStatus::RasterTooLarge;
+  if (!valid_route(start, goals) || !(options.cell_size > 0.0)) return out;
+  if (grid.status != OptimumStatus::Found) {
+    out.status = grid.status;
     return out;
   }
-  out.cell_size = frame->cell;
-  out.width = frame->width;
-  out.height = frame->height;
-  const FreeRaster raster = rasterise(world, body_radius, *frame);
+  const RasterFrame frame{grid.origin, grid.cell, grid.raster.width, grid.raster.height};
+  const FreeRaster& raster = grid.raster;
+  out.cell_size = frame.cell;
+  out.width = frame.width;
+  out.height = frame.height;
 
   double length = 0.0, octile = 0.0;
   std::vector<Vec2> route;
-  Vec2 from = frame->to_cells(start);
+  Vec2 from = frame.to_cells(start);
   auto from_cell = snap(raster, from, options.snap_radius);
   for (const Vec2& goal_world : goals) {
-    const Vec2 to = frame->to_cells(goal_world);
+    const Vec2 to = frame.to_cells(goal_world);
     const auto to_cell = snap(raster, to, options.snap_radius);
     if (!from_cell || !to_cell) {
       out.status = OptimumStatus::NoFreeCell;
@@ -630,13 +673,13 @@ Optimum scenario_optimum(const World& world, double body_radius, const Vec2& sta
     if (options.smooth) points = pull_string(raster, points);
     length += options.smooth ? polyline_length(points) : leg_octile;
     for (std::size_t i = route.empty() ? 0 : 1; i < points.size(); ++i)
-      route.push_back(frame->to_world(points[i]));
+      route.push_back(frame.to_world(points[i]));
     from = to;
     from_cell = to_cell;
   }
   out.status = OptimumStatus::Found;
-  out.length = length * frame->cell;
-  out.octile_length = octile * frame->cell;
+  out.length = length * frame.cell;
+  out.octile_length = octile * frame.cell;
   out.path = std::move(route);
   return out;
 }

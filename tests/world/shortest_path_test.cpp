@@ -572,5 +572,62 @@ TEST(ScenarioOptimum, BadInputIsNoOptimumNotNaN) {
   EXPECT_EQ(scenario_optimum(w, 0.1, {0.5, 1.0}, {}).status, OptimumStatus::InvalidInput);
 }
 
+// A raster built once per world serves every route there with the result of building it anew:
+// routes through a bounded world of polygons and through a map, routes that fail (unreachable,
+// no free cell, bad points); a raster too large or a bad radius carries its status to every
+// route; a world without bounds or map has no route-free raster.
+TEST(ScenarioOptimum, ARasterBuiltOncePerWorldGivesEveryRoutesOptimum) {
+  auto same = [](const Optimum& a, const Optimum& b) {
+    EXPECT_EQ(a.status, b.status);
+    EXPECT_EQ(a.length, b.length);
+    EXPECT_EQ(a.octile_length, b.octile_length);
+    EXPECT_EQ(a.cell_size, b.cell_size);
+    EXPECT_EQ(a.width, b.width);
+    EXPECT_EQ(a.height, b.height);
+    EXPECT_EQ(a.path, b.path);
+  };
+  const World gap = gap_world(0.5);
+  std::vector<std::uint8_t> occ(100, 0);
+  for (int y = 0; y <= 8; ++y) occ[static_cast<std::size_t>(y) * 10 + 4] = 1;
+  WorldDesc gd;
+  gd.grid =
+      std::make_shared<const OccupancyGrid>(10, 10, 0.5, Pose2{{-1.0, 2.0}, 0.3}, std::move(occ));
+  const World map(gd);
+  Rng rng(9);
+  int found = 0, failed = 0;
+  for (const World* w : {&gap, &map}) {
+    for (const double r : {0.0, 0.1, 0.2}) {
+      const auto raster = optimum_raster(*w, r);
+      ASSERT_TRUE(raster);
+      const Box2 e = w->extent();
+      for (int k = 0; k < 30; ++k) {
+        auto point = [&] {
+          return Vec2(rng.uniform(e.min.x() - 0.5, e.max.x() + 0.5),
+                      rng.uniform(e.min.y() - 0.5, e.max.y() + 0.5));
+        };
+        const Vec2 start = k == 0 ? Vec2(NAN, 0.0) : point();
+        const std::vector<Vec2> goals = {point(), point()};
+        const Optimum fresh = scenario_optimum(*w, r, start, goals);
+        same(scenario_optimum(*raster, start, goals), fresh);
+        (fresh.status == OptimumStatus::Found ? found : failed) += 1;
+      }
+    }
+  }
+  EXPECT_GT(found, 30);
+  EXPECT_GT(failed, 30);
+  // Statuses of the raster itself.
+  WorldDesc huge;
+  huge.bounds = Box2{{0.0, 0.0}, {1000.0, 1000.0}};
+  const World hw(huge);
+  const std::array<Vec2, 1> goal{Vec2(900.0, 900.0)};
+  EXPECT_EQ(scenario_optimum(*optimum_raster(hw, 0.1), {1.0, 1.0}, goal).status,
+            OptimumStatus::RasterTooLarge);
+  EXPECT_EQ(scenario_optimum(*optimum_raster(gap, -1.0), {0.5, 1.0}, goal).status,
+            OptimumStatus::InvalidInput);
+  WorldDesc open;
+  open.circles = {Circle{{1.0, 1.0}, 0.3}};
+  EXPECT_FALSE(optimum_raster(World(open), 0.1));
+}
+
 }  // namespace
 }  // namespace floornav

@@ -109,4 +109,23 @@ struct Optimum {
 Optimum scenario_optimum(const World& world, double body_radius, const Vec2& start,
                          std::span<const Vec2> goals, const OptimumOptions& options = {});
 
+/// The raster scenario_optimum searches, for one world and robot radius: built once, it serves
+/// every route in that world (a batch's cases that share a world share it).
+struct OptimumRaster {
+  OptimumStatus status{OptimumStatus::InvalidInput};  ///< Found when built; else why not
+  Pose2 origin{};    ///< cell (ix, iy) covers [ix, ix + 1) x [iy, iy + 1) times `cell` here
+  double cell{0.0};  ///< m
+  FreeRaster raster;
+};
+
+/// The raster of `world` for `body_radius`, when it does not depend on the route: for worlds
+/// with bounds or an occupancy grid (without either, the raster spans the route: nullopt).
+std::optional<OptimumRaster> optimum_raster(const World& world, double body_radius,
+                                            const OptimumOptions& options = {});
+
+/// scenario_optimum on a raster from optimum_raster: the same result as scenario_optimum on the
+/// world and radius the raster was built for, with the same options.
+Optimum scenario_optimum(const OptimumRaster& raster, const Vec2& start,
+                         std::span<const Vec2> goals, const OptimumOptions& options = {});
+
 }  // namespace floornav
