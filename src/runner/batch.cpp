@@ -28,7 +28,8 @@ namespace {
 struct OptimumCache {
   std::shared_ptr<const World> world;  ///< held, so that the key cannot be a reused address
   double radius{0.0};
-  std::optional<OptimumRaster> raster;
+  bool usable{false};    ///< the world's raster does not depend on the route
+  OptimumRaster raster;  ///< its memory is reused for the next world
 };
 
 /// The grid optimum of a case's scenario: a length in metres, or the reason there is none.
@@ -37,10 +38,12 @@ Optimum case_optimum(const Scenario& s, OptimumCache& cache) {
   const RobotTask& t = s.robot();
   const double r = t.robot.body_radius;
   if (cache.world != s.world || cache.radius != r) {
-    cache = {s.world, r, optimum_raster(*s.world, r)};
+    cache.world = s.world;
+    cache.radius = r;
+    cache.usable = build_optimum_raster(*s.world, r, {}, cache.raster);
   }
-  if (!cache.raster) return scenario_optimum(*s.world, r, t.start.position, t.goals);
-  return scenario_optimum(*cache.raster, t.start.position, t.goals);
+  if (!cache.usable) return scenario_optimum(*s.world, r, t.start.position, t.goals);
+  return scenario_optimum(cache.raster, t.start.position, t.goals);
 }
 
 nlohmann::ordered_json result_line(const BatchCase& c, const RunResult& r, bool timing,

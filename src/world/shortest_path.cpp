@@ -102,8 +102,7 @@ std::optional<RasterFrame> choose_frame(const World& world, double r, const Vec2
 // centre with clearance c decides the next cells of its row up to |c - r| away without more
 // queries (free ones stay above r, blocked ones at most r). The margin keeps a rounding error from
 // flipping a cell that a query would decide otherwise.
-FreeRaster rasterise_by_queries(const World& world, double r, const RasterFrame& f) {
-  FreeRaster raster;
+void rasterise_by_queries(const World& world, double r, const RasterFrame& f, FreeRaster& raster) {
   raster.width = f.width;
   raster.height = f.height;
   raster.free.assign(static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height), 0);
@@ -127,7 +126,6 @@ FreeRaster rasterise_by_queries(const World& world, double r, const RasterFrame&
       ix = end;
     }
   }
-  return raster;
 }
 
 /// The world-frame centres of a raster's cells, computed exactly as RasterFrame::to_world does
@@ -181,10 +179,12 @@ CellBox cells_near(const RasterFrame& f, const Vec2& lo, const Vec2& hi, double 
 //    it only and compared with r;
 //  - or the centre lies inside a solid shape or outside the bounds: World::is_inside_obstacle,
 //    asked only for the still free cells that may be.
-FreeRaster rasterise(const World& world, double r, const RasterFrame& f) {
-  if (!(r >= 0.0) || !is_finite(f.origin.position) || !std::isfinite(f.origin.theta))
-    return rasterise_by_queries(world, r, f);
-  FreeRaster raster;
+// Into `raster`, whose memory is reused (a batch builds one per world).
+void rasterise(const World& world, double r, const RasterFrame& f, FreeRaster& raster) {
+  if (!(r >= 0.0) || !is_finite(f.origin.position) || !std::isfinite(f.origin.theta)) {
+    rasterise_by_queries(world, r, f, raster);
+    return;
+  }
   raster.width = f.width;
   raster.height = f.height;
   const std::size_t w = static_cast<std::size_t>(f.width);
@@ -230,10 +230,24 @@ FreeRaster rasterise(const World& world, double r, const RasterFrame& f) {
   // Per row, only the columns where the segment comes within r + 1 cell of the row's centres
   // (the part of it within that height, widened by as much): the cell of margin is far above the
   // rounding of the frame change and of the division.
+  // Each centre is first compared by its squared distance, computed here: a centre clear of r
+  // by more than `kSure` either way is decided; only the others ask `distance` itself.
   const double reach_cells = r / f.cell + 1.0;
+  constexpr double kSure = 1e-9;  // m, far above the rounding of a squared distance
+  const double sure_in = r > kSure ? (r - kSure) * (r - kSure) : -1.0;
+  const double sure_out = (r + kSure) * (r + kSure);
   for (const Segment& s : world.segments()) {
     const CellBox b = cells_near(f, s.a.cwiseMin(s.b), s.a.cwiseMax(s.b), r);
     const Vec2 a = f.to_cells(s.a), d = f.to_cells(s.b) - a;
+    const Vec2 e = s.b - s.a;  // world frame
+    const double len2 = e.squaredNorm(), inv_len2 = len2 > 0.0 ? 1.0 / len2 : 0.0;
+    auto blocks = [&](const Vec2& p) {
+      const Vec2 q = s.a + std::clamp((p - s.a).dot(e) * inv_len2, 0.0, 1.0) * e;
+      const double d2 = (p - q).squaredNorm();
+      if (d2 <= sure_in) return true;
+      if (d2 > sure_out) return false;
+      return distance(s, p) <= r;
+    };
     for (int iy = b.y0; iy <= b.y1; ++iy) {
       const double y = iy + 0.5;
       double t0 = 0.0, t1 = 1.0;
@@ -250,18 +264,23 @@ FreeRaster rasterise(const World& world, double r, const RasterFrame& f) {
       const int x1 = std::min(b.x1, static_cast<int>(std::ceil(std::max(xa, xb) + reach_cells)));
       for (int ix = x0; ix <= x1; ++ix) {
         std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
-        if (cell && distance(s, centre(ix, iy)) <= r) cell = 0;
+        if (cell && blocks(centre(ix, iy))) cell = 0;
       }
     }
   }
   for (const Circle& c : world.circles()) {
     const Vec2 half(c.radius, c.radius);
     const CellBox b = cells_near(f, c.center - half, c.center + half, r);
+    const double lo = c.radius + r - kSure, hi = c.radius + r + kSure;
+    const double circle_in = lo > 0.0 ? lo * lo : -1.0, circle_out = hi * hi;
     for (int iy = b.y0; iy <= b.y1; ++iy)
       for (int ix = b.x0; ix <= b.x1; ++ix) {
         std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
+        if (!cell) continue;
         // Inside the disc or within r of it (its |signed distance| when outside).
-        if (cell && signed_distance(c, centre(ix, iy)) <= r) cell = 0;
+        const Vec2 p = centre(ix, iy);
+        const double d2 = (p - c.center).squaredNorm();
+        if (d2 <= circle_in || (d2 <= circle_out && signed_distance(c, p) <= r)) cell = 0;
       }
   }
 
@@ -333,7 +352,6 @@ FreeRaster rasterise(const World& world, double r, const RasterFrame& f) {
         if (row[ix] && !bounds->contains(centre(ix, iy))) row[ix] = 0;
     }
   }
-  return raster;
 }
 
 /// The free cell whose centre is nearest to `p` (cell units) within `radius` cells, ties to the
@@ -359,7 +377,9 @@ std::optional<GridCell> snap(const FreeRaster& raster, const Vec2& p, double rad
 FreeRaster free_cells(const World& world, double body_radius, const Pose2& origin, double cell,
                       int width, int height) {
   if (width <= 0 || height <= 0 || !(cell > 0.0)) return {};
-  return rasterise(world, body_radius, RasterFrame{origin, cell, width, height});
+  FreeRaster raster;
+  rasterise(world, body_radius, RasterFrame{origin, cell, width, height}, raster);
+  return raster;
 }
 
 namespace {
@@ -597,39 +617,40 @@ bool valid_radius(double body_radius, const OptimumOptions& options) {
   return std::isfinite(body_radius) && body_radius >= 0.0 && options.cell_size > 0.0;
 }
 
-OptimumRaster make_raster(const World& world, double body_radius,
-                          const std::optional<RasterFrame>& frame) {
-  OptimumRaster r;
+void make_raster(const World& world, double body_radius, const std::optional<RasterFrame>& frame,
+                 OptimumRaster& r) {
   if (!frame) {
     r.status = OptimumStatus::RasterTooLarge;
-    return r;
+    return;
   }
   r.status = OptimumStatus::Found;
   r.origin = frame->origin;
   r.cell = frame->cell;
-  r.raster = rasterise(world, body_radius, *frame);
-  return r;
+  rasterise(world, body_radius, *frame, r.raster);
 }
 
 }  // namespace
 
-std::optional<OptimumRaster> optimum_raster(const World& world, double body_radius,
-                                            const OptimumOptions& options) {
+bool build_optimum_raster(const World& world, double body_radius, const OptimumOptions& options,
+                          OptimumRaster& out) {
   // Without bounds or a grid, the raster spans the route too.
-  if (!world.bounds() && !world.grid()) return std::nullopt;
-  if (!valid_radius(body_radius, options)) return OptimumRaster{};
+  if (!world.bounds() && !world.grid()) return false;
+  if (!valid_radius(body_radius, options)) {
+    out.status = OptimumStatus::InvalidInput;
+    return true;
+  }
   const Vec2 any = Vec2::Zero();  // the frame of a bounded or gridded world ignores the route
-  return make_raster(
-      world, body_radius,
-      choose_frame(world, body_radius, any, std::span<const Vec2>(&any, 1), options));
+  make_raster(world, body_radius,
+              choose_frame(world, body_radius, any, std::span<const Vec2>(&any, 1), options), out);
+  return true;
 }
 
 Optimum scenario_optimum(const World& world, double body_radius, const Vec2& start,
                          std::span<const Vec2> goals, const OptimumOptions& options) {
   if (!valid_route(start, goals) || !valid_radius(body_radius, options)) return {};
-  return scenario_optimum(
-      make_raster(world, body_radius, choose_frame(world, body_radius, start, goals, options)),
-      start, goals, options);
+  thread_local OptimumRaster raster;  // its memory serves every call on this thread
+  make_raster(world, body_radius, choose_frame(world, body_radius, start, goals, options), raster);
+  return scenario_optimum(raster, start, goals, options);
 }
 
 Optimum scenario_optimum(const OptimumRaster& grid, const Vec2& start, std::span<const Vec2> goals,

@@ -597,8 +597,8 @@ TEST(ScenarioOptimum, ARasterBuiltOncePerWorldGivesEveryRoutesOptimum) {
   int found = 0, failed = 0;
   for (const World* w : {&gap, &map}) {
     for (const double r : {0.0, 0.1, 0.2}) {
-      const auto raster = optimum_raster(*w, r);
-      ASSERT_TRUE(raster);
+      OptimumRaster raster;
+      ASSERT_TRUE(build_optimum_raster(*w, r, {}, raster));
       const Box2 e = w->extent();
       for (int k = 0; k < 30; ++k) {
         auto point = [&] {
@@ -608,7 +608,7 @@ TEST(ScenarioOptimum, ARasterBuiltOncePerWorldGivesEveryRoutesOptimum) {
         const Vec2 start = k == 0 ? Vec2(NAN, 0.0) : point();
         const std::vector<Vec2> goals = {point(), point()};
         const Optimum fresh = scenario_optimum(*w, r, start, goals);
-        same(scenario_optimum(*raster, start, goals), fresh);
+        same(scenario_optimum(raster, start, goals), fresh);
         (fresh.status == OptimumStatus::Found ? found : failed) += 1;
       }
     }
@@ -620,13 +620,18 @@ TEST(ScenarioOptimum, ARasterBuiltOncePerWorldGivesEveryRoutesOptimum) {
   huge.bounds = Box2{{0.0, 0.0}, {1000.0, 1000.0}};
   const World hw(huge);
   const std::array<Vec2, 1> goal{Vec2(900.0, 900.0)};
-  EXPECT_EQ(scenario_optimum(*optimum_raster(hw, 0.1), {1.0, 1.0}, goal).status,
-            OptimumStatus::RasterTooLarge);
-  EXPECT_EQ(scenario_optimum(*optimum_raster(gap, -1.0), {0.5, 1.0}, goal).status,
-            OptimumStatus::InvalidInput);
+  OptimumRaster raster;  // reused across worlds, as a batch does
+  ASSERT_TRUE(build_optimum_raster(hw, 0.1, {}, raster));
+  EXPECT_EQ(scenario_optimum(raster, {1.0, 1.0}, goal).status, OptimumStatus::RasterTooLarge);
+  ASSERT_TRUE(build_optimum_raster(gap, -1.0, {}, raster));
+  EXPECT_EQ(scenario_optimum(raster, {0.5, 1.0}, goal).status, OptimumStatus::InvalidInput);
+  ASSERT_TRUE(build_optimum_raster(gap, 0.1, {}, raster));
+  const std::array<Vec2, 1> across{Vec2(3.5, 1.0)};
+  same(scenario_optimum(raster, {0.5, 1.0}, across),
+       scenario_optimum(gap, 0.1, {0.5, 1.0}, across));
   WorldDesc open;
   open.circles = {Circle{{1.0, 1.0}, 0.3}};
-  EXPECT_FALSE(optimum_raster(World(open), 0.1));
+  EXPECT_FALSE(build_optimum_raster(World(open), 0.1, {}, raster));
 }
 
 }  // namespace

@@ -118,13 +118,14 @@ struct OptimumRaster {
   FreeRaster raster;
 };
 
-/// The raster of `world` for `body_radius`, when it does not depend on the route: for worlds
-/// with bounds or an occupancy grid (without either, the raster spans the route: nullopt).
-std::optional<OptimumRaster> optimum_raster(const World& world, double body_radius,
-                                            const OptimumOptions& options = {});
+/// Builds into `out` (reusing its memory) the raster of `world` for `body_radius`, when it does
+/// not depend on the route: for worlds with bounds or an occupancy grid. False, `out` unchanged,
+/// for a world without either (its raster spans the route).
+bool build_optimum_raster(const World& world, double body_radius, const OptimumOptions& options,
+                          OptimumRaster& out);
 
-/// scenario_optimum on a raster from optimum_raster: the same result as scenario_optimum on the
-/// world and radius the raster was built for, with the same options.
+/// scenario_optimum on a raster from build_optimum_raster: the same result as scenario_optimum on
+/// the world and radius the raster was built for, with the same options.
 Optimum scenario_optimum(const OptimumRaster& raster, const Vec2& start,
                          std::span<const Vec2> goals, const OptimumOptions& options = {});
 
