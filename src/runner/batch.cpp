@@ -32,6 +32,34 @@ namespace floornav {
 namespace {
 
 using Json = nlohmann::ordered_json;
+/// A worker's last optimum raster: consecutive cases on the same world and robot radius (the
+/// rows of a .scen file, a sweep over one map) search one raster instead of building it each.
+struct OptimumCache {
+  std::shared_ptr<const World> world;  ///< held, so that the key cannot be a reused address
+  double radius{0.0};
+  bool usable{false};    ///< the world's raster does not depend on the route
+  OptimumRaster raster;  ///< its memory is reused for the next world
+};
+
+/// The grid optimum of a case's scenario: a length in metres, or the reason there is none.
+Optimum case_optimum(const Scenario& s, OptimumCache& cache) {
+  if (!s.world) return {};
+  const RobotTask& t = s.robot();
+  const double r = t.robot.body_radius;
+  if (cache.world != s.world || cache.radius != r) {
+    cache.world = s.world;
+    cache.radius = r;
+    cache.usable = build_optimum_raster(*s.world, r, {}, cache.raster);
+  }
+  if (!cache.usable) return scenario_optimum(*s.world, r, t.start.position, t.goals);
+  return scenario_optimum(cache.raster, t.start.position, t.goals);
+}
+
+/// compute_optimum (run_summary.hpp) through the worker's cache: the same optimum.
+std::optional<Optimum> cached_optimum(const Scenario& s, OptimumCache& cache) {
+  if (!s.world || s.is_fleet() || s.robots.empty()) return std::nullopt;
+  return case_optimum(s, cache);
+}
 
 /// A batch line: the case, where it came from, then the run's summary (run_summary, the keys of
 /// summary.json) without the transition log.
@@ -76,7 +104,7 @@ bool wants_picture(BatchPictures which, RunStatus status) {
 /// abandoned). With pictures asked for, the run records its trajectory and ranges as it goes
 /// (recording moves nothing), so that a failure is drawn without running it again.
 std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
-                             const std::atomic<bool>* halt) {
+                             const std::atomic<bool>* halt, OptimumCache& optimum_cache) {
   Scenario sc = c.scenario;  // shares the world; copies only small data
   const bool pictures = o.pictures != BatchPictures::None;
   sc.sim.record_trajectory = pictures;
@@ -96,7 +124,7 @@ std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
     summary.erase("robots");
     return case_line(c, summary, o.timing);
   }
-  if (o.optimum && !c.optimal_length) ctx.optimum = compute_optimum(sc);
+  if (o.optimum && !c.optimal_length) ctx.optimum = cached_optimum(sc, optimum_cache);
   auto r = run_timed(sc, o.stop, halt);
   if (!r) return std::nullopt;
   if (wants_picture(o.pictures, r->status)) {
@@ -322,6 +350,7 @@ BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
   auto user_stop = [&] { return options.stop && options.stop->load(); };
 
   auto worker = [&] {
+    OptimumCache optimum_cache;
     while (true) {
       std::size_t i;
       {
@@ -332,7 +361,7 @@ BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
       std::optional<Json> line;
       try {
         const BatchCase c = cases.make(cases.ids[i]);
-        line = run_case(c, options, &halt);
+        line = run_case(c, options, &halt, optimum_cache);
       } catch (...) {
         std::lock_guard lock(mutex);
         if (!failure) failure = std::current_exception();

@@ -27,16 +27,6 @@ void RobotNeighbourGrid::reset(const Box2& box, double cell, std::size_t robots)
   cell_of_robot_.assign(robots, 0);
 }
 
-int RobotNeighbourGrid::cell_x(double x) const {
-  const double c = std::floor((x - origin_.x()) * inv_cell_);
-  return static_cast<int>(std::clamp(c, 0.0, static_cast<double>(nx_ - 1)));
-}
-
-int RobotNeighbourGrid::cell_y(double y) const {
-  const double c = std::floor((y - origin_.y()) * inv_cell_);
-  return static_cast<int>(std::clamp(c, 0.0, static_cast<double>(ny_ - 1)));
-}
-
 void RobotNeighbourGrid::build(std::span<const Vec2> positions,
                                std::span<const std::uint8_t> present) {
   std::fill(start_.begin(), start_.end(), 0u);

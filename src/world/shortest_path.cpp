@@ -1,6 +1,8 @@
 #include "floornav/world/shortest_path.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -83,25 +85,20 @@ std::optional<RasterFrame> choose_frame(const World& world, double r, const Vec2
   return f;
 }
 
-FreeRaster rasterise(const World& world, double r, const RasterFrame& f) {
-  FreeRaster raster;
+// The raster by one `world.clearance` query per cell centre: the definition, and the way for
+// the cases the direct one below does not cover (a negative radius). Clearance is 1-Lipschitz: a
+// centre with clearance c decides the next cells of its row up to |c - r| away without more
+// queries (free ones stay above r, blocked ones at most r). The margin keeps a rounding error from
+// flipping a cell that a query would decide otherwise.
+void rasterise_by_queries(const World& world, double r, const RasterFrame& f, FreeRaster& raster) {
   raster.width = f.width;
   raster.height = f.height;
   raster.free.assign(static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height), 0);
-  const OccupancyGrid* grid = world.grid();
-  // Clearance is 1-Lipschitz: a centre with clearance c decides the next cells of its row up to
-  // |c - r| away without more queries (free ones stay above r, blocked ones at most r). The
-  // margin keeps a rounding error from flipping a cell that a query would decide otherwise.
   constexpr double kMargin = 1e-9;
   const double max_skip = static_cast<double>(f.width);
   for (int iy = 0; iy < f.height; ++iy) {
     const std::size_t row = static_cast<std::size_t>(iy) * static_cast<std::size_t>(f.width);
     for (int ix = 0; ix < f.width;) {
-      // An occupied map cell is blocked whatever else the world holds: skip the query.
-      if (grid && grid->occupied(ix, iy)) {
-        ++ix;
-        continue;
-      }
       const double c = world.clearance(f.to_world(Vec2(ix + 0.5, iy + 0.5)));
       const bool is_free = c > r;
       const double reach = is_free ? c - r - kMargin : r - c - kMargin;  // NaN: no skipping
@@ -117,7 +114,232 @@ FreeRaster rasterise(const World& world, double r, const RasterFrame& f) {
       ix = end;
     }
   }
-  return raster;
+}
+
+/// The world-frame centres of a raster's cells, computed exactly as RasterFrame::to_world does
+/// (the same products and sums, the rotation's sine and cosine taken once).
+class CellCentres {
+ public:
+  explicit CellCentres(const RasterFrame& f)
+      : f_(f), c_(std::cos(f.origin.theta)), s_(std::sin(f.origin.theta)) {}
+  Vec2 operator()(int ix, int iy) const {
+    const Vec2 v = Vec2(ix + 0.5, iy + 0.5) * f_.cell;
+    return f_.origin.position + Vec2(c_ * v.x() - s_ * v.y(), s_ * v.x() + c_ * v.y());
+  }
+
+ private:
+  const RasterFrame& f_;
+  double c_, s_;
+};
+
+/// Cell-frame box [x0, x1] x [y0, y1] (inclusive, clamped to the raster) of the cells whose
+/// centres may lie within `reach` metres of the world-frame box [lo, hi]: one cell of margin, far
+/// above any rounding of the frame change.
+struct CellBox {
+  int x0, x1, y0, y1;
+  bool empty() const { return x0 > x1 || y0 > y1; }
+};
+CellBox cells_near(const RasterFrame& f, const Vec2& lo, const Vec2& hi, double reach) {
+  Vec2 a = f.to_cells(lo), b = a;
+  for (const Vec2& corner : {Vec2(hi.x(), lo.y()), Vec2(lo.x(), hi.y()), hi}) {
+    const Vec2 c = f.to_cells(corner);
+    a = a.cwiseMin(c);
+    b = b.cwiseMax(c);
+  }
+  const double m = reach / f.cell + 1.0;
+  auto lower = [&](double v, int n) {
+    return static_cast<int>(std::clamp(std::floor(v - m - 0.5), 0.0, static_cast<double>(n)));
+  };
+  auto upper = [&](double v, int n) {
+    return static_cast<int>(std::clamp(std::ceil(v + m - 0.5), -1.0, static_cast<double>(n - 1)));
+  };
+  return {lower(a.x(), f.width), upper(b.x(), f.width), lower(a.y(), f.height),
+          upper(b.y(), f.height)};
+}
+
+// The raster a clearance query per cell centre gives (rasterise_by_queries), computed from the
+// obstacles instead: each cell is as free as that query says, no more, no less (tested on random
+// worlds). A centre is blocked when the world's clearance there is at most r, that is when
+//  - the occupancy grid's clearance is at most r: decided by the grid's own distance transform
+//    (the nearest occupied centre) where it is clear by far, by the grid's query elsewhere;
+//  - or a wall, polygon edge or circle lies within r: World::clearance takes the minimum of the
+//    same `distance` / `signed_distance` values over them, so each is computed for the cells near
+//    it only and compared with r;
+//  - or the centre lies inside a solid shape or outside the bounds: World::is_inside_obstacle,
+//    asked only for the still free cells that may be.
+// Into `raster`, whose memory is reused (a batch builds one per world).
+void rasterise(const World& world, double r, const RasterFrame& f, FreeRaster& raster) {
+  if (!(r >= 0.0) || !is_finite(f.origin.position) || !std::isfinite(f.origin.theta)) {
+    rasterise_by_queries(world, r, f, raster);
+    return;
+  }
+  raster.width = f.width;
+  raster.height = f.height;
+  const std::size_t w = static_cast<std::size_t>(f.width);
+  raster.free.assign(w * static_cast<std::size_t>(f.height), 1);
+  std::uint8_t* free = raster.free.data();
+  const CellCentres centre(f);
+
+  if (const OccupancyGrid* g = world.grid()) {
+    const bool own_cells = g->origin().position == f.origin.position &&
+                           g->origin().theta == f.origin.theta && g->resolution() == f.cell &&
+                           g->width() == f.width && g->height() == f.height;
+    // Far above the rounding of the grid query's frame change (relative 1e-16 of the origin).
+    const double margin = 1e-9 + 1e-12 * (f.origin.position.norm() + f.cell * (w + f.height));
+    const double res = f.cell;
+    for (int iy = 0; iy < f.height; ++iy)
+      for (int ix = 0; ix < f.width; ++ix) {
+        std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
+        if (own_cells) {
+          if (g->occupied(ix, iy)) {
+            cell = 0;
+            continue;
+          }
+          const std::int32_t q = g->nearest_occupied_index(ix, iy);
+          if (q < 0) continue;  // no occupied cell: the grid's clearance is infinite
+          const int dx = std::abs(q % f.width - ix), dy = std::abs(q / f.width - iy);
+          // The nearest occupied square is at least the nearest occupied centre less half a
+          // diagonal away, and at most as far as that centre's own square.
+          const double centres = std::sqrt(static_cast<double>(dx * dx + dy * dy));
+          const double ex = std::max(dx - 0.5, 0.0), ey = std::max(dy - 0.5, 0.0);
+          const double upper = std::sqrt(ex * ex + ey * ey) * res;
+          const double lower = (centres - 0.7071067811865476) * res;
+          if (lower > r + margin) continue;
+          if (upper < r - margin) {
+            cell = 0;
+            continue;
+          }
+        }
+        if (!(g->clearance(centre(ix, iy)) > r)) cell = 0;
+      }
+  }
+
+  // Walls, polygon edges and circles: each marks the cells it comes within r of.
+  // Per row, only the columns where the segment comes within r + 1 cell of the row's centres
+  // (the part of it within that height, widened by as much): the cell of margin is far above the
+  // rounding of the frame change and of the division.
+  // Each centre is first compared by its squared distance, computed here: a centre clear of r
+  // by more than `kSure` either way is decided; only the others ask `distance` itself.
+  const double reach_cells = r / f.cell + 1.0;
+  constexpr double kSure = 1e-9;  // m, far above the rounding of a squared distance
+  const double sure_in = r > kSure ? (r - kSure) * (r - kSure) : -1.0;
+  const double sure_out = (r + kSure) * (r + kSure);
+  for (const Segment& s : world.segments()) {
+    const CellBox b = cells_near(f, s.a.cwiseMin(s.b), s.a.cwiseMax(s.b), r);
+    const Vec2 a = f.to_cells(s.a), d = f.to_cells(s.b) - a;
+    const Vec2 e = s.b - s.a;  // world frame
+    const double len2 = e.squaredNorm(), inv_len2 = len2 > 0.0 ? 1.0 / len2 : 0.0;
+    auto blocks = [&](const Vec2& p) {
+      const Vec2 q = s.a + std::clamp((p - s.a).dot(e) * inv_len2, 0.0, 1.0) * e;
+      const double d2 = (p - q).squaredNorm();
+      if (d2 <= sure_in) return true;
+      if (d2 > sure_out) return false;
+      return distance(s, p) <= r;
+    };
+    for (int iy = b.y0; iy <= b.y1; ++iy) {
+      const double y = iy + 0.5;
+      double t0 = 0.0, t1 = 1.0;
+      if (d.y() != 0.0) {
+        t0 = (y - reach_cells - a.y()) / d.y();
+        t1 = (y + reach_cells - a.y()) / d.y();
+        if (t0 > t1) std::swap(t0, t1);
+        t0 = std::max(t0, 0.0);
+        t1 = std::min(t1, 1.0);
+        if (t0 > t1) continue;
+      }
+      const double xa = a.x() + t0 * d.x(), xb = a.x() + t1 * d.x();
+      const int x0 = std::max(b.x0, static_cast<int>(std::floor(std::min(xa, xb) - reach_cells)));
+      const int x1 = std::min(b.x1, static_cast<int>(std::ceil(std::max(xa, xb) + reach_cells)));
+      for (int ix = x0; ix <= x1; ++ix) {
+        std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
+        if (cell && blocks(centre(ix, iy))) cell = 0;
+      }
+    }
+  }
+  for (const Circle& c : world.circles()) {
+    const Vec2 half(c.radius, c.radius);
+    const CellBox b = cells_near(f, c.center - half, c.center + half, r);
+    const double lo = c.radius + r - kSure, hi = c.radius + r + kSure;
+    const double circle_in = lo > 0.0 ? lo * lo : -1.0, circle_out = hi * hi;
+    for (int iy = b.y0; iy <= b.y1; ++iy)
+      for (int ix = b.x0; ix <= b.x1; ++ix) {
+        std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
+        if (!cell) continue;
+        // Inside the disc or within r of it (its |signed distance| when outside).
+        const Vec2 p = centre(ix, iy);
+        const double d2 = (p - c.center).squaredNorm();
+        if (d2 <= circle_in || (d2 <= circle_out && signed_distance(c, p) <= r)) cell = 0;
+      }
+  }
+
+  // Cells still free that may lie inside a polygon. Unrotated, each row of centres is a line
+  // y = const: the polygon's edges cross it at points in increasing x, and a centre is inside
+  // when an odd number of crossings lie left of it (the half-open rule counts a vertex on the
+  // line once). A still free centre is farther than r from every edge, so from every crossing;
+  // only one within `margin` of a crossing (possible for r ~ 0) asks the world.
+  auto inside_test = [&](int ix, int iy) {
+    std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
+    if (cell && world.is_inside_obstacle(centre(ix, iy))) cell = 0;
+  };
+  std::vector<double> crossings;
+  const double margin = 1e-9 + 1e-12 * (f.origin.position.norm() + f.cell * (w + f.height));
+  for (const auto& poly : world.polygons()) {
+    if (poly.empty()) continue;
+    Vec2 lo = poly.front(), hi = poly.front();
+    for (const Vec2& v : poly) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const CellBox b = cells_near(f, lo, hi, 0.0);
+    for (int iy = b.y0; iy <= b.y1; ++iy) {
+      if (f.origin.theta != 0.0) {
+        for (int ix = b.x0; ix <= b.x1; ++ix) inside_test(ix, iy);
+        continue;
+      }
+      const double y = centre(0, iy).y();
+      crossings.clear();
+      for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+        const Vec2 &p = poly[i], &q = poly[j];
+        if ((p.y() > y) != (q.y() > y))
+          crossings.push_back(p.x() + (y - p.y()) * (q.x() - p.x()) / (q.y() - p.y()));
+      }
+      std::sort(crossings.begin(), crossings.end());
+      std::size_t left = 0;  // crossings left of the centre
+      for (int ix = b.x0; ix <= b.x1; ++ix) {
+        const double x = centre(ix, iy).x();
+        while (left < crossings.size() && crossings[left] < x) ++left;
+        const bool near_left = left > 0 && x - crossings[left - 1] <= margin;
+        const bool near_right = left < crossings.size() && crossings[left] - x <= margin;
+        if (near_left || near_right)
+          inside_test(ix, iy);
+        else if (left % 2 == 1)
+          free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)] = 0;
+      }
+    }
+  }
+  if (const auto& bounds = world.bounds()) {
+    // Unrotated, a centre's x depends on its column only and its y on its row only.
+    std::vector<std::uint8_t> column_in, row_in;
+    if (f.origin.theta == 0.0) {
+      column_in.resize(w);
+      row_in.resize(static_cast<std::size_t>(f.height));
+      for (int ix = 0; ix < f.width; ++ix) {
+        const double x = centre(ix, 0).x();
+        column_in[static_cast<std::size_t>(ix)] = x >= bounds->min.x() && x <= bounds->max.x();
+      }
+      for (int iy = 0; iy < f.height; ++iy) {
+        const double y = centre(0, iy).y();
+        row_in[static_cast<std::size_t>(iy)] = y >= bounds->min.y() && y <= bounds->max.y();
+      }
+    }
+    for (int iy = 0; iy < f.height; ++iy) {
+      std::uint8_t* row = free + static_cast<std::size_t>(iy) * w;
+      if (!row_in.empty()) {
+        if (!row_in[static_cast<std::size_t>(iy)]) std::fill(row, row + w, 0);
+        for (std::size_t ix = 0; ix < w; ++ix) row[ix] &= column_in[ix];
+        continue;
+      }
+      for (int ix = 0; ix < f.width; ++ix)
+        if (row[ix] && !bounds->contains(centre(ix, iy))) row[ix] = 0;
+    }
+  }
 }
 
 }  // namespace
@@ -140,7 +362,9 @@ std::optional<GridCell> snap_to_free(const FreeRaster& raster, const Vec2& p, do
 
 FreeRaster free_cells(const World& world, double body_radius, const RasterFrame& frame) {
   if (frame.width <= 0 || frame.height <= 0 || !(frame.cell > 0.0)) return {};
-  return rasterise(world, body_radius, frame);
+  FreeRaster raster;
+  rasterise(world, body_radius, frame, raster);
+  return raster;
 }
 
 std::optional<RasterFrame> choose_raster_frame(const World& world, double body_radius,
@@ -155,92 +379,205 @@ std::optional<RasterFrame> choose_raster_frame(const World& world, double body_r
 FreeRaster free_cells(const World& world, double body_radius, const Pose2& origin, double cell,
                       int width, int height) {
   if (width <= 0 || height <= 0 || !(cell > 0.0)) return {};
-  return rasterise(world, body_radius, RasterFrame{origin, cell, width, height});
+  FreeRaster raster;
+  rasterise(world, body_radius, RasterFrame{origin, cell, width, height}, raster);
+  return raster;
 }
 
-std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, GridCell goal) {
-  GridSearch search;
-  GridPath path;
-  if (!search.search(raster, start, goal, path)) return std::nullopt;
-  return path;
-}
+namespace {
 
-void GridSearch::fit(std::size_t cells) {
-  if (g_.size() < cells) {
-    g_.resize(cells);
-    parent_.resize(cells);
-    seen_.resize(cells, 0);
-    closed_.resize(cells, 0);
+/// An open-list entry: lowest f first; among equal f the deepest node (-g lowest), then the
+/// lowest index, so that the order of expansion (and the path) is deterministic.
+struct OpenEntry {
+  double f;
+  double neg_g;
+  std::uint32_t index;
+  bool operator>(const OpenEntry& o) const {
+    if (f != o.f) return f > o.f;
+    if (neg_g != o.neg_g) return neg_g > o.neg_g;
+    return index > o.index;
   }
-  if (++generation_ == 0) {  // wrapped round: old stamps could look current
-    std::fill(seen_.begin(), seen_.end(), 0);
-    std::fill(closed_.begin(), closed_.end(), 0);
-    generation_ = 1;
-  }
-  open_.clear();
-}
+};
 
-bool GridSearch::search(const FreeRaster& raster, GridCell start, GridCell goal, GridPath& path) {
+/// The open list, a radix heap on f: A* with a consistent heuristic pops f in increasing order, so
+/// an entry whose f differs from the last popped one first in bit b (of f's IEEE pattern, which
+/// orders non-negative doubles as unsigned integers do) waits in bucket b + 1, unsorted, until
+/// everything below it is gone. Bucket 0 holds the entries with f at most the last popped one, as
+/// a binary heap on (f, -g, index): equal f (and the odd entry a rounding puts an ulp lower) in
+/// exactly the binary heap's order. Pops come out in the order of one binary heap over all
+/// entries; each entry moves down the buckets a few times instead of sifting through a big heap.
+class OpenList {
+ public:
+  void clear() {
+    for (auto& b : buckets_) b.clear();
+    last_ = 0;
+    size_ = 0;
+  }
+  bool empty() const { return size_ == 0; }
+  void push(const OpenEntry& e) {
+    ++size_;
+    const std::uint64_t key = bits(e.f);
+    if (key <= last_) {
+      push_ordered(e);
+      return;
+    }
+    buckets_[bucket_of(key)].push_back(e);
+  }
+  OpenEntry pop() {
+    --size_;
+    auto& zero = buckets_[0];
+    if (zero.empty()) {
+      std::size_t b = 1;
+      while (buckets_[b].empty()) ++b;
+      auto& from = buckets_[b];
+      std::uint64_t least = bits(from.front().f);
+      for (const OpenEntry& e : from) least = std::min(least, bits(e.f));
+      last_ = least;
+      for (const OpenEntry& e : from) {
+        const std::uint64_t key = bits(e.f);
+        if (key == least)
+          push_ordered(e);
+        else
+          buckets_[bucket_of(key)].push_back(e);  // a lower bucket: they share the top bits
+      }
+      from.clear();
+    }
+    std::pop_heap(zero.begin(), zero.end(), std::greater<OpenEntry>{});
+    const OpenEntry top = zero.back();
+    zero.pop_back();
+    return top;
+  }
+
+ private:
+  static std::uint64_t bits(double f) { return std::bit_cast<std::uint64_t>(f); }
+  std::size_t bucket_of(std::uint64_t key) const {
+    return static_cast<std::size_t>(64 - std::countl_zero(key ^ last_));
+  }
+  void push_ordered(const OpenEntry& e) {
+    buckets_[0].push_back(e);
+    std::push_heap(buckets_[0].begin(), buckets_[0].end(), std::greater<OpenEntry>{});
+  }
+
+  std::array<std::vector<OpenEntry>, 65> buckets_;
+  std::uint64_t last_{0};
+  std::size_t size_{0};
+};
+
+/// A* working memory, kept per thread so that a search allocates nothing once the thread's
+/// buffers fit its raster (a batch runs thousands). `mark[v]` says what this search knows of
+/// cell v: 2 * search + 1 closed, 2 * search open (g and parent valid), anything else untouched,
+/// so nothing is cleared between searches.
+struct SearchBuffers {
+  std::vector<double> g;
+  std::vector<std::int32_t> parent;
+  std::vector<std::uint32_t> mark;
+  OpenList open;
+  std::uint32_t search{0};
+
+  void begin(std::size_t n) {
+    if (mark.size() < n || search >= 0x7FFFFFFEu) {
+      g.assign(std::max(n, g.size()), kInf);
+      parent.assign(g.size(), -1);
+      mark.assign(g.size(), 0);
+      search = 0;
+    }
+    ++search;
+    open.clear();
+  }
+};
+
+/// Octile A* into `path` with the working memory `b` (speed's radix-heap open list, marks instead
+/// of clearing); `expanded` counts the cells expanded. False, with `path` empty, when there is no
+/// path.
+bool run_octile_astar(SearchBuffers& b, const FreeRaster& raster, GridCell start, GridCell goal,
+                      GridPath& path, std::size_t& expanded) {
   path.length = 0.0;
   path.cells.clear();
-  expanded_ = 0;
+  expanded = 0;
   if (!raster.is_free(start.x, start.y) || !raster.is_free(goal.x, goal.y)) return false;
-  const std::size_t w = static_cast<std::size_t>(raster.width);
-  fit(w * static_cast<std::size_t>(raster.height));
-  const std::uint32_t gen = generation_;
+  const int width = raster.width, height = raster.height;
+  const std::size_t w = static_cast<std::size_t>(width);
+  const std::size_t n = w * static_cast<std::size_t>(height);
+  b.begin(n);
+  const std::uint32_t open_mark = 2 * b.search, closed_mark = open_mark + 1;
+  const std::uint8_t* free = raster.free.data();
   auto index = [w](int x, int y) {
     return static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x);
   };
-  auto g_of = [&](std::size_t v) { return seen_[v] == gen ? g_[v] : kInf; };
-  // (f, -g, index): lowest f first; among equal f the deepest node, then the lowest index, so
-  // the order (and the path) is deterministic. A binary heap on a kept vector.
-  const auto later = std::greater<Entry>();
-  auto push = [&](Entry e) {
-    open_.push_back(e);
-    std::push_heap(open_.begin(), open_.end(), later);
+  auto push = [&](double f, double g, std::size_t v) {
+    b.open.push({f, -g, static_cast<std::uint32_t>(v)});
   };
   const std::size_t s = index(start.x, start.y), t = index(goal.x, goal.y);
-  g_[s] = 0.0;
-  parent_[s] = -1;
-  seen_[s] = gen;
-  push({octile_distance(goal.x - start.x, goal.y - start.y), -0.0, s});
+  b.g[s] = 0.0;
+  b.parent[s] = -1;
+  b.mark[s] = open_mark;
+  push(octile_distance(goal.x - start.x, goal.y - start.y), 0.0, s);
   constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
   constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
-  while (!open_.empty()) {
-    std::pop_heap(open_.begin(), open_.end(), later);
-    const std::size_t u = open_.back().index;
-    open_.pop_back();
-    if (closed_[u] == gen) continue;
-    closed_[u] = gen;
-    ++expanded_;
+  const std::ptrdiff_t sw = static_cast<std::ptrdiff_t>(w);
+  const std::ptrdiff_t kStep[8] = {1, -1, sw, -sw, sw + 1, -sw + 1, sw - 1, -sw - 1};
+  while (!b.open.empty()) {
+    const std::size_t u = b.open.pop().index;
+    if (b.mark[u] == closed_mark) continue;
+    b.mark[u] = closed_mark;
+    ++expanded;
     if (u == t) break;
     const int ux = static_cast<int>(u % w), uy = static_cast<int>(u / w);
-    const double gu = g_[u];
+    // Away from the raster's border every neighbour exists: no bounds checks.
+    const bool inner = ux > 0 && uy > 0 && ux + 1 < width && uy + 1 < height;
+    const double gu = b.g[u];
     for (int k = 0; k < 8; ++k) {
       const int vx = ux + kDx[k], vy = uy + kDy[k];
-      if (!raster.is_free(vx, vy)) continue;
-      const bool diagonal = kDx[k] != 0 && kDy[k] != 0;
-      if (diagonal && (!raster.is_free(ux + kDx[k], uy) || !raster.is_free(ux, uy + kDy[k])))
-        continue;  // no corner cutting
+      const bool diagonal = k >= 4;
+      if (inner) {
+        if (!free[u + kStep[k]]) continue;
+        if (diagonal && (!free[u + kDx[k]] || !free[u + kStep[k] - kDx[k]])) continue;
+      } else {
+        if (!raster.is_free(vx, vy)) continue;
+        if (diagonal && (!raster.is_free(ux + kDx[k], uy) || !raster.is_free(ux, uy + kDy[k])))
+          continue;  // no corner cutting
+      }
       const std::size_t v = index(vx, vy);
-      if (closed_[v] == gen) continue;
+      const std::uint32_t m = b.mark[v];
+      if (m == closed_mark) continue;
       const double gv = gu + (diagonal ? kSqrt2 : 1.0);
-      if (gv < g_of(v)) {
-        g_[v] = gv;
-        parent_[v] = static_cast<std::int32_t>(u);
-        seen_[v] = gen;
-        push({gv + octile_distance(goal.x - vx, goal.y - vy), -gv, v});
+      if (m != open_mark || gv < b.g[v]) {
+        b.g[v] = gv;
+        b.parent[v] = static_cast<std::int32_t>(u);
+        b.mark[v] = open_mark;
+        push(gv + octile_distance(goal.x - vx, goal.y - vy), gv, v);
       }
     }
   }
-  if (closed_[t] != gen) return false;
-  path.length = g_[t];
+  if (b.mark[t] != closed_mark) return false;
+  path.length = b.g[t];
   for (std::int64_t v = static_cast<std::int64_t>(t); v >= 0;
-       v = parent_[static_cast<std::size_t>(v)])
+       v = b.parent[static_cast<std::size_t>(v)])
     path.cells.push_back({static_cast<int>(static_cast<std::size_t>(v) % w),
                           static_cast<int>(static_cast<std::size_t>(v) / w)});
   std::reverse(path.cells.begin(), path.cells.end());
   return true;
+}
+
+}  // namespace
+
+std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, GridCell goal) {
+  thread_local SearchBuffers buffers;  // a batch's thousands of searches allocate nothing
+  GridPath path;
+  std::size_t expanded = 0;
+  if (!run_octile_astar(buffers, raster, start, goal, path, expanded)) return std::nullopt;
+  return path;
+}
+
+struct GridSearch::Buffers : SearchBuffers {};
+
+GridSearch::GridSearch() : buffers_(std::make_unique<Buffers>()) {}
+GridSearch::~GridSearch() = default;
+GridSearch::GridSearch(GridSearch&&) noexcept = default;
+GridSearch& GridSearch::operator=(GridSearch&&) noexcept = default;
+
+bool GridSearch::search(const FreeRaster& raster, GridCell start, GridCell goal, GridPath& path) {
+  return run_octile_astar(*buffers_, raster, start, goal, path, expanded_);
 }
 
 bool line_of_sight(const FreeRaster& raster, const Vec2& a, const Vec2& b) {
@@ -295,29 +632,73 @@ std::string_view to_string(OptimumStatus s) {
   return "invalid_input";
 }
 
+namespace {
+
+bool valid_route(const Vec2& start, std::span<const Vec2> goals) {
+  return !goals.empty() && is_finite(start) &&
+         std::all_of(goals.begin(), goals.end(), [](const Vec2& g) { return is_finite(g); });
+}
+
+bool valid_radius(double body_radius, const OptimumOptions& options) {
+  return std::isfinite(body_radius) && body_radius >= 0.0 && options.cell_size > 0.0;
+}
+
+void make_raster(const World& world, double body_radius, const std::optional<RasterFrame>& frame,
+                 OptimumRaster& r) {
+  if (!frame) {
+    r.status = OptimumStatus::RasterTooLarge;
+    return;
+  }
+  r.status = OptimumStatus::Found;
+  r.origin = frame->origin;
+  r.cell = frame->cell;
+  rasterise(world, body_radius, *frame, r.raster);
+}
+
+}  // namespace
+
+bool build_optimum_raster(const World& world, double body_radius, const OptimumOptions& options,
+                          OptimumRaster& out) {
+  // Without bounds or a grid, the raster spans the route too.
+  if (!world.bounds() && !world.grid()) return false;
+  if (!valid_radius(body_radius, options)) {
+    out.status = OptimumStatus::InvalidInput;
+    return true;
+  }
+  const Vec2 any = Vec2::Zero();  // the frame of a bounded or gridded world ignores the route
+  make_raster(world, body_radius,
+              choose_frame(world, body_radius, any, std::span<const Vec2>(&any, 1), options), out);
+  return true;
+}
+
 Optimum scenario_optimum(const World& world, double body_radius, const Vec2& start,
                          std::span<const Vec2> goals, const OptimumOptions& options) {
+  if (!valid_route(start, goals) || !valid_radius(body_radius, options)) return {};
+  thread_local OptimumRaster raster;  // its memory serves every call on this thread
+  make_raster(world, body_radius, choose_frame(world, body_radius, start, goals, options), raster);
+  return scenario_optimum(raster, start, goals, options);
+}
+
+Optimum scenario_optimum(const OptimumRaster& grid, const Vec2& start, std::span<const Vec2> goals,
+                         const OptimumOptions& options) {
   Optimum out;
-  if (goals.empty() || !is_finite(start) || !std::isfinite(body_radius) || body_radius < 0.0 ||
-      !(options.cell_size > 0.0) ||
-      !std::all_of(goals.begin(), goals.end(), [](const Vec2& g) { return is_finite(g); }))
-    return out;
-  const auto frame = choose_frame(world, body_radius, start, goals, options);
-  if (!frame) {
-    out.status = OptimumStatus::RasterTooLarge;
+  if (!valid_route(start, goals) || !(options.cell_size > 0.0)) return out;
+  if (grid.status != OptimumStatus::Found) {
+    out.status = grid.status;
     return out;
   }
-  out.cell_size = frame->cell;
-  out.width = frame->width;
-  out.height = frame->height;
-  const FreeRaster raster = rasterise(world, body_radius, *frame);
+  const RasterFrame frame{grid.origin, grid.cell, grid.raster.width, grid.raster.height};
+  const FreeRaster& raster = grid.raster;
+  out.cell_size = frame.cell;
+  out.width = frame.width;
+  out.height = frame.height;
 
   double length = 0.0, octile = 0.0;
   std::vector<Vec2> route;
-  Vec2 from = frame->to_cells(start);
+  Vec2 from = frame.to_cells(start);
   auto from_cell = snap_to_free(raster, from, options.snap_radius);
   for (const Vec2& goal_world : goals) {
-    const Vec2 to = frame->to_cells(goal_world);
+    const Vec2 to = frame.to_cells(goal_world);
     const auto to_cell = snap_to_free(raster, to, options.snap_radius);
     if (!from_cell || !to_cell) {
       out.status = OptimumStatus::NoFreeCell;
@@ -339,13 +720,13 @@ Optimum scenario_optimum(const World& world, double body_radius, const Vec2& sta
     if (options.smooth) points = pull_string(raster, points);
     length += options.smooth ? polyline_length(points) : leg_octile;
     for (std::size_t i = route.empty() ? 0 : 1; i < points.size(); ++i)
-      route.push_back(frame->to_world(points[i]));
+      route.push_back(frame.to_world(points[i]));
     from = to;
     from_cell = to_cell;
   }
   out.status = OptimumStatus::Found;
-  out.length = length * frame->cell;
-  out.octile_length = octile * frame->cell;
+  out.length = length * frame.cell;
+  out.octile_length = octile * frame.cell;
   out.path = std::move(route);
   return out;
 }

@@ -282,6 +282,72 @@ TEST(Fleet, LidarFleetOnTwoThreadsGivesTheSameResult) {
   EXPECT_EQ(fleet_summary_to_json(one.result()).dump(), fleet_summary_to_json(two.result()).dump());
 }
 
+// run_steps measures each robot's contacts at the start of its next step (on threads, robots
+// stepped in chunks): the same bits as step() after step(), on one thread or two, for any way of
+// cutting the run into run_steps calls. A crowded hall: half the robots ignore the others
+// (go_to_goal), so pairs touch and end; some hit walls and pillars; finished robots leave the floor
+// (park_finished off), so who is present changes while robots still move.
+TEST(Fleet, ContactsCollisionsAndLeavingRobotsOnTwoThreadsGiveTheSameBitsAsStep) {
+  std::string yaml =
+      "world: {bounds: [0, 0, 6, 6], obstacles: [{circle: {center: [3, 3], radius: 0.5}},"
+      " {circle: {center: [1.5, 4.5], radius: 0.2}}]}\n"
+      "robot: {preset: quickbot, sensors: {lidar: {beams: 60, fov: 6.283185307, "
+      "min_range: 0.02, max_range: 0.4}}}\n"
+      "sim: {t_max: 30, park_finished: false}\n"
+      "robots:\n";
+  Rng rng(11);
+  int n = 0;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j) {
+      const double x = 0.3 + 0.6 * i, y = 0.3 + 0.6 * j;
+      if (std::hypot(x - 3, y - 3) < 0.8 || std::hypot(x - 1.5, y - 4.5) < 0.4) continue;
+      double gx = 0, gy = 0;
+      do {
+        gx = rng.uniform(0.3, 5.7), gy = rng.uniform(0.3, 5.7);
+      } while (std::hypot(gx - 3, gy - 3) < 0.7 || std::hypot(gx - 1.5, gy - 4.5) < 0.4);
+      yaml += "  - {start: [" + std::to_string(x) + ", " + std::to_string(y) + ", " +
+              std::to_string(rng.uniform(-3.0, 3.0)) + "], goal: [" + std::to_string(gx) + ", " +
+              std::to_string(gy) + "]" + (n % 2 ? ", controller: {kind: go_to_goal}" : "") + "}\n";
+      ++n;
+    }
+  const Scenario s = load_scenario_text(yaml, "crowd.yaml");
+  FleetSimulation serial = make_fleet_simulation(s), whole = make_fleet_simulation(s),
+                  pieces = make_fleet_simulation(s), one = make_fleet_simulation(s);
+  ASSERT_EQ(whole.threads_for(2), 2u);
+  while (serial.step()) {
+  }
+  whole.run(2);
+  for (long long k = 1; !pieces.finished(); k = k % 7 + 1) pieces.run_steps(k, 2);
+  for (long long k = 1; !one.finished(); k = k % 5 + 1) one.run_steps(k, 1);
+  const FleetResult a = serial.result(), b = whole.result(), c = pieces.result(), d = one.result();
+  // The scenario does what it is meant to: contacts, world collisions, robots that finish.
+  int pairs = 0, walls = 0;
+  for (const FleetCollision& col : a.collisions) (col.other >= 0 ? pairs : walls) += 1;
+  EXPECT_GT(pairs, 3);
+  EXPECT_GT(walls, 0);
+  EXPECT_GT(a.reached, 5);
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_EQ(a.steps, c.steps);
+  const std::string json = fleet_summary_to_json(a).dump();
+  EXPECT_EQ(json, fleet_summary_to_json(b).dump());
+  EXPECT_EQ(json, fleet_summary_to_json(c).dump());
+  EXPECT_EQ(json, fleet_summary_to_json(d).dump());
+  ASSERT_EQ(a.collisions.size(), b.collisions.size());
+  for (std::size_t k = 0; k < a.collisions.size(); ++k) {
+    EXPECT_EQ(a.collisions[k].time, b.collisions[k].time) << k;
+    EXPECT_EQ(a.collisions[k].robot, b.collisions[k].robot) << k;
+    EXPECT_EQ(a.collisions[k].other, b.collisions[k].other) << k;
+  }
+  for (std::size_t i = 0; i < a.robots.size(); ++i) {
+    EXPECT_EQ(a.robots[i].min_clearance, b.robots[i].min_clearance) << i;
+    EXPECT_EQ(a.robots[i].min_clearance, c.robots[i].min_clearance) << i;
+    EXPECT_EQ(a.robots[i].min_clearance, d.robots[i].min_clearance) << i;
+    EXPECT_EQ(a.robots[i].final_x, c.robots[i].final_x) << i;
+    EXPECT_EQ(a.robots[i].final_x, d.robots[i].final_x) << i;
+    EXPECT_EQ(a.robots[i].final_theta, c.robots[i].final_theta) << i;
+  }
+}
+
 // The neighbour grid returns every robot within the radius (and maybe a few more), for robots
 // inside and outside its box.
 TEST(RobotNeighbourGrid, FindsEveryRobotWithinTheRadius) {

@@ -7,10 +7,15 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <initializer_list>
 #include <numbers>
+#include <optional>
+#include <queue>
+#include <tuple>
 #include <vector>
 
+#include "floornav/core/rng.hpp"
 #include "floornav/io/movingai_map.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
@@ -155,6 +160,113 @@ TEST(PullString, WithAnyLineOfSightTest) {
   pull_string(
       pts, [](const Vec2& a, const Vec2& b) { return a.x() == b.x() || a.y() == b.y(); }, out);
   EXPECT_EQ(out, (std::vector<Vec2>{{0, 0}, {2, 0}, {2, 2}}));
+}
+
+// Searches reuse their working memory (per thread, nothing cleared between searches): a search
+// after others on larger and smaller rasters, some failing half-way, finds what it found first.
+TEST(OctileAstar, ASearchAfterOthersOnOtherRastersFindsTheSamePath) {
+  Rng rng(5);
+  std::vector<std::array<int, 2>> blocked;
+  for (int k = 0; k < 300; ++k)
+    blocked.push_back(
+        {static_cast<int>(rng.uniform(0.0, 40.0)), static_cast<int>(rng.uniform(0.0, 30.0))});
+  FreeRaster r = raster(40, 30, {});
+  for (const auto& [x, y] : blocked)
+    if ((x > 1 || y > 1) && (x < 38 || y < 28)) r.free[static_cast<std::size_t>(y * 40 + x)] = 0;
+  const auto first = octile_astar(r, {0, 0}, {39, 29});
+  ASSERT_TRUE(first);
+  EXPECT_TRUE(octile_astar(raster(200, 150, {}), {0, 0}, {199, 149}));
+  EXPECT_FALSE(
+      octile_astar(raster(5, 5, {{2, 0}, {2, 1}, {2, 2}, {2, 3}, {2, 4}}), {0, 0}, {4, 4}));
+  EXPECT_TRUE(octile_astar(raster(7, 3, {}), {6, 2}, {0, 0}));
+  const auto again = octile_astar(r, {0, 0}, {39, 29});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->cells, first->cells);
+  EXPECT_EQ(again->length, first->length);
+}
+
+// The search as it was first written (std::priority_queue over (f, -g, index), fresh arrays):
+// the oracle for the reused buffers and the radix heap of octile_astar.
+std::optional<GridPath> reference_astar(const FreeRaster& r, GridCell start, GridCell goal) {
+  if (!r.is_free(start.x, start.y) || !r.is_free(goal.x, goal.y)) return std::nullopt;
+  const std::size_t w = static_cast<std::size_t>(r.width),
+                    n = w * static_cast<std::size_t>(r.height);
+  auto h = [&](int x, int y) {
+    const int ax = std::abs(goal.x - x), ay = std::abs(goal.y - y);
+    return (std::max(ax, ay) - std::min(ax, ay)) + kSqrt2 * std::min(ax, ay);
+  };
+  std::vector<double> g(n, INFINITY);
+  std::vector<std::int64_t> parent(n, -1);
+  std::vector<char> closed(n, 0);
+  using Entry = std::tuple<double, double, std::size_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  const std::size_t s = static_cast<std::size_t>(start.y) * w + static_cast<std::size_t>(start.x);
+  const std::size_t t = static_cast<std::size_t>(goal.y) * w + static_cast<std::size_t>(goal.x);
+  g[s] = 0.0;
+  open.emplace(h(start.x, start.y), -0.0, s);
+  const int dx[8] = {1, -1, 0, 0, 1, 1, -1, -1}, dy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
+  while (!open.empty()) {
+    const std::size_t u = std::get<2>(open.top());
+    open.pop();
+    if (closed[u]) continue;
+    closed[u] = 1;
+    if (u == t) break;
+    const int ux = static_cast<int>(u % w), uy = static_cast<int>(u / w);
+    for (int k = 0; k < 8; ++k) {
+      const int vx = ux + dx[k], vy = uy + dy[k];
+      const bool diagonal = k >= 4;
+      if (!r.is_free(vx, vy) ||
+          (diagonal && (!r.is_free(ux + dx[k], uy) || !r.is_free(ux, uy + dy[k]))))
+        continue;
+      const std::size_t v = static_cast<std::size_t>(vy) * w + static_cast<std::size_t>(vx);
+      const double gv = g[u] + (diagonal ? kSqrt2 : 1.0);
+      if (!closed[v] && gv < g[v]) {
+        g[v] = gv;
+        parent[v] = static_cast<std::int64_t>(u);
+        open.emplace(gv + h(vx, vy), -gv, v);
+      }
+    }
+  }
+  if (!closed[t]) return std::nullopt;
+  GridPath p;
+  p.length = g[t];
+  for (std::int64_t v = static_cast<std::int64_t>(t); v >= 0;
+       v = parent[static_cast<std::size_t>(v)])
+    p.cells.push_back({static_cast<int>(v % static_cast<std::int64_t>(w)),
+                       static_cast<int>(v / static_cast<std::int64_t>(w))});
+  std::reverse(p.cells.begin(), p.cells.end());
+  return p;
+}
+
+// On random rasters (open to cluttered, from 1 x 1 to 90 x 70, starts and goals anywhere, some
+// blocked or cut off), octile_astar finds the very path the plain search finds, cell for cell.
+TEST(OctileAstar, RandomRastersGiveThePlainSearchsPathCellForCell) {
+  Rng rng(77);
+  int found = 0, none = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    FreeRaster r;
+    r.width = 1 + static_cast<int>(rng.uniform(0.0, 90.0));
+    r.height = 1 + static_cast<int>(rng.uniform(0.0, 70.0));
+    const double blocked = rng.uniform(0.0, 0.45);
+    r.free.resize(static_cast<std::size_t>(r.width * r.height));
+    for (auto& c : r.free) c = rng.uniform() >= blocked;
+    auto cell = [&] {
+      return GridCell{static_cast<int>(rng.uniform(0.0, r.width - 1e-9)),
+                      static_cast<int>(rng.uniform(0.0, r.height - 1e-9))};
+    };
+    const GridCell a = cell(), b = cell();
+    const auto got = octile_astar(r, a, b), want = reference_astar(r, a, b);
+    ASSERT_EQ(got.has_value(), want.has_value()) << trial;
+    if (!want) {
+      ++none;
+      continue;
+    }
+    ++found;
+    EXPECT_EQ(got->cells, want->cells) << trial;
+    EXPECT_EQ(got->length, want->length) << trial;
+  }
+  EXPECT_GT(found, 100);
+  EXPECT_GT(none, 50);
 }
 
 // The MovingAI benchmark's own optima (octile, no corner cutting), row by row: octile_astar on the
@@ -302,6 +414,84 @@ TEST(FreeCells, EqualsOneClearanceQueryPerCell) {
   EXPECT_TRUE(free_cells(gw, 0.25, g.origin(), 0.1, 0, 30).free.empty());
 }
 
+// The raster is built from the obstacles near each cell (and the grid's distance transform), not
+// by a query per cell: on random worlds it must still be, cell for cell, what a clearance query at
+// each centre says (the brute-force query: World::clearance's ring search can stop early for a
+// centre outside the obstacles' index box, in a world without bounds). Worlds: polygons, circles
+// (some points), bounds or none, an occupancy grid with yaw or none; frames rotated or not, the
+// grid's own or another; radii 0 to 0.4 m, and radii equal to a centre's clearance (the tie, where
+// `> r` decides).
+TEST(FreeCells, RandomWorldsEqualOneClearanceQueryPerCell) {
+  Rng rng(20261129);
+  std::size_t cells = 0, free_cells_seen = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    WorldDesc d;
+    if (trial % 3 != 2)
+      d.bounds = Box2{{-1.0, -1.0}, {rng.uniform(2.0, 5.0), rng.uniform(2.0, 4.0)}};
+    const int polygons = static_cast<int>(rng.uniform(0.0, 6.0));
+    for (int k = 0; k < polygons; ++k) {
+      const Vec2 c(rng.uniform(-0.5, 3.0), rng.uniform(-0.5, 2.5));
+      std::vector<Vec2> poly;
+      const int n = 3 + static_cast<int>(rng.uniform(0.0, 5.0));
+      for (int i = 0; i < n; ++i) {
+        const double a = 2.0 * std::numbers::pi * (i + rng.uniform(0.0, 0.8)) / n;
+        const double rad = rng.uniform(0.1, 0.6);
+        poly.emplace_back(c.x() + rad * std::cos(a), c.y() + rad * std::sin(a));
+      }
+      d.polygons.push_back(poly);
+    }
+    const int circles = static_cast<int>(rng.uniform(0.0, 4.0));
+    for (int k = 0; k < circles; ++k)
+      d.circles.push_back(
+          {{rng.uniform(-0.5, 3.0), rng.uniform(-0.5, 2.5)}, k == 0 ? 0.0 : rng.uniform(0.0, 0.4)});
+    const bool with_grid = trial % 4 == 1;
+    if (with_grid) {
+      const int gw = 30 + static_cast<int>(rng.uniform(0.0, 20.0)), gh = 25;
+      std::vector<std::uint8_t> occ(static_cast<std::size_t>(gw * gh), 0);
+      for (auto& o : occ) o = rng.uniform() < 0.05;
+      d.grid = std::make_shared<const OccupancyGrid>(
+          gw, gh, 0.1,
+          Pose2{{rng.uniform(-1.5, -0.5), rng.uniform(-1.5, -0.5)}, rng.uniform(-0.5, 0.5)},
+          std::move(occ));
+    }
+    if (d.polygons.empty() && d.circles.empty() && !d.bounds && !d.grid)
+      d.bounds = Box2{{0, 0}, {2, 2}};
+    const World w(d);
+    // The grid's own frame (as scenario_optimum uses it), or a frame of its own.
+    const bool own = with_grid && trial % 8 == 1;
+    const Pose2 origin = own ? d.grid->origin()
+                             : Pose2{{rng.uniform(-1.6, -0.8), rng.uniform(-1.6, -0.8)},
+                                     trial % 2 ? rng.uniform(-1.0, 1.0) : 0.0};
+    const double cell = own ? 0.1 : rng.uniform(0.03, 0.09);
+    const int width = own ? d.grid->width() : static_cast<int>(rng.uniform(40.0, 110.0));
+    const int height = own ? d.grid->height() : static_cast<int>(rng.uniform(40.0, 90.0));
+    auto centre = [&](int ix, int iy) {
+      return origin.transform_point(Vec2((ix + 0.5) * cell, (iy + 0.5) * cell));
+    };
+    std::vector<double> radii = {0.0, rng.uniform(0.0, 0.1), rng.uniform(0.1, 0.4)};
+    for (int k = 0; k < 2; ++k) {  // ties: a radius equal to some centre's clearance
+      const double c = w.clearance(centre(static_cast<int>(rng.uniform(0.0, width - 1.0)),
+                                          static_cast<int>(rng.uniform(0.0, height - 1.0))));
+      if (c >= 0.0 && std::isfinite(c)) radii.push_back(c);
+    }
+    for (const double r : radii) {
+      const FreeRaster f = free_cells(w, r, origin, cell, width, height);
+      ASSERT_EQ(f.free.size(), static_cast<std::size_t>(width * height));
+      for (int iy = 0; iy < height; ++iy)
+        for (int ix = 0; ix < width; ++ix) {
+          const bool expect = w.clearance_brute_force(centre(ix, iy)) > r;
+          ASSERT_EQ(f.is_free(ix, iy), expect)
+              << "trial " << trial << " r " << r << " cell " << ix << ", " << iy;
+          free_cells_seen += expect;
+          ++cells;
+        }
+    }
+  }
+  // Both kinds of cell occur in numbers.
+  EXPECT_GT(free_cells_seen, cells / 5);
+  EXPECT_LT(free_cells_seen, cells * 9 / 10);
+}
+
 TEST(ScenarioOptimum, StraightThroughAGapWiderThanTheRobot) {
   // Gap 0.3 m, r = 0.1 m: cell centres on the line y = 1 +- 0.025 have clearance 0.125 > r.
   const World w = gap_world(0.3);
@@ -427,6 +617,68 @@ TEST(ScenarioOptimum, BadInputIsNoOptimumNotNaN) {
   EXPECT_EQ(scenario_optimum(w, 0.1, {NAN, 1.0}, goal).status, OptimumStatus::InvalidInput);
   EXPECT_EQ(scenario_optimum(w, -1.0, {0.5, 1.0}, goal).status, OptimumStatus::InvalidInput);
   EXPECT_EQ(scenario_optimum(w, 0.1, {0.5, 1.0}, {}).status, OptimumStatus::InvalidInput);
+}
+
+// A raster built once per world serves every route there with the result of building it anew:
+// routes through a bounded world of polygons and through a map, routes that fail (unreachable,
+// no free cell, bad points); a raster too large or a bad radius carries its status to every
+// route; a world without bounds or map has no route-free raster.
+TEST(ScenarioOptimum, ARasterBuiltOncePerWorldGivesEveryRoutesOptimum) {
+  auto same = [](const Optimum& a, const Optimum& b) {
+    EXPECT_EQ(a.status, b.status);
+    EXPECT_EQ(a.length, b.length);
+    EXPECT_EQ(a.octile_length, b.octile_length);
+    EXPECT_EQ(a.cell_size, b.cell_size);
+    EXPECT_EQ(a.width, b.width);
+    EXPECT_EQ(a.height, b.height);
+    EXPECT_EQ(a.path, b.path);
+  };
+  const World gap = gap_world(0.5);
+  std::vector<std::uint8_t> occ(100, 0);
+  for (int y = 0; y <= 8; ++y) occ[static_cast<std::size_t>(y) * 10 + 4] = 1;
+  WorldDesc gd;
+  gd.grid =
+      std::make_shared<const OccupancyGrid>(10, 10, 0.5, Pose2{{-1.0, 2.0}, 0.3}, std::move(occ));
+  const World map(gd);
+  Rng rng(9);
+  int found = 0, failed = 0;
+  for (const World* w : {&gap, &map}) {
+    for (const double r : {0.0, 0.1, 0.2}) {
+      OptimumRaster raster;
+      ASSERT_TRUE(build_optimum_raster(*w, r, {}, raster));
+      const Box2 e = w->extent();
+      for (int k = 0; k < 30; ++k) {
+        auto point = [&] {
+          return Vec2(rng.uniform(e.min.x() - 0.5, e.max.x() + 0.5),
+                      rng.uniform(e.min.y() - 0.5, e.max.y() + 0.5));
+        };
+        const Vec2 start = k == 0 ? Vec2(NAN, 0.0) : point();
+        const std::vector<Vec2> goals = {point(), point()};
+        const Optimum fresh = scenario_optimum(*w, r, start, goals);
+        same(scenario_optimum(raster, start, goals), fresh);
+        (fresh.status == OptimumStatus::Found ? found : failed) += 1;
+      }
+    }
+  }
+  EXPECT_GT(found, 30);
+  EXPECT_GT(failed, 30);
+  // Statuses of the raster itself.
+  WorldDesc huge;
+  huge.bounds = Box2{{0.0, 0.0}, {1000.0, 1000.0}};
+  const World hw(huge);
+  const std::array<Vec2, 1> goal{Vec2(900.0, 900.0)};
+  OptimumRaster raster;  // reused across worlds, as a batch does
+  ASSERT_TRUE(build_optimum_raster(hw, 0.1, {}, raster));
+  EXPECT_EQ(scenario_optimum(raster, {1.0, 1.0}, goal).status, OptimumStatus::RasterTooLarge);
+  ASSERT_TRUE(build_optimum_raster(gap, -1.0, {}, raster));
+  EXPECT_EQ(scenario_optimum(raster, {0.5, 1.0}, goal).status, OptimumStatus::InvalidInput);
+  ASSERT_TRUE(build_optimum_raster(gap, 0.1, {}, raster));
+  const std::array<Vec2, 1> across{Vec2(3.5, 1.0)};
+  same(scenario_optimum(raster, {0.5, 1.0}, across),
+       scenario_optimum(gap, 0.1, {0.5, 1.0}, across));
+  WorldDesc open;
+  open.circles = {Circle{{1.0, 1.0}, 0.3}};
+  EXPECT_FALSE(build_optimum_raster(World(open), 0.1, {}, raster));
 }
 
 }  // namespace

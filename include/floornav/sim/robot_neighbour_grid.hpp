@@ -4,6 +4,8 @@
 /// counting sort into contiguous arrays (O(robots + cells), no allocation once sized). Robots
 /// outside the grid's box are kept in its border cells, so no robot is ever lost.
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -39,8 +41,12 @@ class RobotNeighbourGrid {
   double cell_size() const { return cell_; }
 
  private:
-  int cell_x(double x) const;
-  int cell_y(double y) const;
+  // Inline: every neighbour query takes four of them.
+  int cell_x(double x) const { return clamp_cell((x - origin_.x()) * inv_cell_, nx_); }
+  int cell_y(double y) const { return clamp_cell((y - origin_.y()) * inv_cell_, ny_); }
+  static int clamp_cell(double c, int n) {
+    return static_cast<int>(std::clamp(std::floor(c), 0.0, static_cast<double>(n - 1)));
+  }
   std::size_t cell_of(const Vec2& p) const {
     return static_cast<std::size_t>(cell_y(p.y())) * static_cast<std::size_t>(nx_) +
            static_cast<std::size_t>(cell_x(p.x()));

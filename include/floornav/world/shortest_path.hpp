@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -54,15 +55,20 @@ struct GridPath {
 /// Octile A* from `start` to `goal`: moves to the 8 neighbours, a diagonal move only when both
 /// cells it passes between are free (no corner cutting). Empty when either cell is blocked or
 /// outside the raster, or the goal is unreachable. Deterministic; iterative; O(n log n).
-/// (One search with a fresh GridSearch.)
+/// (The search of GridSearch, with working memory kept per thread.)
 std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, GridCell goal);
 
 /// The octile A* of `octile_astar` with its working memory (costs, parents, open list) kept from
 /// one search to the next: a planner that searches again and again on rasters of one size
 /// allocates nothing after its first search (the cells of the path aside). Entries are
-/// invalidated by a generation count, not by clearing the buffers.
+/// invalidated by a search count, not by clearing the buffers; the open list is a radix heap.
 class GridSearch {
  public:
+  GridSearch();
+  ~GridSearch();
+  GridSearch(GridSearch&&) noexcept;
+  GridSearch& operator=(GridSearch&&) noexcept;
+
   /// The same path as `octile_astar(raster, start, goal)`, into `path` (its cells vector is
   /// reused). False, with `path` empty, when there is none.
   bool search(const FreeRaster& raster, GridCell start, GridCell goal, GridPath& path);
@@ -70,23 +76,8 @@ class GridSearch {
   std::size_t expanded() const { return expanded_; }
 
  private:
-  struct Entry {
-    double f;
-    double neg_g;
-    std::size_t index;
-    bool operator>(const Entry& o) const {
-      if (f != o.f) return f > o.f;
-      if (neg_g != o.neg_g) return neg_g > o.neg_g;
-      return index > o.index;
-    }
-  };
-  void fit(std::size_t cells);
-  std::vector<double> g_;
-  std::vector<std::int32_t> parent_;
-  std::vector<std::uint32_t> seen_;    ///< == generation_: g_ and parent_ are this search's
-  std::vector<std::uint32_t> closed_;  ///< == generation_: expanded in this search
-  std::vector<Entry> open_;
-  std::uint32_t generation_{0};
+  struct Buffers;  // the A* working memory (shortest_path.cpp), reused by every search
+  std::unique_ptr<Buffers> buffers_;
   std::size_t expanded_{0};
 };
 
@@ -185,6 +176,26 @@ std::optional<RasterFrame> choose_raster_frame(const World& world, double body_r
 /// margin. A cell is free when `world.clearance` at its centre exceeds `body_radius`. Each leg runs
 /// from the exact point to the nearest free cell centre, along the octile path, to the exact goal.
 Optimum scenario_optimum(const World& world, double body_radius, const Vec2& start,
+                         std::span<const Vec2> goals, const OptimumOptions& options = {});
+
+/// The raster scenario_optimum searches, for one world and robot radius: built once, it serves
+/// every route in that world (a batch's cases that share a world share it).
+struct OptimumRaster {
+  OptimumStatus status{OptimumStatus::InvalidInput};  ///< Found when built; else why not
+  Pose2 origin{};    ///< cell (ix, iy) covers [ix, ix + 1) x [iy, iy + 1) times `cell` here
+  double cell{0.0};  ///< m
+  FreeRaster raster;
+};
+
+/// Builds into `out` (reusing its memory) the raster of `world` for `body_radius`, when it does
+/// not depend on the route: for worlds with bounds or an occupancy grid. False, `out` unchanged,
+/// for a world without either (its raster spans the route).
+bool build_optimum_raster(const World& world, double body_radius, const OptimumOptions& options,
+                          OptimumRaster& out);
+
+/// scenario_optimum on a raster from build_optimum_raster: the same result as scenario_optimum on
+/// the world and radius the raster was built for, with the same options.
+Optimum scenario_optimum(const OptimumRaster& raster, const Vec2& start,
                          std::span<const Vec2> goals, const OptimumOptions& options = {});
 
 }  // namespace floornav

@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""Times floornav against Stage and RVO2 on the same work, interleaved, and prints the ratios.
+
+    bench/peers/build_stage.sh && bench/peers/build_rvo2.sh     # once: peers into $PEERS_DIR
+    python3 bench/peers/run.py [--pairs 5] [--only stage|rvo2] [--json OUT]
+
+Each case runs as pairs A B A B ... (floornav, then the peer), so that both sides see the same
+machine load; the table gives each side's median and range over the pairs, the ratio of the
+medians and the range of the per-pair ratios. Nothing is timed but the simulation loops:
+
+  cave_1, cave_100   floornav: `floornav batch <scenario> --jobs 1 --no-optimum`, steps (robot
+                     steps) over the wall_time of results.jsonl, which times the simulation only
+                     (loading and writing excluded); one thread. Stage: stage_driver, the world
+                     loaded, then N calls of World::Update() timed (Stage's own headless loop
+                     calls it once per step), one thread (world `threads 1`). The unit is a robot
+                     step: one 180-beam 8 m scan, a decision and a move of one robot.
+  fleet_1000         floornav: BM_Fleet_QuickBotWarehouse/1000/T (1,000 QuickBots, 5 IR each,
+                     sensing each other, contacts checked) on T = 1 and 2 threads. RVO2:
+                     rvo2_driver, its Circle example with 1,000 agents, run to the end as the
+                     example runs (and Blocks, 1,000 agents, a fixed number of steps), on
+                     OMP_NUM_THREADS = T. Unit: robot (agent) steps per second.
+
+Paths: --floornav (default build/floornav), --bench (build/bench/floornav_bench), --peers
+($PEERS_DIR or /tmp/floornav-peers, where the build scripts put Stage, RVO2 and the drivers).
+"""
+import argparse
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def run(cmd, env=None):
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    if p.returncode != 0:
+        sys.exit(f"failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr[-2000:]}")
+    return p.stdout
+
+
+def floornav_batch(floornav, scenario, tmp):
+    out = os.path.join(tmp, "batch")
+    run([floornav, "batch", scenario, "--jobs", "1", "--no-optimum", "--out", out])
+    line = json.loads(open(os.path.join(out, "results.jsonl")).readline())
+    steps = line.get("fleet", {}).get("robot_steps", line["steps"])
+    return steps / line["wall_time"]
+
+
+def stage(peers, world, updates, robots):
+    d = os.path.join(peers, "stage")
+    env = dict(os.environ, STAGEPATH=os.path.join(d, "install", "lib", "Stage-4.3"))
+    out = run([os.path.join(d, "stage_driver"), world, str(updates), "5", str(robots)], env)
+    return float(re.search(r"robot_updates_per_s=([0-9.]+)", out).group(1))
+
+
+def fleet_bench(bench, threads, seconds):
+    out = run([bench, f"--benchmark_filter=^BM_Fleet_QuickBotWarehouse/1000/{threads}/",
+               f"--benchmark_min_time={seconds}", "--benchmark_format=json"])
+    return json.loads(out)["benchmarks"][0]["items_per_second"]
+
+
+def rvo2(peers, scenario, steps, threads):
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads))
+    out = run([os.path.join(peers, "rvo2", "rvo2_driver"), scenario, "1000", str(steps)], env)
+    return float(re.search(r"agent_steps_per_s=([0-9.]+)", out).group(1))
+
+
+def fmt(v):
+    return f"{v / 1e6:.2f} M" if v >= 1e6 else f"{v / 1e3:.1f} k" if v >= 1e3 else f"{v:.0f}"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--pairs", type=int, default=5)
+    ap.add_argument("--only", choices=["stage", "rvo2"])
+    ap.add_argument("--floornav", default="build/floornav")
+    ap.add_argument("--bench", default="build/bench/floornav_bench")
+    ap.add_argument("--peers", default=os.environ.get("PEERS_DIR", "/tmp/floornav-peers"))
+    ap.add_argument("--stage-updates", type=int, nargs=2, default=[5000, 60],
+                    metavar=("ONE", "HUNDRED"), help="Stage updates timed for 1 and 100 robots")
+    ap.add_argument("--rvo2-blocks-steps", type=int, default=1000)
+    ap.add_argument("--fleet-seconds", type=float, default=2.0)
+    ap.add_argument("--json", help="also write every measurement here")
+    a = ap.parse_args()
+    worlds = os.path.join(a.peers, "worlds")
+    cases = []  # (name, unit, floornav fn, peer name, peer fn)
+    if a.only in (None, "stage"):
+        run([sys.executable, os.path.join(HERE, "make_worlds.py"),
+             os.path.join(a.peers, "stage", "src"), worlds])
+        for n, updates in ((1, a.stage_updates[0]), (100, a.stage_updates[1])):
+            scen = os.path.join(worlds, f"floornav_cave_{n}.yaml")
+            world = os.path.join(worlds, f"stage_cave_{n}.world")
+            cases.append((f"cave, {n} robot{'s' if n > 1 else ''}, 180-beam 8 m laser, 1 thread",
+                          lambda tmp, s=scen: floornav_batch(a.floornav, s, tmp), "Stage",
+                          lambda w=world, u=updates, n=n: stage(a.peers, w, u, n)))
+    if a.only in (None, "rvo2"):
+        for t in (1, 2):
+            cases.append((f"1,000 robots, {t} thread{'s' if t > 1 else ''}: RVO2 Circle",
+                          lambda tmp, t=t: fleet_bench(a.bench, t, a.fleet_seconds), "RVO2",
+                          lambda t=t: rvo2(a.peers, "circle", 10**9, t)))
+            cases.append((f"1,000 robots, {t} thread{'s' if t > 1 else ''}: RVO2 Blocks",
+                          lambda tmp, t=t: fleet_bench(a.bench, t, a.fleet_seconds), "RVO2",
+                          lambda t=t: rvo2(a.peers, "blocks", a.rvo2_blocks_steps, t)))
+    load = os.getloadavg()
+    results = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, ours, peer_name, theirs in cases:
+            f, p = [], []
+            for i in range(a.pairs):
+                f.append(ours(tmp))
+                p.append(theirs())
+                print(f"  {name}: pair {i + 1}: floornav {fmt(f[-1])}, {peer_name} {fmt(p[-1])}",
+                      file=sys.stderr)
+            results.append({"case": name, "peer": peer_name, "floornav": f, "peer_rates": p,
+                            "ratio_of_medians": statistics.median(f) / statistics.median(p),
+                            "pair_ratios": [x / y for x, y in zip(f, p)]})
+    load_after = os.getloadavg()
+    print(f"floornav vs peers, robot-steps/s, {a.pairs} interleaved pairs per case; load average "
+          f"{load[0]:.1f} before, {load_after[0]:.1f} after ({os.cpu_count()} cores)")
+    print(f"{'case':58} {'floornav median (range)':>26} {'peer median (range)':>26} "
+          f"{'ratio':>6} {'pair ratios':>13}")
+    for r in results:
+        f, p, pr = r["floornav"], r["peer_rates"], r["pair_ratios"]
+        print(f"{r['case']:58} {fmt(statistics.median(f)):>9} ({fmt(min(f))}-{fmt(max(f))})"
+              f"{'':>1} {r['peer'] + ' ' + fmt(statistics.median(p)):>13} "
+              f"({fmt(min(p))}-{fmt(max(p))}) {r['ratio_of_medians']:>5.2f}x "
+              f"{min(pr):.2f}-{max(pr):.2f}")
+    if a.json:
+        json.dump({"load": [load, load_after], "results": results}, open(a.json, "w"), indent=1)
+
+
+if __name__ == "__main__":
+    main()
