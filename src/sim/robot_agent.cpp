@@ -125,7 +125,8 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others) 
   const std::span<double> ranges(scratch.ranges.data(), n_sensors);
   compute_sensor_beams(pose_, robot.sensors, beams);
   const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
-  sense_ranges(*world_, beams, robot.sensors, robot.sensor_noise, rng_, ranges, free, others);
+  sense_ranges(*world_, beams, robot.sensors, robot.sensor_noise, rng_, ranges, scratch.fan, free,
+               others);
   scratch.sensed_count = ranges_to_points(beams, robot.sensors, ranges, scratch.sensed);
   scratch.point_count = scratch.sensed_count;
   if (use_memory_)
