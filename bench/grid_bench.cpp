@@ -1,8 +1,9 @@
 // Ray casting and clearance on a real occupancy map: the AWS RoboMaker small warehouse (ROS
 // map_server, 286 x 423 cells of 0.05 m). items_per_second is rays/s (queries/s). Skipped, with a
-// message, when ../shared/maps is not beside the repository.
+// message, when ../shared/maps is not beside the repository. And a 180-beam lidar's fan at 3.5 m
+// and 8 m on a cave-like map shaped like Stage's (16 x 16 m, 0.032 m cells; cave_map.hpp).
 //
-//   floornav_bench --benchmark_filter='BM_Grid'
+//   floornav_bench --benchmark_filter='BM_Grid|BM_Cave'
 
 #include <benchmark/benchmark.h>
 
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "bench_cases.hpp"
+#include "cave_map.hpp"
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/ros_map.hpp"
@@ -122,12 +124,13 @@ void grid_fan(benchmark::State& state, bool fan) {
     }
   }
   std::vector<double> out(kBeams);
+  FanScratch scratch;
   std::size_t i = 0;
   for (auto _ : state) {
     const std::vector<Vec2>& dirs = dir_sets[i % kSets];
     const std::vector<double>& angles = angle_sets[i % kSets];
     if (fan) {
-      m.grid->cast_fan(m.origins[i], dirs, angles, range, out);
+      m.grid->cast_fan(m.origins[i], dirs, angles, range, out, scratch);
     } else {
       for (int k = 0; k < kBeams; ++k) out[k] = m.grid->cast_ray(m.origins[i], dirs[k], range);
     }
@@ -156,6 +159,78 @@ void BM_GridClearance(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_GridClearance);
+
+/// The cave map, origins in its open hall (>= 0.2 m from any wall) and 8 fans of 180 beams
+/// (2 degrees apart; turned by 0.37 rad from one to the next), as a lidar's.
+struct CaveFans {
+  bench::CaveMap map;
+  std::vector<Vec2> origins;
+  std::vector<std::vector<Vec2>> dirs;
+  std::vector<std::vector<double>> angles;
+};
+
+constexpr int kCaveBeams = 180;
+
+const CaveFans& cave_fans() {
+  static const CaveFans fans = [] {
+    CaveFans f;
+    f.map = bench::make_cave_map();
+    Rng rng(5);
+    while (f.origins.size() < kSamples) {
+      const Vec2 p(16.0 * rng.uniform(), 16.0 * rng.uniform());
+      if (f.map.in_hall(p, 0.2) && f.map.grid->clearance(p) >= 0.2) f.origins.push_back(p);
+    }
+    for (int j = 0; j < 8; ++j) {
+      f.dirs.emplace_back(kCaveBeams);
+      f.angles.emplace_back(kCaveBeams);
+      for (int k = 0; k < kCaveBeams; ++k) {
+        const double a = wrap_angle(0.37 * j + 2.0 * kPi * k / kCaveBeams);
+        f.angles[j][k] = a;
+        f.dirs[j][k] = Vec2(std::cos(a), std::sin(a));
+      }
+    }
+    return f;
+  }();
+  return fans;
+}
+
+/// Argument: the beams' range in centimetres (350: TurtleBot3 LDS-01; 800: Stage's sicklaser).
+/// How: 0 the fan (OccupancyGrid::cast_fan), 1 cast_ray per beam, 2 cast_ray_cell_by_cell per
+/// beam (the oracle). Items are rays.
+void cave_fan(benchmark::State& state, int how) {
+  const CaveFans& f = cave_fans();
+  const OccupancyGrid& grid = *f.map.grid;
+  const double range = static_cast<double>(state.range(0)) / 100.0;
+  std::vector<double> out(kCaveBeams);
+  FanScratch scratch;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::vector<Vec2>& dirs = f.dirs[i % 8];
+    const Vec2& o = f.origins[i];
+    if (how == 0) {
+      grid.cast_fan(o, dirs, f.angles[i % 8], range, out, scratch);
+    } else if (how == 1) {
+      for (int k = 0; k < kCaveBeams; ++k) out[k] = grid.cast_ray(o, dirs[k], range);
+    } else {
+      for (int k = 0; k < kCaveBeams; ++k) out[k] = grid.cast_ray_cell_by_cell(o, dirs[k], range);
+    }
+    benchmark::DoNotOptimize(out.data());
+    i = (i + 1) & (kSamples - 1);
+  }
+  state.SetItemsProcessed(state.iterations() * kCaveBeams);
+}
+void BM_CaveGridCastFan180(benchmark::State& state) {
+  cave_fan(state, 0);
+}
+void BM_CaveGridCastRay180(benchmark::State& state) {
+  cave_fan(state, 1);
+}
+void BM_CaveGridCellByCell180(benchmark::State& state) {
+  cave_fan(state, 2);
+}
+BENCHMARK(BM_CaveGridCastFan180)->Arg(350)->Arg(800);
+BENCHMARK(BM_CaveGridCastRay180)->Arg(350)->Arg(800);
+BENCHMARK(BM_CaveGridCellByCell180)->Arg(350)->Arg(800);
 
 }  // namespace
 }  // namespace floornav

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bench_cases.hpp"
+#include "cave_map.hpp"
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/world/world.hpp"
@@ -121,9 +122,10 @@ Fan lidar_fan(int beams, double first) {
 void BM_Fan_CastFan(benchmark::State& state) {
   const EdgeFloor& f = edge_floor(static_cast<int>(state.range(0)));
   Fan fan = lidar_fan(180, 0.1);
+  FanScratch scratch;
   std::size_t i = 0;
   for (auto _ : state) {
-    f.world->cast_fan(f.origins[i], fan.dirs, fan.angles, kMaxRange, fan.out);
+    f.world->cast_fan(f.origins[i], fan.dirs, fan.angles, kMaxRange, fan.out, scratch);
     benchmark::DoNotOptimize(fan.out.data());
     i = (i + 1) & (kSamples - 1);
   }
@@ -148,6 +150,41 @@ void BM_Fan_PerRay(benchmark::State& state) {
 // The 50-polygon floor's density at about 280 and 10,000 edges.
 BENCHMARK(BM_Fan_CastFan)->Arg(280)->Arg(10000);
 BENCHMARK(BM_Fan_PerRay)->Arg(280)->Arg(10000);
+
+/// A 180-beam lidar on the cave-like grid map (cave_map.hpp: 16 x 16 m, 0.032 m cells) through
+/// World::cast_fan_from_free, the call a simulated robot's sensing makes, at the argument's range
+/// in centimetres (350: TurtleBot3 LDS-01; 800: Stage's sicklaser). Items are rays.
+void BM_CaveWorldCastFan180(benchmark::State& state) {
+  static const struct Cave {
+    bench::CaveMap map = bench::make_cave_map();
+    std::unique_ptr<World> world;
+    std::vector<Vec2> origins;
+  } cave = [] {
+    Cave c;
+    WorldDesc desc;
+    desc.grid = c.map.grid;
+    c.world = std::make_unique<World>(std::move(desc));
+    Rng rng(5);
+    while (c.origins.size() < kSamples) {
+      const Vec2 p(16.0 * rng.uniform(), 16.0 * rng.uniform());
+      if (c.map.in_hall(p, 0.2) && c.map.grid->clearance(p) >= 0.2) c.origins.push_back(p);
+    }
+    return c;
+  }();
+  const double range = static_cast<double>(state.range(0)) / 100.0;
+  std::vector<Fan> fans;
+  for (int j = 0; j < 8; ++j) fans.push_back(lidar_fan(180, 0.37 * j));
+  FanScratch scratch;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    Fan& fan = fans[i % 8];
+    cave.world->cast_fan_from_free(cave.origins[i], fan.dirs, fan.angles, range, fan.out, scratch);
+    benchmark::DoNotOptimize(fan.out.data());
+    i = (i + 1) & (kSamples - 1);
+  }
+  state.SetItemsProcessed(state.iterations() * 180);
+}
+BENCHMARK(BM_CaveWorldCastFan180)->Arg(350)->Arg(800);
 
 }  // namespace
 }  // namespace floornav

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "floornav/geometry/ray.hpp"
 
 namespace floornav {
 
@@ -17,22 +20,21 @@ double distance(const Segment& s, const Vec2& p) {
   return (p - nearest_point(s, p)).norm();
 }
 
+double ray_collinear_segment_hit(const Vec2& origin, const Vec2& dir, const Vec2& a, const Vec2& b,
+                                 double best) {
+  const Vec2 w = a - origin;
+  if (std::abs(cross(w, dir)) > 1e-12) return best;  // parallel, not on the line
+  const double ta = w.dot(dir);
+  const double tb = (b - origin).dot(dir);
+  if (ta < 0.0 && tb < 0.0) return best;                           // behind
+  const double t = ta < 0.0 || tb < 0.0 ? 0.0 : std::min(ta, tb);  // 0: origin on the segment
+  return t < best ? t : best;
+}
+
 std::optional<double> intersect_ray(const Segment& s, const Vec2& origin, const Vec2& dir) {
-  const Vec2 e = s.b - s.a;
-  const Vec2 w = s.a - origin;
-  const double denom = cross(dir, e);
-  if (std::abs(denom) < 1e-15) {
-    // Parallel. Only a collinear segment ahead of the origin is hit, at its nearer end.
-    if (std::abs(cross(w, dir)) > 1e-12) return std::nullopt;
-    const double ta = w.dot(dir);
-    const double tb = (s.b - origin).dot(dir);
-    if (ta < 0.0 && tb < 0.0) return std::nullopt;
-    if (ta < 0.0 || tb < 0.0) return 0.0;  // origin lies on the segment
-    return std::min(ta, tb);
-  }
-  const double t = cross(w, e) / denom;    // along the ray
-  const double u = cross(w, dir) / denom;  // along the segment, 0..1
-  if (t < 0.0 || u < 0.0 || u > 1.0) return std::nullopt;
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  const double t = ray_segment_hit(origin, dir, s.a, s.b, s.b - s.a, kNone);
+  if (t == kNone) return std::nullopt;
   return t;
 }
 

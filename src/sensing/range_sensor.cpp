@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "floornav/geometry/angle.hpp"
+#include "floornav/geometry/ray.hpp"
 
 namespace floornav {
 
@@ -27,8 +28,7 @@ constexpr double kFreeMargin = 1e-9;  // m
 // The nearest of `others` along the ray, or `best` when none is nearer.
 double nearest_disc(std::span<const Circle> others, const Vec2& origin, const Vec2& dir,
                     double best) {
-  for (const Circle& c : others)
-    if (auto t = intersect_ray(c, origin, dir); t && *t < best) best = *t;
+  for (const Circle& c : others) best = ray_circle_hit(origin, dir, c, best);
   return best;
 }
 
@@ -95,7 +95,8 @@ std::size_t fan_end(std::span<const SensorBeam> beams, std::span<const RangeSens
 // Sensors [i, end) of one run (see fan_end): the distances sense_one would cast, bit for bit,
 // written to ranges[i, end).
 void cast_fan(const World& world, std::span<const SensorBeam> beams, std::size_t i, std::size_t end,
-              double max_range, std::span<double> ranges, const FreeDisc& free) {
+              double max_range, std::span<double> ranges, const FreeDisc& free,
+              FanScratch& scratch) {
   const Vec2 origin = beams[i].origin;
   const double free_radius = free.radius - kFreeMargin;
   const bool known_free =
@@ -110,9 +111,10 @@ void cast_fan(const World& world, std::span<const SensorBeam> beams, std::size_t
     }
     const std::span<double> out = ranges.subspan(first, n);
     if (known_free) {
-      world.cast_fan_from_free(origin, {dirs.data(), n}, {angles.data(), n}, max_range, out);
+      world.cast_fan_from_free(origin, {dirs.data(), n}, {angles.data(), n}, max_range, out,
+                               scratch);
     } else {
-      world.cast_fan(origin, {dirs.data(), n}, {angles.data(), n}, max_range, out);
+      world.cast_fan(origin, {dirs.data(), n}, {angles.data(), n}, max_range, out, scratch);
     }
   }
 }
@@ -133,8 +135,7 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
     even = std::abs(wrap_angle(beams[i + k].theta - theta0 - static_cast<double>(k) * step)) < 1e-6;
   const bool full_circle = even && static_cast<double>(n) * step > 2.0 * kPi - 0.5 * step;
   const auto test = [&](std::size_t k, const Circle& c) {
-    if (auto t = intersect_ray(c, origin, beams[i + k].dir); t && *t < ranges[i + k])
-      ranges[i + k] = *t;
+    ranges[i + k] = ray_circle_hit(origin, beams[i + k].dir, c, ranges[i + k]);
   };
   for (const Circle& c : others) {
     const Vec2 v = c.center - origin;
@@ -234,14 +235,14 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
 
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
-                  std::span<double> ranges, const FreeDisc& free, std::span<const Circle> others,
-                  std::span<const OrientedBox> boxes) {
+                  std::span<double> ranges, FanScratch& scratch, const FreeDisc& free,
+                  std::span<const Circle> others, std::span<const OrientedBox> boxes) {
   for (std::size_t i = 0; i < sensors.size();) {
     const std::size_t end = fan_end(beams, sensors, i);
     if (end - i >= kMinFanBeams) {
       // Cast first (the world, then other robots' bodies), then draw the noise sensor by
       // sensor: the RNG sees the same order.
-      cast_fan(world, beams, i, end, sensors[i].max_range, ranges, free);
+      cast_fan(world, beams, i, end, sensors[i].max_range, ranges, free, scratch);
       if (!others.empty()) fan_discs(beams, i, end, others, ranges);
       if (!boxes.empty()) fan_boxes(beams, i, end, sensors[i].max_range, boxes, ranges);
       for (; i < end; ++i) ranges[i] = finish_reading(ranges[i], sensors[i], noise_stddev, rng);
@@ -251,6 +252,14 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
         ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free, others, boxes);
     }
   }
+}
+
+void sense_ranges(const World& world, std::span<const SensorBeam> beams,
+                  std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
+                  std::span<double> ranges, const FreeDisc& free, std::span<const Circle> others,
+                  std::span<const OrientedBox> boxes) {
+  FanScratch scratch;
+  sense_ranges(world, beams, sensors, noise_stddev, rng, ranges, scratch, free, others, boxes);
 }
 
 std::size_t ranges_to_points(std::span<const SensorBeam> beams,

@@ -7,6 +7,7 @@
 #include "floornav/geometry/circle.hpp"
 #include "floornav/geometry/polygon.hpp"
 #include "floornav/geometry/pose2.hpp"
+#include "floornav/geometry/ray.hpp"
 #include "floornav/geometry/segment.hpp"
 
 using namespace floornav;
@@ -83,6 +84,60 @@ TEST(Segment, RayIntersection) {
   t = intersect_ray(along, Vec2(0, 0), Vec2(1, 0));
   ASSERT_TRUE(t);
   EXPECT_DOUBLE_EQ(*t, 3.0);
+}
+
+TEST(Ray, ClipToBoxNarrowsTheIntervalBySlabs) {
+  const Box2 box{Vec2(1, 1), Vec2(3, 2)};
+  const double h = std::sqrt(0.5);
+  // From (0, 0) at 45 degrees: x in [1, 3] for t in [sqrt 2, 3 sqrt 2], y in [1, 2] for
+  // t in [sqrt 2, 2 sqrt 2]: inside for t in [sqrt 2, 2 sqrt 2].
+  double t0 = 0.0, t1 = 10.0;
+  ASSERT_TRUE(clip_ray_to_box(Vec2(0, 0), Vec2(h, h), box, t0, t1));
+  EXPECT_NEAR(t0, std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(t1, 2.0 * std::sqrt(2.0), 1e-12);
+  // The same ray cut short before the box, and pointing away from it: nothing left.
+  t0 = 0.0, t1 = 1.0;
+  EXPECT_FALSE(clip_ray_to_box(Vec2(0, 0), Vec2(h, h), box, t0, t1));
+  t0 = 0.0, t1 = 10.0;
+  EXPECT_FALSE(clip_ray_to_box(Vec2(0, 0), Vec2(-h, -h), box, t0, t1));
+  // Parallel to x: inside the slab [1, 2) of y it keeps x's interval [1, 3]; on y = 2 (the
+  // upper edge, as a cell's) and below y = 1 it misses.
+  t0 = 0.0, t1 = 10.0;
+  ASSERT_TRUE(clip_ray_to_box(Vec2(0, 1), Vec2(1, 0), box, t0, t1));
+  EXPECT_DOUBLE_EQ(t0, 1.0);
+  EXPECT_DOUBLE_EQ(t1, 3.0);
+  t0 = 0.0, t1 = 10.0;
+  EXPECT_FALSE(clip_ray_to_box(Vec2(0, 2), Vec2(1, 0), box, t0, t1));
+  t0 = 0.0, t1 = 10.0;
+  EXPECT_FALSE(clip_ray_to_box(Vec2(0, 0.5), Vec2(1, 0), box, t0, t1));
+}
+
+TEST(Ray, SegmentHitKeepsTheNearerOfItAndBest) {
+  const Vec2 a(2, -1), b(2, 1);
+  const Vec2 e = b - a;
+  // Straight at the wall 2 m ahead: 2 when best is farther, best when it is nearer.
+  EXPECT_DOUBLE_EQ(ray_segment_hit(Vec2(0, 0), Vec2(1, 0), a, b, e, 5.0), 2.0);
+  EXPECT_DOUBLE_EQ(ray_segment_hit(Vec2(0, 0), Vec2(1, 0), a, b, e, 1.5), 1.5);
+  // Past the end (u > 1) and behind the origin: no hit.
+  EXPECT_DOUBLE_EQ(ray_segment_hit(Vec2(0, 2), Vec2(1, 0), a, b, e, 5.0), 5.0);
+  EXPECT_DOUBLE_EQ(ray_segment_hit(Vec2(3, 0), Vec2(1, 0), a, b, e, 5.0), 5.0);
+  // Along the segment: its nearer end, or 0 from a point on it; beside the line: no hit.
+  EXPECT_DOUBLE_EQ(ray_segment_hit(Vec2(2, -4), Vec2(0, 1), a, b, e, 5.0), 3.0);
+  EXPECT_DOUBLE_EQ(ray_segment_hit(Vec2(2, 0), Vec2(0, 1), a, b, e, 5.0), 0.0);
+  EXPECT_DOUBLE_EQ(ray_segment_hit(Vec2(2.5, -4), Vec2(0, 1), a, b, e, 5.0), 5.0);
+  // A NaN direction counts as no hit (best), never NaN.
+  const double nan = std::nan("");
+  EXPECT_DOUBLE_EQ(ray_segment_hit(Vec2(0, 0), Vec2(nan, 0), a, b, e, 5.0), 5.0);
+  // intersect_ray is the same test: the same bits, nullopt where ray_segment_hit gives best.
+  const Vec2 o(0.3, -0.7), dir(std::cos(0.4), std::sin(0.4));
+  EXPECT_EQ(*intersect_ray(Segment{a, b}, o, dir), ray_segment_hit(o, dir, a, b, e, 1e9));
+}
+
+TEST(Ray, CircleHitKeepsTheNearerOfItAndBest) {
+  const Circle c{Vec2(3, 0), 1.0};
+  EXPECT_DOUBLE_EQ(ray_circle_hit(Vec2(0, 0), Vec2(1, 0), c, 5.0), 2.0);
+  EXPECT_DOUBLE_EQ(ray_circle_hit(Vec2(0, 0), Vec2(1, 0), c, 1.0), 1.0);
+  EXPECT_DOUBLE_EQ(ray_circle_hit(Vec2(0, 0), Vec2(0, 1), c, 5.0), 5.0);
 }
 
 TEST(Segment, Intersection) {

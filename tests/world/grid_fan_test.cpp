@@ -88,7 +88,10 @@ void expect_grid_fans_match(const OccupancyGrid& g, Rng& rng, int fans, bool nea
     const double range =
         pick_r == 0 ? 3.5 : (pick_r == 1 ? 0.0 : (pick_r == 2 ? 1e9 : rng.uniform(0.0, 8.0)));
     out.assign(n, -1.0);
-    g.cast_fan(p, dirs, angles, range, out);
+    // One scratch for all fans of all grids (sizes change from fan to fan); the World below
+    // casts with scratch of its own.
+    static FanScratch scratch;
+    g.cast_fan(p, dirs, angles, range, out, scratch);
     for (int k = 0; k < n; ++k) {
       const double want = g.cast_ray(p, dirs[k], range);
       ASSERT_EQ(bits(out[k]), bits(want))

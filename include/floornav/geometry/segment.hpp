@@ -24,6 +24,7 @@ double distance(const Segment& s, const Vec2& p);
 
 /// Distance along the ray `origin + t dir` (`dir` a unit vector) to where it first meets `s`,
 /// if it does with `t >= 0`. A ray lying along the segment meets it at its nearer end.
+/// (`ray_segment_hit` of ray.hpp, the form the casts use.)
 std::optional<double> intersect_ray(const Segment& s, const Vec2& origin, const Vec2& dir);
 
 /// True when the two closed segments share a point.

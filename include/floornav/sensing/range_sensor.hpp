@@ -52,6 +52,12 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
 /// as one fan (`World::cast_fan`), again with the same ranges and the same noise draws.
 /// `others` are further solid discs the rays hit besides the world: the bodies of other robots
 /// (and of people); `boxes` are solid moving rectangles (forklifts). Each costs nothing when empty.
+/// The fans work in `scratch` (one per thread; no allocation once it has grown).
+void sense_ranges(const World& world, std::span<const SensorBeam> beams,
+                  std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
+                  std::span<double> ranges, FanScratch& scratch, const FreeDisc& free = {},
+                  std::span<const Circle> others = {}, std::span<const OrientedBox> boxes = {});
+/// The same with fan scratch of its own (allocated per call when a lidar is cast).
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
                   std::span<double> ranges, const FreeDisc& free = {},

@@ -35,6 +35,7 @@ struct SensingScratch {
   std::vector<double> ranges;
   std::vector<Vec2> sensed;
   std::vector<Vec2> points;
+  FanScratch fan;               ///< the lidar fans' working memory
   std::size_t sensed_count{0};  ///< returns of the last sense(), in `sensed`
   std::size_t point_count{0};   ///< returns and remembered points, in `points`
   /// The other robots this robot is told of (Observation::robots), written by the fleet before

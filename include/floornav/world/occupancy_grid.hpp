@@ -12,6 +12,7 @@
 
 #include "floornav/geometry/pose2.hpp"
 #include "floornav/geometry/vec2.hpp"
+#include "floornav/world/fan_scratch.hpp"
 
 namespace floornav {
 
@@ -46,7 +47,12 @@ class OccupancyGrid {
   /// facing the origin) within `max_range` are gathered once and each is tested only against the
   /// beams its angular extent covers: for each, the few cells of the run near the beam's crossing
   /// are tested with the walk's own boundary quotients. Anything else is cast ray by ray. The three
-  /// spans have the same size. No allocation after a thread's first fan.
+  /// spans have the same size. Works in `scratch` (see FanScratch): no allocation once it has
+  /// grown to the fan.
+  void cast_fan(const Vec2& origin_world, std::span<const Vec2> dirs,
+                std::span<const double> angles, double max_range, std::span<double> out,
+                FanScratch& scratch) const;
+  /// `cast_fan` with scratch memory of its own (allocated per call).
   void cast_fan(const Vec2& origin_world, std::span<const Vec2> dirs,
                 std::span<const double> angles, double max_range, std::span<double> out) const;
 
@@ -92,13 +98,18 @@ class OccupancyGrid {
  private:
   Vec2 to_grid(const Vec2& world) const;  // metres, grid frame
   Vec2 to_world(const Vec2& grid) const;  // inverse of to_grid
-  /// `cast_ray`; with `skip`, free space is crossed `free_run_` cells at a time.
+  /// The distance transform (nearest_, column_nearest_) and the free runs it gives.
+  void compute_distance_transform();
   void compute_free_run();
+  /// The runs of occupied cells that the fan tests (runs_, run_start_).
   void compute_boundary();
+  /// `cast_ray`; with `skip`, free space is crossed `free_run_` cells at a time.
   double cast(const Vec2& origin_world, const Vec2& dir, double max_range, bool skip) const;
   /// The walk of `cast` with `skip`, from cell (ix, iy) entered at t0; cell units, grid frame.
   double walk_with_jumps(const Vec2& o, const Vec2& d, double max_range, double t_max, double t0,
                          int ix, int iy) const;
+  /// Whether grid-frame point (px, py), in cell units, lies in an occupied cell.
+  bool in_occupied_cell(double px, double py) const;
   /// Exact nearest occupied square to grid-frame point (px, py) in cell units: returns the squared
   /// distance in cells^2 (+inf if none) and the cell index in `*cell`.
   double nearest_square(double px, double py, std::int32_t* cell) const;

@@ -10,24 +10,15 @@
 #include <span>
 #include <vector>
 
+#include "floornav/geometry/box2.hpp"
 #include "floornav/geometry/circle.hpp"
 #include "floornav/geometry/segment.hpp"
 #include "floornav/geometry/vec2.hpp"
+#include "floornav/world/fan_scratch.hpp"
 
 namespace floornav {
 
 class OccupancyGrid;
-
-/// Axis-aligned box `[min, max]` (metres).
-struct Box2 {
-  Vec2 min{Vec2::Zero()};
-  Vec2 max{Vec2::Zero()};
-
-  bool contains(const Vec2& p) const {
-    return p.x() >= min.x() && p.x() <= max.x() && p.y() >= min.y() && p.y() <= max.y();
-  }
-  Vec2 size() const { return max - min; }
-};
 
 /// What a world is made of, as a user describes it. Polygons may wind either way.
 struct WorldDesc {
@@ -57,15 +48,19 @@ class World {
   /// 1e-9 rad (the theta of dir = (cos theta, sin theta)). When the angles are evenly spaced (a
   /// lidar), the obstacles within `max_range` are gathered once and each is tested only against
   /// the rays its angular extent covers (with a margin far above rounding); any other fan is cast
-  /// ray by ray. The three spans have the same size. No allocation after a thread's first fan.
+  /// ray by ray. The three spans have the same size. Works in `scratch` (see FanScratch): no
+  /// allocation once it has grown to the fan and the world.
+  void cast_fan(const Vec2& origin, std::span<const Vec2> dirs, std::span<const double> angles,
+                double max_range, std::span<double> out, FanScratch& scratch) const;
+  /// `cast_fan` with scratch memory of its own (allocated per call).
   void cast_fan(const Vec2& origin, std::span<const Vec2> dirs, std::span<const double> angles,
                 double max_range, std::span<double> out) const;
 
   /// `cast_fan` for an `origin` known to be free, as for `cast_ray_from_free`; bit for bit
   /// `cast_ray_from_free` per ray.
   void cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
-                          std::span<const double> angles, double max_range,
-                          std::span<double> out) const;
+                          std::span<const double> angles, double max_range, std::span<double> out,
+                          FanScratch& scratch) const;
 
   /// Signed distance from `p` to the nearest obstacle surface: negative inside an obstacle or
   /// outside the bounds. +infinity in an empty, unbounded world.

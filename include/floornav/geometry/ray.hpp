@@ -1,0 +1,65 @@
+#pragma once
+/// @file
+/// Rays against shapes: the one box clip and the one segment and disc hit tests of the library.
+/// World's spatial index, its fan and its brute-force oracle, and OccupancyGrid's walks all use
+/// these, so that every cast agrees with every other one to the bit.
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "floornav/geometry/box2.hpp"
+#include "floornav/geometry/circle.hpp"
+#include "floornav/geometry/vec2.hpp"
+
+namespace floornav {
+
+/// Clips the part `[t_enter, t_exit]` of the ray `origin + t dir` to `box` (the slab method,
+/// Kay & Kajiya 1986): narrows the interval to where the ray is inside the box, and returns false
+/// when nothing is left. A ray parallel to an axis (that component exactly 0) misses unless its
+/// origin lies in `[min, max)` on that axis, as a cell `[i, i + 1)` holds its lower edge only.
+inline bool clip_ray_to_box(const Vec2& origin, const Vec2& dir, const Box2& box, double& t_enter,
+                            double& t_exit) {
+  for (int a = 0; a < 2; ++a) {
+    if (dir[a] == 0.0) {
+      if (!(origin[a] >= box.min[a] && origin[a] < box.max[a])) return false;
+      continue;
+    }
+    double t0 = (box.min[a] - origin[a]) / dir[a];
+    double t1 = (box.max[a] - origin[a]) / dir[a];
+    if (t0 > t1) std::swap(t0, t1);
+    t_enter = std::max(t_enter, t0);
+    t_exit = std::min(t_exit, t1);
+  }
+  return !(t_enter > t_exit);
+}
+
+/// `ray_segment_hit` for a ray parallel to the segment: it meets it only when collinear, at the
+/// nearer end (0 when the origin lies on the segment).
+double ray_collinear_segment_hit(const Vec2& origin, const Vec2& dir, const Vec2& a, const Vec2& b,
+                                 double best);
+
+/// The ray `origin + t dir` (t >= 0, `dir` a unit vector) against the segment from `a` to `b`,
+/// whose edge `e = b - a` the caller computes once: the distance t where they meet when it is
+/// below `best`, else `best` (so a NaN counts as no hit). The along-segment division is only paid
+/// for a hit nearer than `best`, and `b` is only read for a ray parallel to the segment.
+inline double ray_segment_hit(const Vec2& origin, const Vec2& dir, const Vec2& a, const Vec2& b,
+                              const Vec2& e, double best) {
+  const Vec2 w = a - origin;
+  const double denom = cross(dir, e);
+  if (std::abs(denom) < 1e-15) return ray_collinear_segment_hit(origin, dir, a, b, best);
+  const double t = cross(w, e) / denom;      // along the ray
+  if (!(t >= 0.0 && t < best)) return best;  // behind, no nearer, or NaN
+  const double u = cross(w, dir) / denom;    // along the segment, 0..1
+  if (u < 0.0 || u > 1.0) return best;
+  return t;
+}
+
+/// The ray against the solid disc `c`: `intersect_ray(c, origin, dir)` when it is below `best`,
+/// else `best`.
+inline double ray_circle_hit(const Vec2& origin, const Vec2& dir, const Circle& c, double best) {
+  if (auto t = intersect_ray(c, origin, dir); t && *t < best) return *t;
+  return best;
+}
+
+}  // namespace floornav

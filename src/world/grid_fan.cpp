@@ -1,0 +1,242 @@
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <type_traits>
+
+#include "cell_index.hpp"
+#include "fan_layout.hpp"
+#include "floornav/world/occupancy_grid.hpp"
+#include "grid_walk.hpp"
+
+// OccupancyGrid::cast_fan: a lidar's beams from one origin, tested against the runs of occupied
+// cells that a walk can enter first (gathered once, when the grid is built).
+
+namespace floornav {
+
+using cell_detail::clamp_cell;
+using grid_detail::kInf;
+
+void OccupancyGrid::compute_boundary() {
+  const auto free_at = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < width_ && y < height_ &&
+           occupied_[static_cast<std::size_t>(y) * width_ + x] == 0;
+  };
+  const auto occupied_at = [&](int x, int y) {
+    return occupied_[static_cast<std::size_t>(y) * width_ + x] != 0;
+  };
+  for (int s = 0; s < 4; ++s) {
+    const bool rows = s >= 2;  // runs along rows (of columns)
+    const int lines = rows ? height_ : width_;
+    const int along = rows ? width_ : height_;
+    const int dx = s == 0 ? -1 : (s == 1 ? 1 : 0);
+    const int dy = s == 2 ? -1 : (s == 3 ? 1 : 0);
+    runs_[s].clear();
+    run_start_[s].assign(static_cast<std::size_t>(lines) + 1, 0);
+    for (int l = 0; l < lines; ++l) {
+      run_start_[s][l] = static_cast<std::int32_t>(runs_[s].size());
+      int open = -1;
+      for (int i = 0; i <= along; ++i) {
+        const int x = rows ? i : l, y = rows ? l : i;
+        const bool in = i < along && occupied_at(x, y) && free_at(x + dx, y + dy);
+        if (in && open < 0) open = i;
+        if (!in && open >= 0) {
+          runs_[s].push_back({open, i - 1});
+          open = -1;
+        }
+      }
+    }
+    run_start_[s][lines] = static_cast<std::int32_t>(runs_[s].size());
+  }
+}
+
+void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dirs,
+                             std::span<const double> angles, double max_range,
+                             std::span<double> out, FanScratch& scratch) const {
+  const std::size_t n = dirs.size();
+  const auto ray_by_ray = [&] {
+    for (std::size_t i = 0; i < n; ++i) out[i] = cast_ray(origin_world, dirs[i], max_range);
+  };
+  // What `cast` computes first, to the bit.
+  const Vec2 o = to_grid(origin_world) / resolution_;
+  if (n < 2 || !is_finite(o) || !(max_range >= 0.0) || !std::isfinite(max_range)) {
+    return ray_by_ray();
+  }
+  // The fan handles an origin inside the grid, in a free cell (then `cast` starts its walk at
+  // t0 = 0 in cell (ix0, iy0)).
+  if (!(o.x() >= 0.0 && o.x() < width_ && o.y() >= 0.0 && o.y() < height_)) return ray_by_ray();
+  const int ix0 = clamp_cell(o.x(), width_);
+  const int iy0 = clamp_cell(o.y(), height_);
+  if (occupied_[static_cast<std::size_t>(iy0) * width_ + ix0] != 0) return ray_by_ray();
+  const std::optional<fan_detail::FanLayout> fan = fan_detail::even_fan(angles);
+  if (!fan) return ray_by_ray();
+  const double t_max = max_range / resolution_;
+
+  if (scratch.dx.size() < n) {
+    scratch.dx.resize(n);
+    scratch.dy.resize(n);
+    scratch.best.resize(n);
+  }
+  double* dx = scratch.dx.data();
+  double* dy = scratch.dy.data();
+  double* best = scratch.best.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2& dir = dirs[i];
+    dx[i] = cos_yaw_ * dir.x() + sin_yaw_ * dir.y();
+    dy[i] = -sin_yaw_ * dir.x() + cos_yaw_ * dir.y();
+    // The culling below assumes a unit direction at the given angle; other beams are cast ray
+    // by ray, marked by best = -inf (no test takes them: every lower bound is above).
+    const double len2 = dx[i] * dx[i] + dy[i] * dy[i];
+    best[i] = std::abs(len2 - 1.0) <= 1e-6 ? kInf : -kInf;
+  }
+
+  // The walk from (ix0, iy0) enters or touches (through a corner) cell (x, y) exactly when the
+  // latest of the events that bring it into the cell's column and row (the boundary quotients
+  // exit_x(x - sx), exit_y(y - sy); t0 = 0 for the origin's own column or row) is not after the
+  // earliest of those that take it out (exit_x(x), exit_y(y)): it takes the events in increasing
+  // order, a tie being a corner step that touches both side cells. That latest event is the
+  // distance it returns for the cell (its running maximum), and it returns the first occupied
+  // cell within t_max, whose distance is the least. So the minimum over the occupied cells below
+  // is `cast`'s answer to the bit; cells no walk can reach first only need to be left out.
+  // On one axis: the times the walk enters (a) and leaves (b) line c of the cells, from origin
+  // coordinate oc in line c0 along direction component d; false when it never gets there.
+  const auto axis_times = [](double d, int c, int c0, double oc, double& a, double& b) {
+    if (d > 0.0) {
+      if (c < c0) return false;
+      if (c != c0) a = (c - oc) / d;
+      b = (c + 1 - oc) / d;
+    } else if (d < 0.0) {
+      if (c > c0) return false;
+      if (c != c0) a = (c + 1 - oc) / d;
+      b = (c - oc) / d;
+    } else if (c != c0) {
+      return false;
+    }
+    return true;
+  };
+  const auto test = [&](int k, int x, int y) {
+    if (best[k] == -kInf) return;
+    double ax = 0.0, bx = kInf, ay = 0.0, by = kInf;
+    if (!axis_times(dx[k], x, ix0, o.x(), ax, bx) || !axis_times(dy[k], y, iy0, o.y(), ay, by))
+      return;
+    const double h = std::max(0.0, std::max(ax, ay));
+    if (h <= std::min(bx, by) && h <= t_max && h < best[k]) best[k] = h;
+  };
+
+  // Cells whose nearest point is farther than t_max (with room for |dir| and rounding) cannot
+  // be reached within t_max.
+  const double reach = t_max * (1.0 + 1e-5) + 1e-6;
+  const double reach2 = reach * reach;
+  const double yaw = origin_.theta;
+  // Run `r` of side `s` on line `l`: the box [x0, x1] x [y0, y1] of its cells.
+  const auto run = [&](auto side, int l, const Run& r) {
+    constexpr int s = decltype(side)::value;
+    constexpr bool rows = s >= 2;
+    const double x0 = rows ? r.first : l, x1 = rows ? r.last + 1.0 : l + 1.0;
+    const double y0 = rows ? l : r.first, y1 = rows ? l + 1.0 : r.last + 1.0;
+    const double gx = std::max({0.0, x0 - o.x(), o.x() - x1});
+    const double gy = std::max({0.0, y0 - o.y(), o.y() - y1});
+    const double gap2 = gx * gx + gy * gy;
+    if (gap2 > reach2) return;
+    // A walk enters the box no earlier than its distance (|dir| <= 1 + 1e-6); a beam that
+    // already has a nearer hit needs no test (the minimum is the same).
+    const double lower = std::sqrt(gap2) * (1.0 - 1e-5);
+    // The face of the run that facing walks cross: the line a = face of axis a (0: x = face,
+    // 1: y = face). A walk crosses it with the event q = (face - o_a) / d_a, the very quotient it
+    // computes, at b = o_b + q d_b on the other axis (to within far less than eps). When b is
+    // inside the face, away from its ends, the walk enters the run's line there, in a cell of
+    // the run (or touches one through a corner at that event), and it has touched none of the
+    // line before: the run's first distance is max(0, q) exactly (max(t0, ...) as the walk
+    // keeps it). Otherwise (near an end, or entering the box through an end) the cells of the
+    // run within a cell of floor(b), clamped to the run, are tested with the walk's exact test.
+    constexpr int axis = rows ? 1 : 0;
+    const double face = (s == 0 || s == 2) ? l : l + 1.0;
+    const double oa = o[axis], ob = o[1 - axis];
+    const double lo = r.first, hi = r.last;
+    const auto cell_test = [&](int k, int c) {
+      if constexpr (rows) {
+        test(k, c, l);
+      } else {
+        test(k, l, c);
+      }
+    };
+    const auto each = [&](int k) {
+      if (lower > best[k]) return;
+      const double da = axis == 0 ? dx[k] : dy[k], db = axis == 0 ? dy[k] : dx[k];
+      if constexpr (s == 0 || s == 2) {
+        if (!(da > 0.0)) return;  // moving away from the face
+      } else {
+        if (!(da < 0.0)) return;
+      }
+      const double q = (face - oa) / da;
+      const double b = ob + q * db;
+      const double eps = 1e-10 * (1.0 + std::abs(q) + std::abs(ob));
+      if (b >= lo + eps && b <= hi + 1.0 - eps) {
+        const double h = std::max(0.0, q);
+        if (h <= t_max && h < best[k]) best[k] = h;
+        return;
+      }
+      if (!(b == b)) {
+        for (int c = r.first; c <= r.last; ++c) cell_test(k, c);
+        return;
+      }
+      const double fb = std::floor(b);
+      const int c0 = static_cast<int>(std::clamp(fb - 1.0, lo, hi));
+      const int c1 = static_cast<int>(std::clamp(fb + 1.0, lo, hi));
+      for (int c = c0; c <= c1; ++c) cell_test(k, c);
+    };
+    if (gap2 < 1e-12) {
+      for (int k = 0; k < fan->n; ++k) each(k);
+      return;
+    }
+    // The box's angular extent, from its silhouette corners as seen from the origin (outside
+    // the box): the clockwise-most one, then counter-clockwise (less than pi) to the other.
+    const double ox = o.x(), oy = o.y();
+    const double cw_x = oy < y0 ? x1 : (oy > y1 ? x0 : (ox > x1 ? x1 : x0));
+    const double cw_y = ox > x1 ? y1 : (ox < x0 ? y0 : (oy < y0 ? y0 : y1));
+    const double ccw_x = oy > y1 ? x1 : (oy < y0 ? x0 : (ox < x0 ? x0 : x1));
+    const double ccw_y = ox < x0 ? y1 : (ox > x1 ? y0 : (oy > y1 ? y1 : y0));
+    const double a_cw = fan_detail::coarse_atan2(cw_y - oy, cw_x - ox);
+    double width = fan_detail::coarse_atan2(ccw_y - oy, ccw_x - ox) - a_cw;
+    if (width < 0.0) width += fan_detail::kTwoPi;
+    const double m = fan_detail::kFanMargin;
+    fan_detail::for_beams_in(*fan, a_cw + yaw - m, width + 2.0 * m, each);
+  };
+  // Only runs whose side faces the origin: side 0 on columns right of the origin's column, 1 on
+  // those left of it, 2 on rows above, 3 on rows below. Nearest lines first.
+  const auto line = [&](auto side, int l) {
+    constexpr int s = decltype(side)::value;
+    // The runs of the line that overlap the reach's span along it (they are disjoint and in
+    // order, so their ends are in order too).
+    const double along = s >= 2 ? o.x() : o.y();
+    const double a_lo = along - reach - 1.0, a_hi = along + reach + 1.0;
+    const Run* first = runs_[s].data() + run_start_[s][l];
+    const Run* last = runs_[s].data() + run_start_[s][l + 1];
+    first = std::partition_point(first, last, [&](const Run& r) { return r.last < a_lo; });
+    for (; first != last && first->first <= a_hi; ++first) run(side, l, *first);
+  };
+  const int reach_cells = static_cast<int>(std::min(reach + 2.0, 1e9));
+  for (int j = 1; j <= reach_cells; ++j) {
+    bool any = false;
+    if (ix0 + j < width_) line(std::integral_constant<int, 0>{}, ix0 + j), any = true;
+    if (ix0 - j >= 0) line(std::integral_constant<int, 1>{}, ix0 - j), any = true;
+    if (iy0 + j < height_) line(std::integral_constant<int, 2>{}, iy0 + j), any = true;
+    if (iy0 - j >= 0) line(std::integral_constant<int, 3>{}, iy0 - j), any = true;
+    if (!any) break;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (best[i] == -kInf) {
+      out[i] = cast_ray(origin_world, dirs[i], max_range);
+    } else {
+      out[i] = best[i] < kInf ? std::min(best[i] * resolution_, max_range) : max_range;
+    }
+  }
+}
+
+void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dirs,
+                             std::span<const double> angles, double max_range,
+                             std::span<double> out) const {
+  FanScratch scratch;
+  cast_fan(origin_world, dirs, angles, max_range, out, scratch);
+}
+
+}  // namespace floornav

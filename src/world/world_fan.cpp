@@ -1,0 +1,166 @@
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "fan_layout.hpp"
+#include "floornav/geometry/ray.hpp"
+#include "floornav/world/occupancy_grid.hpp"
+#include "floornav/world/world.hpp"
+
+// World::cast_fan: a lidar's beams from one origin, each obstacle near enough gathered once and
+// tested against the beams its angular extent covers.
+
+namespace floornav {
+
+namespace {
+
+using fan_detail::coarse_atan2;
+using fan_detail::even_fan;
+using fan_detail::FanLayout;
+using fan_detail::for_beams_in;
+using fan_detail::kFanMargin;
+using fan_detail::kTwoPi;
+
+// The marks of `scratch` ready for a fan over `items` obstacles: item i is taken in this fan when
+// marks[i] == epoch. Allocates only when the world has more obstacles than the scratch has seen.
+std::uint32_t* fresh_marks(FanScratch& scratch, std::size_t items) {
+  if (scratch.marks.size() < items) scratch.marks.resize(items, 0);
+  if (++scratch.epoch == 0) {
+    std::fill(scratch.marks.begin(), scratch.marks.end(), 0);
+    scratch.epoch = 1;
+  }
+  return scratch.marks.data();
+}
+
+}  // namespace
+
+void World::cast_fan(const Vec2& origin, std::span<const Vec2> dirs, std::span<const double> angles,
+                     double max_range, std::span<double> out, FanScratch& scratch) const {
+  if (inside_solid_shape(origin)) {
+    std::fill(out.begin(), out.end(), 0.0);
+    return;
+  }
+  cast_fan_from_free(origin, dirs, angles, max_range, out, scratch);
+}
+
+void World::cast_fan(const Vec2& origin, std::span<const Vec2> dirs, std::span<const double> angles,
+                     double max_range, std::span<double> out) const {
+  FanScratch scratch;
+  cast_fan(origin, dirs, angles, max_range, out, scratch);
+}
+
+void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
+                               std::span<const double> angles, double max_range,
+                               std::span<double> out, FanScratch& scratch) const {
+  const std::size_t n = dirs.size();
+  if (segments_.empty() && circles_.empty()) {
+    // cast_ray_from_free is then min(max_range, the grid's cast_ray).
+    if (grid_ == nullptr) {
+      std::fill(out.begin(), out.end(), max_range);
+      return;
+    }
+    grid_->cast_fan(origin, dirs, angles, max_range, out, scratch);
+    for (std::size_t i = 0; i < n; ++i) out[i] = std::min(max_range, out[i]);
+    return;
+  }
+  std::optional<FanLayout> fan;
+  if (n >= 2 && (!segments_.empty() || !circles_.empty()) && is_finite(origin) &&
+      max_range >= 0.0 && std::isfinite(max_range))
+    fan = even_fan(angles);
+  if (!fan) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = cast_ray_from_free(origin, dirs[i], max_range);
+    return;
+  }
+  // What cast_ray_from_free starts from; then the minimum over every obstacle that may be hit
+  // within max_range, which does not depend on the order (each test keeps the smaller value).
+  if (grid_ != nullptr) {
+    grid_->cast_fan(origin, dirs, angles, max_range, out, scratch);
+    for (std::size_t i = 0; i < n; ++i) out[i] = std::min(max_range, out[i]);
+  } else {
+    std::fill(out.begin(), out.end(), max_range);
+  }
+
+  // Obstacles closer than `near` to the origin are tested against every beam: their angular
+  // extent is ill-conditioned. Beyond it, a beam outside an extent by kFanMargin passes the
+  // obstacle at least near * kFanMargin away, far above the ray test's rounding.
+  const double scale = 1.0 + std::max(std::abs(origin.x()), std::abs(origin.y())) + max_range;
+  const double near = 1e-6 * scale;
+  const double reach = max_range + near;
+  const Index& ix = index_;
+  const int x0 = cell_x(origin.x() - reach), x1 = cell_x(origin.x() + reach);
+  const int y0 = cell_y(origin.y() - reach), y1 = cell_y(origin.y() + reach);
+  const std::size_t n_segments = segments_.size();
+  std::uint32_t* mark = fresh_marks(scratch, n_segments + circles_.size());
+  const std::uint32_t epoch = scratch.epoch;
+  const auto all_beams = [&](auto&& test) {
+    for (int k = 0; k < fan->n; ++k) test(k);
+  };
+
+  const double reach2 = reach * reach;
+  for (int y = y0; y <= y1; ++y) {
+    // Distance from the origin to the row's span of y, then to each cell: a cell wholly beyond
+    // reach holds no hit before max_range (such a hit lies in a cell that is within reach, and
+    // an obstacle is listed in every cell it crosses).
+    const double cy0 = ix.origin.y() + y * ix.cell;
+    const double gy = std::max({0.0, cy0 - origin.y(), origin.y() - (cy0 + ix.cell)});
+    for (int x = x0; x <= x1; ++x) {
+      const double cx0 = ix.origin.x() + x * ix.cell;
+      const double gx = std::max({0.0, cx0 - origin.x(), origin.x() - (cx0 + ix.cell)});
+      if (gx * gx + gy * gy > reach2) continue;
+      const auto c = static_cast<std::size_t>(y) * ix.nx + x;
+      for (std::uint32_t k = ix.segment_offsets[c]; k < ix.segment_offsets[c + 1]; ++k) {
+        const std::uint32_t id = ix.segment_items[k];
+        if (mark[id] == epoch) continue;
+        mark[id] = epoch;
+        const SegmentRay& s = ix.segment_rays[k];
+        const Segment& ref = segments_[id];
+        const auto test = [&](int b) {
+          out[b] = ray_segment_hit(origin, dirs[b], s.a, ref.b, s.e, out[b]);
+        };
+        const Vec2 pa = s.a - origin;
+        const Vec2 pb = pa + s.e;
+        const double len2 = s.e.squaredNorm();
+        const double cr = cross(pa, s.e);  // |e| times the distance from the origin to the line
+        // A segment wholly beyond reach cannot be hit before max_range: both ends are, and so is
+        // the line or the foot of the perpendicular falls outside the segment.
+        const double foot = -pa.dot(s.e);  // len2 times the foot's position along the segment
+        if (std::min(pa.squaredNorm(), pb.squaredNorm()) > reach2 &&
+            (foot < 0.0 || foot > len2 || cr * cr > reach2 * len2))
+          continue;
+        if (!(cr * cr >= near * near * len2) || len2 == 0.0) {
+          all_beams(test);
+          continue;
+        }
+        double lo = coarse_atan2(pa.y(), pa.x()), hi = coarse_atan2(pb.y(), pb.x());
+        if (cr < 0.0) std::swap(lo, hi);  // b lies clockwise of a
+        double width = hi - lo;
+        if (width < 0.0) width += kTwoPi;
+        for_beams_in(*fan, lo - kFanMargin, width + 2.0 * kFanMargin, test);
+      }
+      for (std::uint32_t k = ix.circle_offsets[c]; k < ix.circle_offsets[c + 1]; ++k) {
+        const std::uint32_t id = ix.circle_items[k];
+        if (mark[n_segments + id] == epoch) continue;
+        mark[n_segments + id] = epoch;
+        const Circle& ci = circles_[id];
+        const auto test = [&](int b) { out[b] = ray_circle_hit(origin, dirs[b], ci, out[b]); };
+        const Vec2 pc = ci.center - origin;
+        const double dist = pc.norm();
+        if (!(dist > ci.radius + near)) {
+          all_beams(test);
+          continue;
+        }
+        if (dist - ci.radius > reach) continue;
+        const double half = std::asin(ci.radius / dist);
+        const double centre = coarse_atan2(pc.y(), pc.x());
+        for_beams_in(*fan, centre - half - kFanMargin, 2.0 * (half + kFanMargin), test);
+      }
+    }
+  }
+  // Equal hits have equal bits, so the minimum does not depend on the order of the tests, with
+  // one exception: +0 and -0 (an origin on a surface). Which zero cast_ray returns depends on
+  // its walk's order, so such beams are cast again by the walk (rare).
+  for (std::size_t i = 0; i < n; ++i)
+    if (out[i] == 0.0) out[i] = cast_ray_from_free(origin, dirs[i], max_range);
+}
+
+}  // namespace floornav
