@@ -177,6 +177,16 @@ nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_jso
   return out;
 }
 
+nlohmann::ordered_json run_batch_case(const BatchCase& c, const BatchOptions& options) {
+  Scenario sc = c.scenario;  // shares the world; copies only small data
+  sc.sim.record_trajectory = false;
+  // A fleet: one thread per case, like every case (the batch is parallel across cases).
+  if (sc.is_fleet()) return fleet_result_line(c, run_fleet_timed(sc, 1), options.timing);
+  std::optional<Optimum> optimum;
+  if (options.optimum && !c.optimal_length) optimum = case_optimum(sc);
+  return result_line(c, run_timed(sc), options.timing, optimum);
+}
+
 BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& options) {
   ensure_directory(options.out_dir);
   const auto results_path = options.out_dir / "results.jsonl";
@@ -214,17 +224,7 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
         if (next_job >= todo.size() || stopped()) return;
         i = todo[next_job++];
       }
-      Scenario sc = cases[i].scenario;  // shares the world; copies only small data
-      sc.sim.record_trajectory = false;
-      nlohmann::ordered_json line;
-      if (sc.is_fleet()) {
-        // A fleet: one thread per case, like every case (the batch is parallel across cases).
-        line = fleet_result_line(cases[i], run_fleet_timed(sc, 1), options.timing);
-      } else {
-        std::optional<Optimum> optimum;
-        if (options.optimum && !cases[i].optimal_length) optimum = case_optimum(sc);
-        line = result_line(cases[i], run_timed(sc), options.timing, optimum);
-      }
+      nlohmann::ordered_json line = run_batch_case(cases[i], options);
       {
         std::lock_guard lock(mutex);
         lines[i] = std::move(line);

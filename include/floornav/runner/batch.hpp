@@ -59,6 +59,11 @@ struct BatchOutcome {
 /// Runs every case; throws InputError when the output cannot be written.
 BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& options);
 
+/// Runs one case as run_batch does (nothing recorded, the grid optimum per `options`) and
+/// returns its results.jsonl line. What the run throws (a user controller's exception) passes
+/// through; nothing is written.
+nlohmann::ordered_json run_batch_case(const BatchCase& c, const BatchOptions& options);
+
 /// The totals of a list of result lines (as written to results.jsonl).
 nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_json>& lines);
 
