@@ -45,12 +45,12 @@ py::object json_to_python(const nlohmann::ordered_json& j) {
       py::list out(j.size());
       std::size_t i = 0;
       for (const auto& item : j) out[i++] = json_to_python(item);
-      return std::move(out);
+      return out;
     }
     case V::object: {
       py::dict out;
       for (const auto& [k, v] : j.items()) out[py::str(k)] = json_to_python(v);
-      return std::move(out);
+      return out;
     }
     case V::binary:
       break;
@@ -167,7 +167,9 @@ std::span<const Vec2> to_points(py::handle h, std::vector<Vec2>& storage, const 
   } catch (const py::error_already_set&) {
     a = {};
   }
-  if (!a || !(a.ndim() == 2 && a.shape(1) == 2) && !(a.ndim() == 1 && a.shape(0) == 0)) {
+  const bool pairs = a && a.ndim() == 2 && a.shape(1) == 2;
+  const bool empty = a && a.ndim() == 1 && a.shape(0) == 0;
+  if (!pairs && !empty) {
     PyErr_Clear();
     throw py::value_error(fmt::format("{}: expected an array of shape (k, 2), got {}", what,
                                       py::str(py::repr(h)).cast<std::string>()));
