@@ -147,6 +147,20 @@ def plot(result: Any, ax: Any = None, *, title: Optional[str] = None, legend: bo
     return ax
 
 
+def frame_times(result: Any, *, fps: int = 20, speed: float = 1.0, max_frames: int = 400) -> np.ndarray:
+    """The simulated times :func:`animate` shows: ``fps`` frames per second of animation at
+    ``speed`` simulated seconds per second, the first at t = 0 and the last at the end of the
+    run; at most ``max_frames``, spread over the whole run."""
+    if fps < 1 or speed <= 0 or max_frames < 2:
+        raise ValueError("fps >= 1, speed > 0 and max_frames >= 2 are needed")
+    runs = _runs(result)
+    if not any(len(t["t"]) for _, t in runs):
+        raise ValueError("the run has no trajectory (sim.record_trajectory was off)")
+    t_end = max(float(t["t"][-1]) for _, t in runs if len(t["t"]))
+    frames = int(min(max_frames, max(2, np.ceil(t_end / speed * fps) + 1)))
+    return np.linspace(0.0, t_end, frames)
+
+
 def animate(result: Any, path: str, *, fps: int = 20, speed: float = 1.0,
             max_frames: int = 400, dpi: int = 80) -> int:
     """Writes an animation of ``result`` to ``path``: each robot (its body and heading) moving
@@ -161,14 +175,9 @@ def animate(result: Any, path: str, *, fps: int = 20, speed: float = 1.0,
     import matplotlib.pyplot as plt
     from matplotlib.animation import FuncAnimation, PillowWriter
 
-    if fps < 1 or speed <= 0 or max_frames < 2:
-        raise ValueError("fps >= 1, speed > 0 and max_frames >= 2 are needed")
     runs = _runs(result)
-    if not any(len(t["t"]) for _, t in runs):
-        raise ValueError("the run has no trajectory (sim.record_trajectory was off)")
-    t_end = max(float(t["t"][-1]) for _, t in runs if len(t["t"]))
-    frames = int(min(max_frames, max(2, np.ceil(t_end / speed * fps) + 1)))
-    times = np.linspace(0.0, t_end, frames)
+    times = frame_times(result, fps=fps, speed=speed, max_frames=max_frames)
+    frames = len(times)
 
     fig, ax = plt.subplots(figsize=(6, 5), dpi=dpi)
     plot(result, ax=ax, switches=False)
@@ -188,16 +197,26 @@ def animate(result: Any, path: str, *, fps: int = 20, speed: float = 1.0,
                           zorder=7)
         ax.add_patch(body)
         (heading,) = ax.plot([], [], color="#222222", linewidth=1.5, zorder=8)
-        (trail,) = ax.plot([], [], color="#888888", linewidth=1.5, zorder=3)
         bodies.append(body)
         headings.append(heading)
-        trails.append(trail)
+        # The path so far, coloured by mode: one line per stretch of one mode.
+        pieces = []
+        mode = t["mode"]
+        cuts = np.flatnonzero(mode[1:] != mode[:-1]) + 1 if len(mode) else np.array([], int)
+        starts = np.concatenate(([0], cuts)) if len(mode) else []
+        ends = np.concatenate((cuts, [len(mode)])) if len(mode) else []
+        for s0, e0 in zip(starts, ends):
+            (line,) = ax.plot([], [], color=colours.get(mode[s0], "#888888"), linewidth=1.8,
+                              zorder=3)
+            pieces.append((max(s0 - 1, 0), e0, line))
+        trails.append(pieces)
     clock = ax.text(0.02, 0.97, "", transform=ax.transAxes, va="top", fontsize=9,
                     bbox=dict(facecolor="white", alpha=0.8, edgecolor="none"))
 
     def draw(k: int):
         now = times[k]
-        for (name, t), body, heading, trail in zip(runs, bodies, headings, trails):
+        artists = [clock]
+        for (name, t), body, heading, pieces in zip(runs, bodies, headings, trails):
             if not len(t["t"]):
                 continue
             i = int(np.searchsorted(t["t"], now, side="right")) - 1
@@ -207,9 +226,13 @@ def animate(result: Any, path: str, *, fps: int = 20, speed: float = 1.0,
             body.center = (x, y)
             body.set_facecolor(colours.get(t["mode"][i], "#ffffff"))
             heading.set_data([x, x + 1.4 * r * np.cos(th)], [y, y + 1.4 * r * np.sin(th)])
-            trail.set_data(t["x"][: i + 1], t["y"][: i + 1])
+            for s0, e0, line in pieces:
+                stop = min(e0, i + 1)
+                line.set_data(t["x"][s0:stop], t["y"][s0:stop]) if stop > s0 else line.set_data([], [])
+                artists.append(line)
+            artists += [body, heading]
         clock.set_text(f"t = {now:.1f} s")
-        return bodies + headings + trails + [clock]
+        return artists
 
     anim = FuncAnimation(fig, draw, frames=frames, interval=1000 / fps, blit=False)
     if path.lower().endswith(".gif"):
