@@ -165,6 +165,7 @@ def batch(
     timing: bool = True,
     optimum: bool = True,
     out: Optional[PathLike] = None,
+    ids: Optional[Sequence[int]] = None,
 ) -> BatchResults:
     """Runs every scenario (a :class:`Scenario` or a path) on ``jobs`` threads (None: all
     cores), with the GIL released, and returns one summary dict per scenario, in order: the
@@ -172,7 +173,8 @@ def batch(
     from 0, ``source`` the path the scenario was loaded from). ``timing=False`` writes
     ``wall_time`` as 0 (``--no-timing``); ``optimum=False`` skips the grid optimum
     (``--no-optimum``). With ``out``, ``results.jsonl`` and ``aggregate.json`` are written there
-    once every case has run.
+    once every case has run. ``ids`` numbers the cases (default 0, 1, ...): a shard of a
+    bigger sweep keeps the sweep's numbers, and its lines merge by them (docs/PYTHON.md: Dask).
 
     Scenarios driven by a Python controller run on one thread (each step takes the GIL). An
     exception in a controller ends the batch and is raised here; nothing is written.
@@ -181,8 +183,12 @@ def batch(
     items = [_as_scenario(s) for s in scenarios]
     if jobs is not None and (not isinstance(jobs, int) or isinstance(jobs, bool) or jobs < 1):
         raise ValueError(f"jobs must be a positive integer or None, got {jobs!r}")
+    if ids is not None:
+        ids = [int(i) for i in ids]
+        if len(ids) != len(items) or any(i < 0 for i in ids):
+            raise ValueError(f"ids: one non-negative case number per scenario ({len(items)})")
     lines, aggregate = _floornav._batch(
-        items, jobs or 0, timing, optimum, None if out is None else os.fspath(out)
+        items, jobs or 0, timing, optimum, None if out is None else os.fspath(out), ids
     )
     return BatchResults(lines, aggregate)
 

@@ -78,6 +78,8 @@ Command to_command(py::handle h);
 /// aligned for Vec2, else a copy into `storage`.
 std::span<const Vec2> to_points(py::handle h, std::vector<Vec2>& storage, const char* what);
 
+/// A new uninitialised float64 array of `shape` (at most 3 dimensions).
+py::array new_float_array(std::initializer_list<py::ssize_t> shape);
 py::array_t<double> make_array(std::span<const double> values);
 py::array_t<double> make_points(std::span<const Vec2> points);
 

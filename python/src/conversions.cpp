@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -123,10 +124,10 @@ Command checked(const Command& c, py::handle h) {
 }  // namespace
 
 Command to_command(py::handle h) {
-  if (py::isinstance<Command>(h)) return checked(h.cast<Command>(), h);
   bool ok = false;
-  const Vec2 vw = pair_of(h, "command", &ok);
+  const Vec2 vw = pair_of(h, "command", &ok);  // the common case first: (v, omega)
   if (ok) return checked(Command::unicycle(vw.x(), vw.y()), h);
+  if (py::isinstance<Command>(h)) return checked(h.cast<Command>(), h);
   if (PyDict_Check(h.ptr())) {
     const auto d = py::reinterpret_borrow<py::dict>(h);
     auto only = [&](std::initializer_list<const char*> keys) {
@@ -185,20 +186,35 @@ std::span<const Vec2> to_points(py::handle h, std::vector<Vec2>& storage, const 
   return {storage.data(), k};
 }
 
+py::array new_float_array(std::initializer_list<py::ssize_t> shape) {
+  // Straight through NumPy's C API: py::array_t's constructor builds shape and stride vectors
+  // and looks the dtype up on every call, which costs more than the data in an observation.
+  const auto& api = py::detail::npy_api::get();
+  PyObject* descr = api.PyArray_DescrFromType_(py::detail::npy_api::NPY_DOUBLE_);
+  if (!descr) throw py::error_already_set();
+  std::array<Py_intptr_t, 3> dims{};
+  std::size_t nd = 0;
+  for (py::ssize_t d : shape) dims[nd++] = d;
+  PyObject* a = api.PyArray_NewFromDescr_(api.PyArray_Type_, descr, static_cast<int>(nd),
+                                          dims.data(), nullptr, nullptr, 0, nullptr);
+  if (!a) throw py::error_already_set();
+  return py::reinterpret_steal<py::array>(a);
+}
+
 py::array_t<double> make_array(std::span<const double> values) {
-  py::array_t<double> a(static_cast<py::ssize_t>(values.size()));
+  py::array a = new_float_array({static_cast<py::ssize_t>(values.size())});
   if (!values.empty()) std::memcpy(a.mutable_data(), values.data(), values.size_bytes());
-  return a;
+  return py::reinterpret_steal<py::array_t<double>>(a.release());
 }
 
 py::array_t<double> make_points(std::span<const Vec2> points) {
-  py::array_t<double> a({static_cast<py::ssize_t>(points.size()), py::ssize_t{2}});
-  double* out = a.mutable_data();
+  py::array a = new_float_array({static_cast<py::ssize_t>(points.size()), py::ssize_t{2}});
+  auto* out = static_cast<double*>(a.mutable_data());
   for (std::size_t i = 0; i < points.size(); ++i) {
     out[2 * i] = points[i].x();
     out[2 * i + 1] = points[i].y();
   }
-  return a;
+  return py::reinterpret_steal<py::array_t<double>>(a.release());
 }
 
 namespace {

@@ -159,14 +159,17 @@ void write_outputs(const PyRunResult& r, const std::filesystem::path& dir) {
 
 // Cases on `jobs` worker threads (the GIL released); the calling thread watches for Ctrl-C.
 py::tuple batch(const std::vector<ScenarioPtr>& scenarios, int jobs, bool timing, bool optimum,
-                const std::optional<std::filesystem::path>& out) {
+                const std::optional<std::filesystem::path>& out,
+                const std::optional<std::vector<std::size_t>>& ids) {
   const std::size_t n = scenarios.size();
+  if (ids && ids->size() != n)
+    throw py::value_error(fmt::format("batch: {} case ids for {} scenarios", ids->size(), n));
   std::vector<BatchCase> cases;
   cases.reserve(n);
   bool python = false;
   for (std::size_t i = 0; i < n; ++i) {
     if (!scenarios[i]) throw py::value_error("batch: a scenario is None");
-    cases.push_back({scenarios[i]->scenario, scenarios[i]->source, i, {}, {}});
+    cases.push_back({scenarios[i]->scenario, scenarios[i]->source, ids ? (*ids)[i] : i, {}, {}});
     python = python || scenarios[i]->python_controller;
   }
   BatchOptions options;
@@ -290,7 +293,7 @@ void bind_run(py::module_& m) {
 
   m.def("_run", &run, py::arg("scenario"), py::arg("threads") = 0);
   m.def("_batch", &batch, py::arg("scenarios"), py::arg("jobs"), py::arg("timing"),
-        py::arg("optimum"), py::arg("out"));
+        py::arg("optimum"), py::arg("out"), py::arg("ids") = py::none());
 }
 
 }  // namespace floornav::python
