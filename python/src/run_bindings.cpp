@@ -17,6 +17,7 @@
 #include "floornav/io/summary_json.hpp"
 #include "floornav/runner/batch.hpp"
 #include "floornav/runner/run_outputs.hpp"
+#include "floornav/scenario/simulate.hpp"
 
 namespace floornav::python {
 
@@ -136,15 +137,41 @@ py::list transitions_of(const RunResult& r) {
   return out;
 }
 
+// Ctrl-C is looked at every this many steps of a run (a few milliseconds of simulation).
+constexpr int kStepsBetweenSignalChecks = 4096;
+
+// Raises KeyboardInterrupt (or what a signal handler raised) once one is pending; called
+// without the GIL.
+void check_signals() {
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+}
+
+// As run_timed / run_fleet_timed (the same simulation, the same result), in pieces between which
+// a pending Ctrl-C stops the run.
 std::shared_ptr<PyRunResult> run(const ScenarioPtr& s, int threads) {
   auto r = std::make_shared<PyRunResult>();
   r->scenario = s;
   {
     py::gil_scoped_release nogil;  // a Python controller takes it back per step
-    if (s->scenario.is_fleet())
-      r->fleet = run_fleet_timed(s->scenario, s->python_controller ? 1 : threads);
-    else
-      r->run = run_timed(s->scenario);
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto elapsed = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
+    if (s->scenario.is_fleet()) {
+      FleetSimulation fleet = make_fleet_simulation(s->scenario);
+      const int n = s->python_controller ? 1 : threads;
+      while (fleet.run_steps(kStepsBetweenSignalChecks / 16, n) > 0 && !fleet.finished())
+        check_signals();
+      r->fleet = fleet.take_result();
+      r->fleet->wall_time = elapsed();
+    } else {
+      Simulation sim = make_simulation(s->scenario);
+      for (int k = 1; sim.step(); ++k)
+        if (k % kStepsBetweenSignalChecks == 0) check_signals();
+      r->run = sim.result();
+      r->run->wall_time = elapsed();
+    }
   }
   return r;
 }

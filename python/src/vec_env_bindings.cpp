@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -44,6 +45,22 @@ std::int8_t status_code(const RobotAgent& a) {
   return 3;
 }
 
+// The GIL is released while the copies step: a second Python thread stepping the same VecEnv at
+// that time is refused rather than let race.
+class Busy {
+ public:
+  explicit Busy(std::atomic<bool>& flag) : flag_(flag) {
+    if (flag_.exchange(true))
+      throw std::runtime_error("this VecEnv is being stepped by another thread");
+  }
+  ~Busy() { flag_.store(false); }
+  Busy(const Busy&) = delete;
+  Busy& operator=(const Busy&) = delete;
+
+ private:
+  std::atomic<bool>& flag_;
+};
+
 template <class T>
 T* data_of(py::array& a) {
   return static_cast<T*>(a.mutable_data());
@@ -70,6 +87,7 @@ class VecCore {
   std::size_t threads() const { return vec_.thread_count(); }
 
   py::dict reset(std::optional<std::uint64_t> seed) {
+    const Busy busy(busy_);
     if (seed) base_seed_ = *seed;
     std::fill(episode_.begin(), episode_.end(), 0);
     const std::size_t n = size();
@@ -90,6 +108,7 @@ class VecCore {
   /// One step; with `autoreset`, copies that ended are restarted and their final observations
   /// returned in info["final_obs"].
   py::tuple step(py::handle actions, bool autoreset) {
+    const Busy busy(busy_);
     read_actions(actions);
     const std::size_t n = size();
     Buffers b = buffers();
@@ -141,7 +160,7 @@ class VecCore {
     info["default_reward"] = reward;
     py::dict obs = b.dict();
     if (autoreset) {
-      py::object final_obs = reset_ended(obs, terminated, truncated);
+      py::object final_obs = restart_ended(obs, terminated, truncated);
       if (!final_obs.is_none()) {
         info["final_obs"] = final_obs;
         info["_final_obs"] = ended_mask(terminated, truncated);
@@ -155,7 +174,17 @@ class VecCore {
   /// elsewhere), or None when none ended.
   py::object reset_ended(py::dict obs, const py::array_t<bool>& terminated,
                          const py::array_t<bool>& truncated) {
+    const Busy busy(busy_);
+    return restart_ended(obs, terminated, truncated);
+  }
+
+ private:
+  py::object restart_ended(py::dict obs, const py::array_t<bool>& terminated,
+                           const py::array_t<bool>& truncated) {
     const std::size_t n = size();
+    if (static_cast<std::size_t>(terminated.size()) != n ||
+        static_cast<std::size_t>(truncated.size()) != n)
+      throw py::value_error(fmt::format("terminated and truncated need {} entries", n));
     const bool* te = terminated.data();
     const bool* tr = truncated.data();
     std::vector<std::size_t> which;
@@ -186,6 +215,7 @@ class VecCore {
     return final_obs;
   }
 
+ public:
   py::array_t<bool> ended_mask(const py::array_t<bool>& terminated,
                                const py::array_t<bool>& truncated) const {
     py::array_t<bool> m(static_cast<py::ssize_t>(size()));
@@ -375,6 +405,7 @@ class VecCore {
   std::vector<std::uint8_t> ended_;     ///< the run had ended before this step (no reward)
   std::vector<Command> commands_;
   std::optional<Buffers> persistent_;
+  std::atomic<bool> busy_{false};
 };
 
 }  // namespace

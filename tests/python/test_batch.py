@@ -124,3 +124,26 @@ def test_bad_arguments():
     with pytest.raises(floornav.InputError):
         floornav.batch(["scenarios/no_such.yaml"])
     assert floornav.batch([]) == []
+
+
+def test_ctrl_c_stops_a_batch_and_a_run():
+    import os
+    import signal
+
+    def far(goal_x):
+        return floornav.load_scenario("scenarios/rectangle.yaml",
+                                      {"sim.t_max": 1e6, "goal": [goal_x, 0],
+                                       "world.bounds": [-30000, -30000, 30000, 30000],
+                                       "sim.record_trajectory": False})
+
+    # A batch takes no new case once interrupted (those under way finish): many medium cases.
+    # A run stops within a few thousand steps: one very long run (13 million steps).
+    calls = [lambda: floornav.batch([far(300)] * 200, jobs=2), lambda: floornav.run(far(20000))]
+    for call in calls:
+        timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+        timer.start()
+        try:
+            with pytest.raises(KeyboardInterrupt):
+                call()
+        finally:
+            timer.cancel()

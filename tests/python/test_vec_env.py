@@ -254,3 +254,26 @@ def test_copy_false_reuses_the_arrays():
     o1, _ = env.reset()
     o2, *_ = env.step(np.zeros((2, 2)))
     assert o1["t"][0] == 0.0 and o2["t"][0] == 0.01
+
+
+def test_a_python_controller_drives_the_copies_on_one_thread():
+    import threading
+
+    seen = set()
+
+    def steer(obs):
+        seen.add(threading.get_ident())
+        return (0.1, 0.2)
+
+    s = load().with_controller(steer)
+    env = floornav.VecEnv(s, 4, threads=2)
+    assert env.threads == 1
+    env.reset()
+    for _ in range(10):
+        obs, *_ = env.step(None)
+    assert seen == {threading.get_ident()}
+    sim = floornav.Simulation(s.with_seed(0))
+    sim.reset()
+    for _ in range(10):
+        o = sim.step()
+    assert o["pose"] == tuple(obs["pose"][0])
