@@ -154,7 +154,8 @@ class VecEnv:
             obs, reward, terminated, truncated, info = self._core.step(actions, True)
         else:
             obs, reward, terminated, truncated, info = self._core.step(actions, False)
-            custom = np.asarray(self._reward_fn(obs, actions, info), dtype=np.float64)
+            # A copy of the dict: the function may change it; the arrays are the step's own.
+            custom = np.asarray(self._reward_fn(dict(obs), actions, info), dtype=np.float64)
             if custom.shape != (self.num_envs,):
                 raise ValueError(f"the reward function returned shape {custom.shape}, not ({self.num_envs},)")
             reward = custom

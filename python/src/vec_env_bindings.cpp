@@ -98,6 +98,7 @@ class VecCore {
       seeds[i] = seed_of(i);
     }
     Buffers b = buffers();
+    last_ = b;
     {
       py::gil_scoped_release nogil;
       vec_.reset(which, seeds, [&](std::size_t i) { after_reset(i, b); });
@@ -112,6 +113,7 @@ class VecCore {
     read_actions(actions);
     const std::size_t n = size();
     Buffers b = buffers();
+    last_ = b;
     py::array_t<double> reward(static_cast<py::ssize_t>(n));
     py::array_t<double> progress(static_cast<py::ssize_t>(n));
     py::array_t<double> distance(static_cast<py::ssize_t>(n));
@@ -191,9 +193,17 @@ class VecCore {
     for (std::size_t i = 0; i < n; ++i)
       if (te[i] || tr[i]) which.push_back(i);
     if (which.empty()) return py::none();
+    // The arrays of the last step, whatever the caller did to the dict it was handed.
+    if (!last_) throw py::value_error("no step to restart copies after");
+    Buffers b = *last_;
+    const py::dict arrays = b.dict();
+    for (const char* key : {"t", "pose", "goal", "goal_index", "ranges", "points"})
+      if (!obs.contains(key) || !obs[key].is(arrays[key]))
+        throw py::value_error(
+            fmt::format("obs['{}'] is not the array the last step returned", key));
     const py::module_ np = py::module_::import("numpy");
     py::dict final_obs;
-    for (auto item : obs) {
+    for (auto item : arrays) {
       const py::array a = py::reinterpret_borrow<py::array>(item.second);
       py::array f = np.attr("zeros_like")(a);
       const std::size_t row = static_cast<std::size_t>(a.nbytes()) / n;
@@ -202,7 +212,6 @@ class VecCore {
       for (std::size_t i : which) std::memcpy(dst + i * row, src + i * row, row);
       final_obs[item.first] = f;
     }
-    Buffers b = Buffers::from(obs);
     std::vector<std::uint64_t> seeds;
     for (std::size_t i : which) {
       ++episode_[i];
@@ -263,22 +272,6 @@ class VecCore {
       goal_index_ = data_of<std::int32_t>(goal_index);
       ranges_ = data_of<double>(ranges);
       points_ = data_of<double>(points);
-    }
-    static Buffers from(const py::dict& obs) {
-      Buffers b;
-      auto get = [&](const char* k) {
-        if (!obs.contains(k))
-          throw py::value_error(fmt::format("the observation has no '{}' array", k));
-        return py::reinterpret_borrow<py::array>(obs[k]);
-      };
-      b.t = get("t");
-      b.pose = get("pose");
-      b.goal = get("goal");
-      b.goal_index = get("goal_index");
-      b.ranges = get("ranges");
-      b.points = get("points");
-      b.bind();
-      return b;
     }
   };
 
@@ -405,6 +398,7 @@ class VecCore {
   std::vector<std::uint8_t> ended_;     ///< the run had ended before this step (no reward)
   std::vector<Command> commands_;
   std::optional<Buffers> persistent_;
+  std::optional<Buffers> last_;  ///< the arrays the last step wrote
   std::atomic<bool> busy_{false};
 };
 

@@ -277,3 +277,19 @@ def test_a_python_controller_drives_the_copies_on_one_thread():
     for _ in range(10):
         o = sim.step()
     assert o["pose"] == tuple(obs["pose"][0])
+
+
+def test_a_reward_function_that_changes_its_dict_changes_nothing():
+    def reward(obs, actions, info):
+        obs["ranges"] = obs["ranges"][:, :1]  # replaces an entry of its own dict
+        return np.ones(2)
+
+    env = floornav.VecEnv(load(**{"sim.t_max": 0.02}), 2, reward=reward)
+    env.reset()
+    a = np.zeros((2, 2))
+    env.step(a)
+    obs, r, te, tr, info = env.step(a)  # both copies time out and restart
+    assert tr.all() and obs["ranges"].shape == (2, 5) and np.all(obs["t"] == 0)
+    assert r.tolist() == [1.0, 1.0]
+    with pytest.raises(ValueError, match="not the array the last step returned"):
+        env._core.reset_ended({k: v.copy() for k, v in obs.items()}, tr, tr)
