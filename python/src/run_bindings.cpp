@@ -25,7 +25,7 @@ using namespace pybind11::literals;
 
 namespace {
 
-const std::vector<const RunResult*> runs_of(const PyRunResult& r) {
+std::vector<const RunResult*> runs_of(const PyRunResult& r) {
   std::vector<const RunResult*> out;
   if (r.run) out.push_back(&*r.run);
   if (r.fleet)
@@ -214,7 +214,6 @@ py::tuple batch(const std::vector<ScenarioPtr>& scenarios, int jobs, bool timing
   std::condition_variable cv;
   std::size_t running = static_cast<std::size_t>(workers);
   std::exception_ptr error;
-  bool interrupted = false;
   {
     py::gil_scoped_release nogil;
     auto work = [&] {
@@ -242,7 +241,6 @@ py::tuple batch(const std::vector<ScenarioPtr>& scenarios, int jobs, bool timing
       }
       py::gil_scoped_acquire gil;
       if (PyErr_CheckSignals() != 0) {  // Ctrl-C: finish the cases under way, take no more
-        interrupted = true;
         stop.store(true);
         py::error_already_set pending;  // keep the KeyboardInterrupt while the threads end
         {
@@ -255,7 +253,6 @@ py::tuple batch(const std::vector<ScenarioPtr>& scenarios, int jobs, bool timing
     for (auto& t : threads) t.join();
   }
   if (error) std::rethrow_exception(error);
-  (void)interrupted;
 
   nlohmann::ordered_json aggregate = aggregate_results(lines);
   aggregate["complete"] = true;

@@ -336,12 +336,12 @@ class VecCore {
     if (!py::isinstance<py::array>(actions)) {
       const py::module_ np = py::module_::import("numpy");
       py::object a = np.attr("asarray")(actions);
-      return read_array(py::reinterpret_borrow<py::array>(a), actions);
+      return read_array(py::reinterpret_borrow<py::array>(a));
     }
-    read_array(py::reinterpret_borrow<py::array>(actions), actions);
+    read_array(py::reinterpret_borrow<py::array>(actions));
   }
 
-  void read_array(const py::array& a, py::handle original) {
+  void read_array(const py::array& a) {
     const std::size_t n = size();
     if (a.dtype().kind() != 'f')
       throw py::value_error(
@@ -351,7 +351,6 @@ class VecCore {
       throw py::value_error(
           fmt::format("actions must have shape ({}, 2): one (v, omega) per copy; got shape {}", n,
                       py::str(py::getattr(a, "shape")).cast<std::string>()));
-    (void)original;
     const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
     const double* v = d.data();
     commands_.reserve(n);
