@@ -140,7 +140,8 @@ void bind_behaviours(py::module_& m) {
       "A robot's `controller:` section: speeds, the switching distances of Fig 5.11, the goal "
       "radius, the heading PID (every key of docs/SCENARIOS.md, same names and units).");
   bind_params(params);
-  py::class_<SimConfig> sim(m, "SimConfig", "The `sim:` section.");
+  py::class_<SimConfig> sim(
+      m, "SimConfig", "A scenario's `sim:` section: dt, t_max, seed, stuck detection, recording.");
   bind_params(sim);
 
   py::enum_<Turn>(m, "Turn", "Which way round an obstacle follow-boundary goes.")
