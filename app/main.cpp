@@ -37,16 +37,19 @@ std::string default_out_dir(const std::string& name) {
   return (fs::path("out") / name).string();
 }
 
-int run_one(const Scenario& scenario, const std::string& out, bool quiet, int threads) {
+int run_one(Scenario scenario, const std::string& out, bool quiet, int threads, bool html) {
   const fs::path dir = out.empty() ? fs::path(default_out_dir(scenario.name)) : fs::path(out);
+  OutputSelection which;
+  which.html = html;
+  prepare_outputs(scenario, which);
   if (scenario.is_fleet()) {
     const FleetResult f = run_fleet_timed(scenario, threads);
-    write_fleet_outputs(dir, scenario, f);
+    write_fleet_outputs(dir, scenario, f, which);
     if (!quiet) fmt::print("{} -> {}\n", describe_fleet(f), dir.string());
     return 0;
   }
   const RunResult r = run_timed(scenario);
-  write_run_outputs(dir, scenario, r);
+  write_run_outputs(dir, scenario, r, which);
   if (!quiet) fmt::print("{} -> {}\n", describe_run(r), dir.string());
   return 0;
 }
@@ -61,15 +64,16 @@ int main(int argc, char** argv) {
   // run
   std::string run_file, run_out;
   std::vector<std::string> run_sets;
-  bool run_quiet = false;
+  bool run_quiet = false, run_no_html = false;
   auto* run = app.add_subcommand("run",
                                  "Simulate one scenario; writes summary.json, "
-                                 "trajectory.csv and trajectory.svg");
+                                 "trajectory.csv, trajectory.svg and trajectory.html");
   run->add_option("scenario", run_file, "scenario YAML file")->required();
   run->add_option("--out", run_out, "output folder (default: out/<scenario name>)");
   run->add_option("--set", run_sets, "override a scenario key: --set controller.kind=blended")
       ->take_all();
   run->add_flag("-q,--quiet", run_quiet, "print nothing on success");
+  run->add_flag("--no-html", run_no_html, "do not write trajectory.html (the replay)");
   int run_threads = 0;
   run->add_option("--threads", run_threads,
                   "threads stepping a fleet's robots (default: all cores; same result for any)")
@@ -83,6 +87,7 @@ int main(int argc, char** argv) {
   long batch_limit = -1;
   bool batch_no_timing = false, batch_resume = false, batch_no_optimum = false;
   std::string batch_worlds, batch_barn_paths, batch_shard;
+  std::vector<std::string> batch_pictures;
   auto* batch = app.add_subcommand("batch",
                                    "Run many scenarios in parallel; writes "
                                    "results.jsonl and aggregate.json");
@@ -110,6 +115,12 @@ int main(int argc, char** argv) {
   batch->add_option("--shard", batch_shard,
                     "K/N: run only shard K of N (every N-th case); join shards with merge");
 
+  batch
+      ->add_option(
+          "--pictures", batch_pictures,
+          "failed|all DIR: an SVG and an HTML replay of each failed (or every) case in DIR")
+      ->expected(2);
+
   // merge
   std::vector<std::string> merge_dirs;
   std::string merge_out = "out/merged";
@@ -121,6 +132,8 @@ int main(int argc, char** argv) {
   std::string demo_out;
   auto* demo = app.add_subcommand("demo", "Run the built-in factory floor demo (no files needed)");
   demo->add_option("--out", demo_out, "output folder (default: out/factory-delivery)");
+  bool demo_no_html = false;
+  demo->add_flag("--no-html", demo_no_html, "do not write trajectory.html (the replay)");
 
   // bench
   BenchOptions bench_opt;
@@ -143,11 +156,11 @@ int main(int argc, char** argv) {
   try {
     if (*run) {
       const Scenario s = load_scenario_file(run_file, run_sets);
-      return run_one(s, run_out, run_quiet, run_threads);
+      return run_one(s, run_out, run_quiet, run_threads, !run_no_html);
     }
     if (*demo) {
       const Scenario s = load_scenario_text(app::kDemoScenarioYaml, "factory-delivery.yaml");
-      return run_one(s, demo_out, false, 0);
+      return run_one(s, demo_out, false, 0, !demo_no_html);
     }
     if (*bench) return run_bench(bench_opt);
     if (*presets) {
@@ -198,6 +211,16 @@ int main(int argc, char** argv) {
       opt.resume = batch_resume;
       opt.optimum = !batch_no_optimum;
       opt.stop = &g_stop;
+      if (!batch_pictures.empty()) {
+        if (batch_pictures[0] == "failed")
+          opt.pictures = BatchPictures::Failed;
+        else if (batch_pictures[0] == "all")
+          opt.pictures = BatchPictures::All;
+        else
+          throw InputError("", "--pictures",
+                           "expected failed or all, got '" + batch_pictures[0] + "'");
+        opt.pictures_dir = batch_pictures[1];
+      }
       const BatchOutcome o = run_batch(cases, opt);
       const auto& a = o.aggregate;
       fmt::print(

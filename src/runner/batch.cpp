@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
@@ -16,6 +17,8 @@
 #include "floornav/core/input_error.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/summary_json.hpp"
+#include "floornav/render/trajectory_html.hpp"
+#include "floornav/render/trajectory_svg.hpp"
 #include "floornav/runner/run_outputs.hpp"
 #include "floornav/world/shortest_path.hpp"
 
@@ -94,6 +97,22 @@ std::map<std::size_t, nlohmann::ordered_json> read_existing(const std::filesyste
     }
   }
   return out;
+}
+
+/// "case-00042-rectangle": the pictures' file name stem (the name cut to letters, digits, - _ .).
+std::string picture_stem(const BatchCase& c) {
+  std::string name;
+  for (char ch : c.scenario.name)
+    name += (std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' || ch == '.')
+                ? ch
+                : '_';
+  if (name.size() > 80) name.resize(80);
+  return fmt::format("case-{:05}-{}", c.id, name);
+}
+
+bool wants_picture(BatchPictures which, RunStatus status) {
+  return which == BatchPictures::All ||
+         (which == BatchPictures::Failed && status != RunStatus::Reached);
 }
 
 void draw_progress(std::size_t done, std::size_t total, double elapsed) {
@@ -179,16 +198,32 @@ nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_jso
 
 nlohmann::ordered_json run_batch_case(const BatchCase& c, const BatchOptions& options) {
   Scenario sc = c.scenario;  // shares the world; copies only small data
-  sc.sim.record_trajectory = false;
-  // A fleet: one thread per case, like every case (the batch is parallel across cases).
-  if (sc.is_fleet()) return fleet_result_line(c, run_fleet_timed(sc, 1), options.timing);
+  const bool pictures = options.pictures != BatchPictures::None;
+  sc.sim.record_trajectory = pictures;
+  if (pictures) prepare_outputs(sc);
+  const std::filesystem::path stem = options.pictures_dir / picture_stem(c);
+  if (sc.is_fleet()) {
+    // A fleet: one thread per case, like every case (the batch is parallel across cases).
+    const FleetResult f = run_fleet_timed(sc, 1);
+    if (wants_picture(options.pictures, f.status)) {
+      write_file_atomically(stem.string() + ".svg", render_fleet_svg(sc, f));
+      write_file_atomically(stem.string() + ".html", render_fleet_html(sc, f));
+    }
+    return fleet_result_line(c, f, options.timing);
+  }
   std::optional<Optimum> optimum;
   if (options.optimum && !c.optimal_length) optimum = case_optimum(sc);
-  return result_line(c, run_timed(sc), options.timing, optimum);
+  const RunResult r = run_timed(sc);
+  if (wants_picture(options.pictures, r.status)) {
+    write_file_atomically(stem.string() + ".svg", render_trajectory_svg(sc, r));
+    write_file_atomically(stem.string() + ".html", render_trajectory_html(sc, r));
+  }
+  return result_line(c, r, options.timing, optimum);
 }
 
 BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& options) {
   ensure_directory(options.out_dir);
+  if (options.pictures != BatchPictures::None) ensure_directory(options.pictures_dir);
   const auto results_path = options.out_dir / "results.jsonl";
   const std::size_t n = cases.size();
   std::vector<std::optional<nlohmann::ordered_json>> lines(n);

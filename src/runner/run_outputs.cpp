@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
+#include "floornav/render/trajectory_html.hpp"
 #include "floornav/render/trajectory_svg.hpp"
 #include "floornav/scenario/simulate.hpp"
 
@@ -20,6 +22,13 @@ void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenari
   if (which.csv) write_file_atomically(dir / "trajectory.csv", trajectory_to_csv(result));
   if (which.svg)
     write_file_atomically(dir / "trajectory.svg", render_trajectory_svg(scenario, result));
+  if (which.html && !result.trajectory.empty())
+    write_file_atomically(dir / "trajectory.html", render_trajectory_html(scenario, result));
+}
+
+void prepare_outputs(Scenario& scenario, const OutputSelection& which) {
+  if (which.html && scenario.sim.record_trajectory && scenario.sim.record_ranges_every == 0)
+    scenario.sim.record_ranges_every = replay_ranges_interval(scenario);
 }
 
 std::string describe_run(const RunResult& r) {
@@ -52,6 +61,10 @@ void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scena
                             trajectory_csv_pieces(result, sink);
                           });
   if (which.svg) write_file_atomically(dir / "trajectory.svg", render_fleet_svg(scenario, result));
+  const bool recorded = std::any_of(result.robots.begin(), result.robots.end(),
+                                    [](const RunResult& r) { return !r.trajectory.empty(); });
+  if (which.html && recorded)
+    write_file_atomically(dir / "trajectory.html", render_fleet_html(scenario, result));
 }
 
 std::string describe_fleet(const FleetResult& f) {

@@ -49,6 +49,9 @@ void validate_sim(const SimConfig& sim, const std::string& file) {
   if (sim.t_max / sim.dt > 1e9) bad("sim.t_max", "more than 1e9 steps");
   if (!(sim.stuck_window > 0.0)) bad("sim.stuck_window", "must be positive");
   if (sim.stuck_radius < 0.0) bad("sim.stuck_radius", "must not be negative");
+  if (sim.record_ranges_every < 0)
+    bad("sim.record_ranges_every",
+        fmt::format("must not be negative, got {}", sim.record_ranges_every));
 }
 
 // The controller section: the guards of Fig 5.11 need d_unsafe < d_fb < d_o, ...

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <barrier>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <mutex>
 #include <thread>
 #include <utility>
 
@@ -150,7 +152,8 @@ void FleetSimulation::apply_gaps() {
   // World collisions of this step (robot contacts are not applied yet).
   for (std::size_t i = 0; i < agents_.size(); ++i)
     if (moving_[i] && agents_[i].result().collided)
-      collisions_.push_back({agents_[i].time(), static_cast<int>(i), -1});
+      collisions_.push_back(
+          {agents_[i].recorded_time(agents_[i].result().steps), static_cast<int>(i), -1});
   // Contacts between bodies at the positions after the move. Robots that stopped or left this
   // step still count: they were there while the others moved.
   for (std::size_t i = 0; i < agents_.size(); ++i) {
@@ -167,7 +170,8 @@ void FleetSimulation::apply_gaps() {
     grid_.for_each_near(p, radius_[i] + max_radius_, [&](std::size_t j) {
       if (j == i || (moving_[j] && j < i)) return;
       if ((positions_[j] - p).norm() - radius_[i] - radius_[j] <= 0.0)
-        collisions_.push_back({a.time(), static_cast<int>(i), static_cast<int>(j)});
+        collisions_.push_back(
+            {a.recorded_time(a.result().steps), static_cast<int>(i), static_cast<int>(j)});
     });
     a.collide_with_robot(gap);
   }
@@ -224,12 +228,16 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
   // positions, applying contacts) run as the barrier's completion between them.
   bool done = running_ == 0 || max_steps <= 0;
   bool moved = true;  // which phase the barrier is completing
+  // A user's controller may throw on any thread: the first exception is kept, every thread
+  // still meets the barriers until the step ends, then it is rethrown on the calling thread.
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
   auto completion = [&]() noexcept {
     if (moved) {
       prepare_contacts();
     } else {
       apply_gaps();
-      done = running_ == 0 || steps_ - first >= max_steps;
+      done = failure != nullptr || running_ == 0 || steps_ - first >= max_steps;
     }
     moved = !moved;
   };
@@ -238,7 +246,12 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     const std::size_t n = agents_.size();
     const std::size_t begin = n * t / n_threads, end = n * (t + 1) / n_threads;
     while (!done) {
-      step_robots(begin, end, t);
+      try {
+        step_robots(begin, end, t);
+      } catch (...) {
+        const std::lock_guard lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+      }
       sync.arrive_and_wait();
       measure_gaps(begin, end);
       sync.arrive_and_wait();
@@ -249,6 +262,7 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     for (std::size_t t = 1; t < n_threads; ++t) workers.emplace_back(work, t);
     work(0);
   }
+  if (failure) std::rethrow_exception(failure);
   return steps_ - first;
 }
 

@@ -51,6 +51,9 @@ RobotAgent::RobotAgent(AgentSetup setup)
   use_memory_ = nav_->obstacle_memory > 0.0 && n_sensors <= kMaxSensorsForMemory;
   stuck_radius_ = sim_->stuck_radius > 0.0 ? sim_->stuck_radius : robot_->body_radius;
   stuck_anchor_ = pose_.position;
+  if (const double rate = std::round(1.0 / sim_->dt);
+      rate >= 1.0 && rate <= 1e9 && std::abs(rate * sim_->dt - 1.0) < 1e-12)
+    steps_per_second_ = rate;
 
   RunResult& r = result_;
   r.scenario = setup.name;
@@ -90,18 +93,26 @@ void RobotAgent::finish(RunStatus status) {
   finished_ = true;
   result_.status = status;
   result_.reached_goal = status == RunStatus::Reached;
-  result_.sim_time = t_;
+  result_.sim_time = recorded_time(result_.steps);
+  // Each mode's time is a whole number of steps: written without the drift of adding dt up.
+  for (double& m : result_.mode_time)
+    m = recorded_time(static_cast<long long>(std::llround(m / sim_->dt)));
   result_.final_x = pose_.position.x();
   result_.final_y = pose_.position.y();
   result_.final_theta = pose_.theta;
   result_.chatter_episodes = chatter_.episodes;
-  result_.first_chatter_time = chatter_.first_time;
+  result_.first_chatter_time =
+      chatter_.first_time < 0.0
+          ? chatter_.first_time
+          : recorded_time(static_cast<long long>(std::llround(chatter_.first_time / sim_->dt)));
 }
 
 void RobotAgent::log_transition(double t, int to, int guard) {
   RunResult& r = result_;
   if (log_transitions_) {
-    r.transitions.push_back({t, mode_, to, guard});
+    // The log gets the recorded time of the step's end (t is the run's own clock, which the
+    // chatter monitor keeps using).
+    r.transitions.push_back({recorded_time(r.steps + 1), mode_, to, guard});
     r.transition_x.push_back(pose_.position.x());
     r.transition_y.push_back(pose_.position.y());
   }
@@ -126,6 +137,15 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others) 
   compute_sensor_beams(pose_, robot.sensors, beams);
   const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
   sense_ranges(*world_, beams, robot.sensors, robot.sensor_noise, rng_, ranges, free, others);
+  if (sim_->record_ranges_every > 0 && result_.steps % sim_->record_ranges_every == 0) {
+    // A step that only switched goals senses again at the same pose: that frame is replaced.
+    if (!result_.range_steps.empty() && result_.range_steps.back() == result_.steps) {
+      result_.range_steps.pop_back();
+      result_.ranges.resize(result_.ranges.size() - n_sensors);
+    }
+    result_.range_steps.push_back(result_.steps);
+    result_.ranges.insert(result_.ranges.end(), ranges.begin(), ranges.end());
+  }
   scratch.sensed_count = ranges_to_points(beams, robot.sensors, ranges, scratch.sensed);
   scratch.point_count = scratch.sensed_count;
   if (use_memory_)
@@ -222,8 +242,8 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
 
   // 7. record (before the checks, so the final row is the state the run ended in)
   if (sim_->record_trajectory)
-    r.trajectory.push_back({t_, pose_.position.x(), pose_.position.y(), pose_.theta, driven.v,
-                            driven.omega, wheels.left, wheels.right, mode_});
+    r.trajectory.push_back({recorded_time(r.steps), pose_.position.x(), pose_.position.y(),
+                            pose_.theta, driven.v, driven.omega, wheels.left, wheels.right, mode_});
 
   // 6. check. A disc body's clearance changes by at most the distance moved, so while that
   // lower bound stays above min_clearance the exact value could change neither min_clearance

@@ -87,6 +87,20 @@ TEST_F(RosMapTest, TinyPgmThresholdsAndFlip) {
   EXPECT_EQ(f.occupied_count(), 2u);
 }
 
+TEST_F(RosMapTest, UnknownCellsAreMarkedForPicturesUnderEitherPolicy) {
+  write("m.pgm", tiny_p5());
+  const fs::path yaml = write_yaml("m.yaml", "image: m.pgm\n" + kYamlTail);
+  for (const UnknownPolicy policy : {UnknownPolicy::Occupied, UnknownPolicy::Free}) {
+    const OccupancyGrid g = load_ros_map(yaml, RosMapOptions{.unknown = policy});
+    ASSERT_TRUE(g.has_unknown());
+    for (int iy = 0; iy < 2; ++iy)
+      for (int ix = 0; ix < 3; ++ix) EXPECT_EQ(g.unknown(ix, iy), ix == 2) << ix << " " << iy;
+  }
+  // A map with no unknown pixel carries no layer.
+  write("k.pgm", std::string("P5\n2 1\n255\n") + std::string("\x00\xfe", 2));
+  EXPECT_FALSE(load_ros_map(write_yaml("k.yaml", "image: k.pgm\n" + kYamlTail)).has_unknown());
+}
+
 TEST_F(RosMapTest, Negate) {
   // Negated values 255 - v: top 255 1 50 -> p 0 (free), 0.996, 0.804 (occupied);
   // bottom 0 205 50 -> p 1 (occupied), 0.196 (unknown), 0.804 (occupied).
@@ -296,6 +310,11 @@ fs::path shared_maps() {
   return fs::path(FLOORNAV_SHARED_MAPS_DIR);
 }
 
+/// The few small maps copied into the repository (tests/data/maps/SOURCES.md).
+fs::path test_maps() {
+  return fs::path(FLOORNAV_TEST_DATA_DIR) / "maps";
+}
+
 #define SKIP_WITHOUT_SHARED_MAPS() \
   if (!fs::is_directory(shared_maps())) GTEST_SKIP() << "no " << shared_maps().string()
 
@@ -348,23 +367,22 @@ TEST(RosMapRealFiles, AwsWarehouse002) {
 }
 
 TEST(RosMapRealFiles, OtherYamlMaps) {
-  SKIP_WITHOUT_SHARED_MAPS();
   // depot: free_thresh 0.25 > p(205), so its grey pixels load as free whatever the policy.
-  const OccupancyGrid depot = load_ros_map(shared_maps() / "nav2-bringup/depot.yaml");
+  const OccupancyGrid depot = load_ros_map(test_maps() / "nav2-bringup/depot.yaml");
   EXPECT_EQ(depot.width(), 604);
   EXPECT_EQ(depot.height(), 307);
   EXPECT_EQ(depot.occupied_count(), 5947u);
   // TurtleBot3 world: 795 black, 138722 unknown.
-  const fs::path tb3 = shared_maps() / "turtlebot3/map.yaml";
+  const fs::path tb3 = test_maps() / "turtlebot3/map.yaml";
   EXPECT_EQ(load_ros_map(tb3).occupied_count(), 795u + 138722u);
   EXPECT_EQ(load_ros_map(tb3, {.unknown = UnknownPolicy::Free}).occupied_count(), 795u);
   // lse_arena: 0 and 255 plus one 239 (p = 0.063, free).
-  const OccupancyGrid lse = load_ros_map(shared_maps() / "ros-navigation-tutorials/lse_arena.yaml");
+  const OccupancyGrid lse = load_ros_map(test_maps() / "ros-navigation-tutorials/lse_arena.yaml");
   EXPECT_EQ(lse.width(), 80);
   EXPECT_EQ(lse.height(), 60);
   EXPECT_EQ(lse.occupied_count(), 345u);
   // AWS 005: an 8-bit RGB PNG; counts from decoding the file separately (channel mean).
-  const fs::path aws5 = shared_maps() / "aws-robomaker-small-warehouse/005/map.yaml";
+  const fs::path aws5 = test_maps() / "aws-robomaker-small-warehouse/005/map.yaml";
   const OccupancyGrid png = load_ros_map(aws5, {.unknown = UnknownPolicy::Free});
   EXPECT_EQ(png.width(), 286);
   EXPECT_EQ(png.height(), 423);

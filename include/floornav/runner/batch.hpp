@@ -16,6 +16,9 @@
 
 namespace floornav {
 
+/// Which cases of a batch get pictures (an SVG and an HTML replay).
+enum class BatchPictures { None, Failed, All };
+
 struct BatchOptions {
   int jobs{0};                    ///< worker threads; 0 = all cores
   std::filesystem::path out_dir;  ///< results.jsonl and aggregate.json go here
@@ -26,6 +29,11 @@ struct BatchOptions {
   /// on a raster of the world, string-pulled) as `optimal_length`, source "grid_astar".
   bool optimum{true};
   const std::atomic<bool>* stop{nullptr};  ///< set (e.g. by SIGINT) to stop taking new cases
+  /// Failed (status other than reached) or all cases get `case-NNNNN-<name>.svg` and `.html` in
+  /// pictures_dir. Those runs record their trajectory and ranges as they go (the same results:
+  /// recording moves nothing), so a failure is drawn without running it again.
+  BatchPictures pictures{BatchPictures::None};
+  std::filesystem::path pictures_dir;
 };
 
 struct BatchCase {
@@ -59,9 +67,9 @@ struct BatchOutcome {
 /// Runs every case; throws InputError when the output cannot be written.
 BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& options);
 
-/// Runs one case as run_batch does (nothing recorded, the grid optimum per `options`) and
-/// returns its results.jsonl line. What the run throws (a user controller's exception) passes
-/// through; nothing is written.
+/// Runs one case as run_batch does (the grid optimum and the pictures per `options`) and returns
+/// its results.jsonl line; writes no results file. What the run throws (a user controller's
+/// exception) passes through.
 nlohmann::ordered_json run_batch_case(const BatchCase& c, const BatchOptions& options);
 
 /// The totals of a list of result lines (as written to results.jsonl).

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// Writing a run's files (summary.json, trajectory.csv, trajectory.svg) and its one-line report.
+/// Writing a run's files (summary.json, trajectory.csv, trajectory.svg, trajectory.html) and its
+/// one-line report.
 
 #include <filesystem>
 #include <string>
@@ -16,7 +17,13 @@ struct OutputSelection {
   bool summary{true};
   bool csv{true};
   bool svg{true};
+  bool html{true};  ///< trajectory.html, the replay (only when the trajectory was recorded)
 };
+
+/// Makes `scenario` record what the selected files need: with html, the sensor ranges for the
+/// replay's beams (sim.record_ranges_every = replay_ranges_interval, unless already set).
+/// Recording changes no result.
+void prepare_outputs(Scenario& scenario, const OutputSelection& which = {});
 
 /// Writes the selected files into `dir` (created if needed), each atomically.
 void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,
@@ -29,7 +36,7 @@ std::string describe_run(const RunResult& result);
 RunResult run_timed(const Scenario& scenario);
 
 /// A fleet's files in `dir`: summary.json (fleet_summary_to_json), trajectory.csv (with a robot
-/// column) and trajectory.svg (every robot's path).
+/// column), trajectory.svg (every robot's path) and trajectory.html (the replay).
 void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scenario,
                          const FleetResult& result, const OutputSelection& which = {});
 

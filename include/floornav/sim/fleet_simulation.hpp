@@ -60,7 +60,9 @@ class FleetSimulation {
   /// Steps until every robot has ended, on `threads` threads (0: all cores).
   void run(int threads = 1);
   /// At most `max_steps` world steps (fewer if every robot ends), on `threads` threads (0: all
-  /// cores); returns the steps taken. run() is run_steps(unlimited).
+  /// cores); returns the steps taken. run() is run_steps(unlimited). An exception thrown by a
+  /// robot's controller, on whatever thread, ends the step's work and is rethrown here (the
+  /// simulation is then of no further use).
   long long run_steps(long long max_steps, int threads = 1);
   /// The threads run_steps uses when asked for `requested` (0: all cores): fewer when a step is
   /// too little work to share (under ~2,000 rays per thread).

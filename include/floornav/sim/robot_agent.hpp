@@ -97,6 +97,15 @@ class RobotAgent {
   /// The mode the controller reported last.
   int mode() const { return mode_; }
   std::size_t goal_index() const { return goal_index_; }
+  /// The time after `steps` steps as written to the result (trajectory t, sim_time, transition
+  /// and mode times): steps / (1/dt) when 1/dt is a whole number, so 60,000 steps of 0.01 s give
+  /// 600 exactly, not the 600.000000000002 that adding dt up gives; else steps * dt. The clock
+  /// the run itself uses (t_, for the guards, the obstacle memory, the stuck and t_max checks)
+  /// still adds dt up, so that no trajectory moves.
+  double recorded_time(long long steps) const {
+    return steps_per_second_ > 0.0 ? static_cast<double>(steps) / steps_per_second_
+                                   : static_cast<double>(steps) * sim_->dt;
+  }
   const RunResult& result() const { return result_; }
   RunResult& result() { return result_; }
 
@@ -118,6 +127,7 @@ class RobotAgent {
   ObstacleMemory memory_{};
   Pose2 pose_{};
   double t_{0.0};
+  double steps_per_second_{0.0};  ///< 1/dt when that is a whole number, else 0: recorded_time
   std::size_t goal_index_{0};
   bool finished_{false};
   bool use_memory_{false};

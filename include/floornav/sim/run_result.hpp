@@ -56,6 +56,12 @@ struct RunResult {
   std::vector<Transition> transitions;
   std::vector<double> transition_x, transition_y;  ///< where each transition happened
   std::vector<TrajectorySample> trajectory;
+  /// Sensor ranges recorded every SimConfig::record_ranges_every steps (empty when it is 0):
+  /// frame k was sensed after range_steps[k] steps (at the pose of trajectory row
+  /// range_steps[k]) and holds one range per sensor (m, as the robot read it, noise included):
+  /// ranges[k * sensors + i] for sensor i.
+  std::vector<int> range_steps;
+  std::vector<float> ranges;
   double final_x{0.0}, final_y{0.0}, final_theta{0.0};
 };
 

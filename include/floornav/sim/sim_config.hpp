@@ -16,6 +16,9 @@ struct SimConfig {
   double stuck_radius{0.0};      ///< m; 0 means the robot's body radius
   bool record_trajectory{true};  ///< keep every step (for CSV and SVG); off in big batches
   bool park_finished{true};      ///< fleets: a robot that is done stays, an obstacle to others
+  /// Steps between two recordings of every sensor's range (RunResult::ranges, for the HTML
+  /// replay); 0 (the default) records none and costs nothing.
+  int record_ranges_every{0};
 
   template <class Archive>
   void serialize(Archive& a) {
@@ -27,6 +30,8 @@ struct SimConfig {
     a("record_trajectory", record_trajectory, "keep every step for the CSV and SVG outputs");
     a("park_finished", park_finished,
       "fleets: a robot that has finished stays where it stopped, an obstacle to the others");
+    a("record_ranges_every", record_ranges_every,
+      "record every sensor's range every this many steps (0: never), for the HTML replay");
   }
 };
 

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "floornav/geometry/pose2.hpp"
@@ -64,6 +66,24 @@ class OccupancyGrid {
   /// World-frame axis-aligned box holding the whole grid.
   void world_extent(Vec2* min, Vec2* max) const;
 
+  /// Marks the cells a map leaves unknown (neither known free nor known occupied): `unknown`
+  /// holds width * height bytes like `occupied` (nonzero = unknown), or nothing. For pictures
+  /// only: the simulator sees each cell as free or occupied, as the loader's policy made it. Set
+  /// by the loader before the grid is shared. Throws std::invalid_argument for a wrong size.
+  void set_unknown(std::vector<std::uint8_t> unknown) {
+    if (!unknown.empty() &&
+        unknown.size() != static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_))
+      throw std::invalid_argument("OccupancyGrid: unknown layer of the wrong size");
+    unknown_ = std::move(unknown);
+  }
+  /// True for a cell marked unknown by set_unknown (cells outside the grid are not).
+  bool unknown(int ix, int iy) const {
+    return !unknown_.empty() && ix >= 0 && iy >= 0 && ix < width_ && iy < height_ &&
+           unknown_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(width_) +
+                    static_cast<std::size_t>(ix)] != 0;
+  }
+  bool has_unknown() const { return !unknown_.empty(); }
+
   /// Row-major index (iy * width + ix) of the occupied cell whose centre is nearest to the centre
   /// of cell (ix, iy) (exact Euclidean feature transform; ties broken arbitrarily), or -1 when no
   /// cell is occupied or (ix, iy) is outside the grid.
@@ -87,6 +107,7 @@ class OccupancyGrid {
   double resolution_;
   Pose2 origin_;
   std::vector<std::uint8_t> occupied_;
+  std::vector<std::uint8_t> unknown_;  ///< for pictures: see set_unknown (empty: none known)
   /// For each cell, the index of the nearest occupied cell (by centre distance), -1 if none.
   std::vector<std::int32_t> nearest_;
   /// For each cell (ix, iy): 2 * r + tie, where r is the nearest occupied row in column ix

@@ -180,6 +180,10 @@ OccupancyGrid to_grid(const io_detail::RasterImage& img, const RosMapMeta& m,
                       const RosMapOptions& options) {
   const std::uint8_t unknown = options.unknown == UnknownPolicy::Occupied ? 1 : 0;
   std::vector<std::uint8_t> occ(static_cast<std::size_t>(img.width) * img.height);
+  // Which cells were unknown, for pictures (OccupancyGrid::set_unknown); the simulator sees them
+  // as the policy says.
+  std::vector<std::uint8_t> unknown_cells(occ.size(), 0);
+  bool any_unknown = false;
   for (int j = 0; j < img.height; ++j) {
     std::uint8_t* row = occ.data() + static_cast<std::size_t>(img.height - 1 - j) * img.width;
     for (int i = 0; i < img.width; ++i) {
@@ -191,6 +195,8 @@ OccupancyGrid to_grid(const io_detail::RasterImage& img, const RosMapMeta& m,
         const double value = std::floor(v);
         if (value > 100.0) {
           row[i] = unknown;
+          unknown_cells[static_cast<std::size_t>(row - occ.data()) + i] = 1;
+          any_unknown = true;
           continue;
         }
         p = value / 100.0;
@@ -200,9 +206,15 @@ OccupancyGrid to_grid(const io_detail::RasterImage& img, const RosMapMeta& m,
         p = (255.0 - v) / 255.0;
       }
       row[i] = p > m.occupied_thresh ? 1 : (p < m.free_thresh ? 0 : unknown);
+      if (!(p > m.occupied_thresh) && !(p < m.free_thresh)) {
+        unknown_cells[static_cast<std::size_t>(row - occ.data()) + i] = 1;
+        any_unknown = true;
+      }
     }
   }
-  return OccupancyGrid(img.width, img.height, m.resolution, m.origin, std::move(occ));
+  OccupancyGrid grid(img.width, img.height, m.resolution, m.origin, std::move(occ));
+  if (any_unknown) grid.set_unknown(std::move(unknown_cells));
+  return grid;
 }
 
 }  // namespace

@@ -1,0 +1,62 @@
+# The package: floornav::core, floornav::io, floornav::render, floornav::runner and the umbrella
+# floornav::floornav, the same names in the build tree (ALIAS targets) and after
+# `cmake --install` (find_package(floornav CONFIG REQUIRED)). Included by the top-level
+# CMakeLists.txt after the targets are defined.
+#
+# The project's own flags (-Wall -Wextra -ffp-contract=off, -Werror) are directory options, so
+# they stay out of the exported interface: a user's program compiles with the user's flags. The
+# libraries themselves are always built with -ffp-contract=off (determinism).
+
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(FLOORNAV_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/floornav)
+set(FLOORNAV_INSTALL_SCENARIODIR ${CMAKE_INSTALL_DATADIR}/floornav/scenarios)
+
+foreach(lib core io render runner)
+  # Public headers come only from include/ (src/ stays private, see STYLE.md point 1).
+  target_include_directories(floornav_${lib} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_compile_features(floornav_${lib} PUBLIC cxx_std_20)
+  set_target_properties(floornav_${lib} PROPERTIES EXPORT_NAME ${lib})
+  add_library(floornav::${lib} ALIAS floornav_${lib})
+endforeach()
+
+# The umbrella: everything (floornav/floornav.hpp), one name to link.
+add_library(floornav_floornav INTERFACE)
+target_link_libraries(floornav_floornav INTERFACE
+  floornav_core floornav_io floornav_render floornav_runner)
+set_target_properties(floornav_floornav PROPERTIES EXPORT_NAME floornav)
+add_library(floornav::floornav ALIAS floornav_floornav)
+
+install(TARGETS floornav_core floornav_io floornav_render floornav_runner floornav_floornav
+  EXPORT floornavTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT floornavTargets NAMESPACE floornav:: DESTINATION ${FLOORNAV_INSTALL_CMAKEDIR})
+
+configure_package_config_file(cmake/floornavConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/floornavConfig.cmake
+  INSTALL_DESTINATION ${FLOORNAV_INSTALL_CMAKEDIR}
+  PATH_VARS FLOORNAV_INSTALL_SCENARIODIR)
+# 0.x: the minor version may still break the API; SameMajorVersion is the promise from 1.0 on.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/floornavConfigVersion.cmake
+  COMPATIBILITY SameMajorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/floornavConfig.cmake
+  ${PROJECT_BINARY_DIR}/floornavConfigVersion.cmake
+  DESTINATION ${FLOORNAV_INSTALL_CMAKEDIR})
+
+# The command-line tool, so that an installed floornav runs scenarios too.
+install(TARGETS floornav RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+
+# The chapter scenarios, self-contained (no map files): the examples, the README's program and
+# `floornav run` use them. Scenarios that point at ../shared/maps (ros/, the BARN and MovingAI
+# templates) would not load from an install prefix, so they are not installed.
+install(FILES
+  scenarios/circle_obstacle.yaml scenarios/concave_obstacle.yaml scenarios/convex_obstacle.yaml
+  scenarios/coppeliasim_pioneer.yaml scenarios/factory_delivery.yaml scenarios/fleet_aisles.yaml
+  scenarios/fleet_crossing.yaml scenarios/point_obstacle.yaml scenarios/practice2_pillars.yaml
+  scenarios/rectangle.yaml scenarios/week7_pocket.yaml
+  DESTINATION ${FLOORNAV_INSTALL_SCENARIODIR})

@@ -1,0 +1,9 @@
+#pragma once
+/// @file
+/// floornav::runner, what runs scenarios and writes their files: a run's outputs (summary.json,
+/// trajectory.csv, trajectory.svg) and its one-line report, batches of runs in parallel.
+
+#include "floornav/io.hpp"
+#include "floornav/render.hpp"
+#include "floornav/runner/batch.hpp"
+#include "floornav/runner/run_outputs.hpp"
