@@ -137,7 +137,10 @@ int run_one(Scenario scenario, const RunRequest& rq) {
   if (!rq.config_out.empty()) write_file_atomically(rq.config_out, scenario_to_yaml(scenario));
   OutputSelection which;
   which.html = rq.html;
-  prepare_outputs(scenario, which);
+  // The run records what the replay needs (sensor ranges); the files describe the scenario as
+  // given, so that its provenance is the same with or without --no-html.
+  Scenario recorded = scenario;
+  prepare_outputs(recorded, which);
   RunContext context;
   context.overrides = rq.sets;
   if (rq.optimum) context.optimum = compute_optimum(scenario);
@@ -145,7 +148,7 @@ int run_one(Scenario scenario, const RunRequest& rq) {
     if (auto warning = reachability_warning(scenario, *context.optimum))
       fmt::print(stderr, "floornav: warning: {}: {}\n", rq.file, *warning);
   if (scenario.is_fleet()) {
-    const FleetResult f = run_fleet_timed(scenario, rq.threads);
+    const FleetResult f = run_fleet_timed(recorded, rq.threads);
     {
       SignalsHeld held;
       write_fleet_outputs(dir, scenario, f, context, which);
@@ -153,7 +156,7 @@ int run_one(Scenario scenario, const RunRequest& rq) {
     if (!rq.quiet) fmt::print("{} -> {}\n", describe_fleet(f), dir.string());
     return 0;
   }
-  const RunResult r = run_timed(scenario);
+  const RunResult r = run_timed(recorded);
   {
     SignalsHeld held;
     write_run_outputs(dir, scenario, r, context, which);

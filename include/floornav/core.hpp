@@ -51,6 +51,7 @@
 #include "floornav/sim/run_result.hpp"
 #include "floornav/sim/sim_config.hpp"
 #include "floornav/sim/simulation.hpp"
+#include "floornav/sim/vec_simulation.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/shortest_path.hpp"
 #include "floornav/world/world.hpp"

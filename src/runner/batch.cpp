@@ -278,6 +278,14 @@ nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_jso
   return out;
 }
 
+nlohmann::ordered_json run_batch_case(const BatchCase& c, const BatchOptions& options) {
+  OptimumCache cache;
+  // Never abandoned: with no halt flag and the caller's own stop unset, a line always comes.
+  BatchOptions o = options;
+  o.stop = nullptr;
+  return *run_case(c, o, nullptr, cache);
+}
+
 BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& options) {
   std::map<std::size_t, std::size_t> index;  // case id -> position in `cases`
   CaseList list;

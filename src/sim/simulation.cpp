@@ -46,7 +46,7 @@ bool Simulation::step(const Command& command) {
 }
 
 Observation Simulation::observe() {
-  if (!agent_.finished()) sense_once();
+  sense_once();  // once the run has ended too: the final observation is of the final pose
   return agent_.observe(scratch_);
 }
 

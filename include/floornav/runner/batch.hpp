@@ -109,6 +109,11 @@ struct BatchOutcome {
 BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options);
 BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& options);
 
+/// Runs one case as run_batch does (the grid optimum and the pictures per `options`) and returns
+/// its results.jsonl line; writes no results file. What the run throws (a user controller's
+/// exception) passes through.
+nlohmann::ordered_json run_batch_case(const BatchCase& c, const BatchOptions& options);
+
 /// The totals of a list of result lines (as written to results.jsonl).
 nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_json>& lines);
 

@@ -39,6 +39,7 @@ class Simulation {
   /// Advances one step driven by `command` instead of the controller (see RobotAgent::act).
   bool step(const Command& command);
   /// What the controller sees now (senses once per step: a step() after it reuses the sensing).
+  /// Once the run has ended: what the robot senses where it stopped (sensed once).
   Observation observe();
   /// Steps until the run ends; returns the result.
   const RunResult& run();

@@ -1,0 +1,123 @@
+#pragma once
+/// @file
+/// Many independent runs stepped together: copies of one robot's task (or of several), each alone
+/// in its world, each with its own sensor-noise seed, stepped on a pool of threads. What a
+/// reinforcement-learning vector environment needs from the simulator: one call steps every copy,
+/// each by its own command (or by its controller), restarts the ones that ended, and lets the
+/// caller read every copy's observation in the same parallel pass.
+///
+/// Step of one copy: act on the observation sensed at the end of the previous step (or at reset),
+/// then sense the next observation at the new pose, exactly as Simulation::step + observe do:
+/// the sensors are cast once per step, so a copy's run equals a Simulation's with the same seed,
+/// bit for bit, whatever the number of threads. A copy that has ended is sensed once more where
+/// it stopped, so that its final observation describes its final pose.
+
+#include <condition_variable>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "floornav/nav/controller.hpp"
+#include "floornav/nav/navigation_controller.hpp"
+#include "floornav/sim/robot_agent.hpp"
+#include "floornav/sim/robot_task.hpp"
+#include "floornav/sim/sim_config.hpp"
+#include "floornav/world/world.hpp"
+
+namespace floornav {
+
+/// A fixed set of threads (the caller's among them) that run one parallel loop at a time.
+class WorkerPool {
+ public:
+  /// `threads` in all, the calling thread included (0: all cores).
+  explicit WorkerPool(int threads = 0);
+  ~WorkerPool();
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  std::size_t size() const { return workers_.size() + 1; }
+
+  /// Calls body(begin, end) over [0, n) in chunks of at most `chunk`, on every thread, and
+  /// returns once all are done. An exception thrown by a body stops the loop (chunks not yet
+  /// started are skipped) and is rethrown here, on the caller's thread.
+  void run(std::size_t n, std::size_t chunk,
+           const std::function<void(std::size_t, std::size_t)>& body);
+
+ private:
+  void work_loop();
+  void take_chunks();
+
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::condition_variable done_;
+  std::uint64_t generation_{0};  ///< one per run()
+  std::size_t busy_{0};          ///< workers still inside the current run
+  bool stopping_{false};
+  // The current loop.
+  const std::function<void(std::size_t, std::size_t)>* body_{nullptr};
+  std::size_t n_{0};
+  std::size_t chunk_{1};
+  std::size_t next_{0};  ///< first index not yet taken (under mutex_)
+  std::exception_ptr error_;
+};
+
+/// One copy's run: its world, task and settings (all must outlive the VecSimulation).
+struct VecCopy {
+  const World* world{nullptr};
+  const RobotTask* task{nullptr};
+  const SimConfig* sim{nullptr};  ///< the seed is the copy's own (reset); nothing is recorded
+  std::string name;               ///< RunResult::scenario
+};
+
+class VecSimulation {
+ public:
+  /// Every copy must have the same number of sensors (observations of one shape). The copies
+  /// start unset: reset() each before stepping. `threads` in all (0: all cores).
+  VecSimulation(std::vector<VecCopy> copies, int threads = 0);
+
+  std::size_t size() const { return copies_.size(); }
+  /// Range readings per copy (every sensor's beam).
+  std::size_t beam_count() const { return beams_; }
+  std::size_t thread_count() const { return pool_.size(); }
+
+  /// Starts copy `i` afresh with sensor-noise seed `seed`, and senses its first observation.
+  void reset(std::size_t i, std::uint64_t seed);
+  /// reset(which[k], seeds[k]) for every k, in parallel; then after(which[k]) on the thread that
+  /// reset it.
+  void reset(std::span<const std::size_t> which, std::span<const std::uint64_t> seeds,
+             const std::function<void(std::size_t)>& after = {});
+
+  /// One step of every copy that is running: commands[i] drives copy i through the pipeline and
+  /// saturation of the built-in controllers (RobotAgent::act); an empty span lets every copy's
+  /// controller drive. Then each copy senses its next observation, and after(i) runs on the
+  /// thread that stepped it (for every copy, running or not). Throws what a step throws (a
+  /// command that is not finite: std::domain_error; a user controller's exception), after every
+  /// thread has stopped.
+  void step(std::span<const Command> commands, const std::function<void(std::size_t)>& after = {});
+
+  /// What copy i's controller sees now (valid until the copy is stepped or reset).
+  Observation observe(std::size_t i) const { return agent(i).observe(scratch_[i]); }
+  const RobotAgent& agent(std::size_t i) const { return *agents_[i]; }
+  /// The sensing behind observe(i): ranges, beams and points.
+  const SensingScratch& sensing(std::size_t i) const { return scratch_[i]; }
+
+ private:
+  std::vector<VecCopy> copies_;
+  std::vector<SimConfig> sims_;  ///< per copy: its seed, nothing recorded
+  std::vector<std::optional<RobotAgent>> agents_;
+  std::vector<SensingScratch> scratch_;
+  std::size_t beams_{0};
+  std::mutex maker_mutex_;  ///< ControllerMaker is not thread-safe; resets may run in parallel
+  ControllerMaker maker_;
+  WorkerPool pool_;
+};
+
+}  // namespace floornav

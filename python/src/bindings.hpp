@@ -1,0 +1,106 @@
+#pragma once
+// Shared pieces of the `_floornav` extension: the Python-side scenario, conversions between
+// floornav's C++ values and Python objects, and the bind_* functions of each file.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "floornav/geometry/vec2.hpp"
+#include "floornav/nav/controller.hpp"
+#include "floornav/scenario/scenario.hpp"
+#include "floornav/sim/fleet_simulation.hpp"
+#include "floornav/sim/run_result.hpp"
+
+namespace floornav::python {
+
+namespace py = pybind11;
+
+/// A scenario as Python holds it: the C++ scenario, where it came from (a batch line's `source`),
+/// and whether a Python controller drives one of its robots (such runs hold the GIL per step, so
+/// batches and vector environments run them on one thread).
+struct PyScenario {
+  Scenario scenario;
+  std::string source;
+  std::vector<std::string> overrides;  ///< as given, "key=value"
+  bool python_controller{false};
+};
+using ScenarioPtr = std::shared_ptr<PyScenario>;  // never changed once made
+
+/// A finished run, of one robot or of a fleet, with the scenario it came from.
+struct PyRunResult {
+  ScenarioPtr scenario;
+  std::optional<RunResult> run;
+  std::optional<FleetResult> fleet;
+  py::object summary;     ///< built on first use
+  py::object trajectory;  ///< built on first use
+};
+
+/// A Python object that may be copied and dropped without the GIL (inside std::function objects
+/// that C++ worker threads copy): its reference count is touched only under the GIL.
+class PyRef {
+ public:
+  PyRef() = default;
+  explicit PyRef(py::object o);
+  const py::object& get() const { return *object_; }
+  explicit operator bool() const { return object_ && *object_; }
+
+ private:
+  std::shared_ptr<py::object> object_;
+};
+
+// --- conversions ----------------------------------------------------------------------------
+
+/// nlohmann JSON -> dict / list / float / int / bool / str / None (key order kept).
+py::object json_to_python(const nlohmann::ordered_json& j);
+
+/// Two numbers (a tuple, a list, a numpy array of shape (2,)) -> Vec2; ValueError naming `what`
+/// otherwise.
+Vec2 to_vec2(py::handle h, const char* what);
+inline py::tuple vec2_tuple(const Vec2& v) {
+  return py::make_tuple(v.x(), v.y());
+}
+
+/// A command from Python: (v, omega), {"v":, "omega":}, {"u": (ux, uy)}, {"wheels": (l, r)},
+/// {"goal_reached": True}, or a floornav.Command. ValueError for anything else, and for a
+/// command that is not finite.
+Command to_command(py::handle h);
+
+/// Points (k, 2) as floornav's Vec2 span: a view of a C-contiguous float64 array when it is
+/// aligned for Vec2, else a copy into `storage`.
+std::span<const Vec2> to_points(py::handle h, std::vector<Vec2>& storage, const char* what);
+
+/// A new uninitialised float64 array of `shape` (at most 3 dimensions).
+py::array new_float_array(std::initializer_list<py::ssize_t> shape);
+py::array_t<double> make_array(std::span<const double> values);
+py::array_t<double> make_points(std::span<const Vec2> points);
+
+/// The observation dict of Simulation.observe() and of Python controllers.
+py::dict observation_dict(const Observation& obs, std::string_view status, py::handle robot,
+                          py::handle params);
+
+/// A Python view of a robot's body (name, preset, body radius, footprint, sensors, limits).
+py::object robot_info(const RobotSpec& robot, std::string_view name);
+
+/// "running" or the run's status.
+std::string_view status_name(bool finished, RunStatus status);
+
+// --- bind_* (one per file) -------------------------------------------------------------------
+
+void bind_behaviours(py::module_& m);
+void bind_automaton(py::module_& m);
+void bind_controllers(py::module_& m);
+void bind_scenario(py::module_& m);
+void bind_run(py::module_& m);
+void bind_simulation(py::module_& m);
+void bind_vec_env(py::module_& m);
+
+}  // namespace floornav::python

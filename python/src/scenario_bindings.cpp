@@ -1,0 +1,212 @@
+// Scenarios: loading (with --set overrides), the InputError exception, what a scenario holds,
+// and giving its robots a Python controller.
+
+#include <fmt/format.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "bindings.hpp"
+#include "floornav/core/input_error.hpp"
+#include "floornav/io/scenario_file.hpp"
+#include "floornav/world/occupancy_grid.hpp"
+#include "py_controller.hpp"
+
+namespace floornav::python {
+
+namespace {
+
+py::object g_input_error;  // floornav.InputError, set once at import
+
+// The CLI prints "floornav: error: <what>" (app/main.cpp): the exception's message is that line.
+constexpr const char* kCliPrefix = "floornav: error: ";
+
+py::dict world_dict(const World& w) {
+  py::dict d;
+  if (w.bounds())
+    d["bounds"] = py::make_tuple(w.bounds()->min.x(), w.bounds()->min.y(), w.bounds()->max.x(),
+                                 w.bounds()->max.y());
+  else
+    d["bounds"] = py::none();
+  py::list circles;
+  for (const Circle& c : w.circles())
+    circles.append(py::make_tuple(c.center.x(), c.center.y(), c.radius));
+  d["circles"] = circles;
+  py::list polygons;
+  for (const auto& p : w.polygons()) polygons.append(make_points(p));
+  d["polygons"] = polygons;
+  const auto segs = w.segments();
+  py::array_t<double> s({static_cast<py::ssize_t>(segs.size()), py::ssize_t{4}});
+  double* out = s.mutable_data();
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    out[4 * i] = segs[i].a.x();
+    out[4 * i + 1] = segs[i].a.y();
+    out[4 * i + 2] = segs[i].b.x();
+    out[4 * i + 3] = segs[i].b.y();
+  }
+  d["segments"] = s;
+  const Box2& e = w.extent();
+  d["extent"] = py::make_tuple(e.min.x(), e.min.y(), e.max.x(), e.max.y());
+  if (const OccupancyGrid* g = w.grid()) {
+    py::array_t<bool> cells(
+        {static_cast<py::ssize_t>(g->height()), static_cast<py::ssize_t>(g->width())});
+    auto c = cells.mutable_unchecked<2>();
+    for (int iy = 0; iy < g->height(); ++iy)
+      for (int ix = 0; ix < g->width(); ++ix) c(iy, ix) = g->occupied(ix, iy);
+    py::dict grid;
+    grid["occupied"] = cells;  // row iy, column ix: cell (ix, iy) in the grid's frame
+    grid["resolution"] = g->resolution();
+    grid["origin"] =
+        py::make_tuple(g->origin().position.x(), g->origin().position.y(), g->origin().theta);
+    d["grid"] = grid;
+  } else {
+    d["grid"] = py::none();
+  }
+  return d;
+}
+
+py::dict robot_dict(const RobotTask& t) {
+  py::dict d;
+  d["name"] = t.name;
+  d["preset"] = t.robot.preset;
+  d["start"] = py::make_tuple(t.start.position.x(), t.start.position.y(), t.start.theta);
+  py::list goals;
+  for (const Vec2& g : t.goals) goals.append(vec2_tuple(g));
+  d["goals"] = goals;
+  d["controller"] = t.controller.kind;
+  d["body_radius"] = t.robot.body_radius;
+  d["max_speed"] = max_forward_speed(t.robot.drive);
+  d["max_turn_rate"] = max_turn_rate(t.robot.drive);
+  d["sensor_count"] = t.robot.sensors.size();
+  std::vector<Vec2> fp(t.robot.footprint.begin(), t.robot.footprint.end());
+  d["footprint"] = fp.empty() ? py::object(py::none()) : py::object(make_points(fp));
+  return d;
+}
+
+ScenarioPtr load(const std::string& path, const std::vector<std::string>& overrides) {
+  auto s = std::make_shared<PyScenario>();
+  {
+    py::gil_scoped_release nogil;  // maps can be large
+    s->scenario = load_scenario_file(path, overrides);
+  }
+  s->source = path;
+  s->overrides = overrides;
+  return s;
+}
+
+ScenarioPtr parse(const std::string& text, const std::string& origin,
+                  const std::vector<std::string>& overrides) {
+  auto s = std::make_shared<PyScenario>();
+  s->scenario = load_scenario_text(text, origin, overrides);
+  s->source = origin;
+  s->overrides = overrides;
+  return s;
+}
+
+ScenarioPtr with_controller(const PyScenario& base, py::object controller, py::object factory,
+                            const std::string& kind) {
+  if (controller.is_none() == factory.is_none())
+    throw py::value_error("give either a controller or a factory (one per robot)");
+  if (kind.empty()) throw py::value_error("a controller kind needs a name");
+  auto s = std::make_shared<PyScenario>(base);
+  const bool is_factory = !factory.is_none();
+  py::object target = is_factory ? factory : controller;
+  if (!PyCallable_Check(target.ptr()) && !PyObject_HasAttrString(target.ptr(), "decide"))
+    throw py::type_error(fmt::format("{} is neither callable nor has a decide(observation) method",
+                                     py::str(py::repr(target)).cast<std::string>()));
+  s->scenario.set_controller(kind, make_python_factory(target, is_factory, kind));
+  s->python_controller = true;
+  return s;
+}
+
+}  // namespace
+
+void bind_scenario(py::module_& m) {
+  g_input_error = py::reinterpret_steal<py::object>(PyErr_NewExceptionWithDoc(
+      "floornav.InputError",
+      "Bad input: a scenario file, a map, an override. The message is the line the command-line "
+      "tool prints (\"floornav: error: FILE:WHERE: WHAT\"); `file`, `where` and `detail` hold "
+      "its parts.",
+      PyExc_ValueError, nullptr));
+  m.attr("InputError") = g_input_error;
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      const std::string line = std::string(kCliPrefix) + e.what();
+      py::object exc = g_input_error(line);
+      exc.attr("file") = e.file;
+      exc.attr("where") = e.where;
+      exc.attr("detail") = e.detail;
+      PyErr_SetObject(g_input_error.ptr(), exc.ptr());
+    }
+  });
+
+  py::class_<PyScenario, std::shared_ptr<PyScenario>>(
+      m, "Scenario",
+      "A loaded scenario: the world, its robots (body, start, route, controller) and the "
+      "simulation settings. Immutable: the with_* methods return changed copies. Make one "
+      "with floornav.load_scenario.")
+      .def_property_readonly("name", [](const PyScenario& s) { return s.scenario.name; })
+      .def_property_readonly(
+          "source", [](const PyScenario& s) { return s.source; },
+          "The file it was loaded from, as given (a batch line's `source`).")
+      .def_property_readonly(
+          "overrides", [](const PyScenario& s) { return s.overrides; },
+          "The overrides applied, as the CLI's --set KEY=VALUE texts.")
+      .def_property_readonly(
+          "is_fleet", [](const PyScenario& s) { return s.scenario.is_fleet(); },
+          "True for a `robots:` list (run as a fleet).")
+      .def_property_readonly("controller_kind",
+                             [](const PyScenario& s) { return s.scenario.robot().controller.kind; })
+      .def_property_readonly(
+          "python_controller", [](const PyScenario& s) { return s.python_controller; },
+          "A Python controller drives its robots (runs hold the GIL).")
+      .def_property_readonly("dt", [](const PyScenario& s) { return s.scenario.sim.dt; })
+      .def_property_readonly("t_max", [](const PyScenario& s) { return s.scenario.sim.t_max; })
+      .def_property_readonly("seed", [](const PyScenario& s) { return s.scenario.sim.seed; })
+      .def_property_readonly(
+          "robots",
+          [](const PyScenario& s) {
+            py::list out;
+            for (const RobotTask& t : s.scenario.robots) out.append(robot_dict(t));
+            return out;
+          },
+          "Each robot: name, preset, start, goals, controller, body_radius, "
+          "max_speed, max_turn_rate, sensor_count, footprint.")
+      .def_property_readonly(
+          "params", [](const PyScenario& s) { return s.scenario.robot().controller.params; },
+          "The first robot's controller parameters (a copy).")
+      .def_property_readonly(
+          "world", [](const PyScenario& s) { return world_dict(*s.scenario.world); },
+          "The world: bounds, circles (x, y, r), polygons, segments (n, 4), "
+          "extent, grid (occupancy map or None).")
+      .def(
+          "with_controller",
+          [](const PyScenario& s, py::object controller, py::object factory,
+             const std::string& kind) { return with_controller(s, controller, factory, kind); },
+          py::arg("controller") = py::none(), py::kw_only(), py::arg("factory") = py::none(),
+          py::arg("kind") = "python",
+          "A copy whose robots are driven by a Python controller: `controller` (a callable "
+          "observation -> command, or an object with decide(observation)) for every robot, or "
+          "`factory(context) -> controller` called once per robot and run (context: robot, "
+          "params, robot_name, robot_index). `kind` names it in summaries (`controller`).")
+      .def(
+          "with_seed",
+          [](const PyScenario& s, std::uint64_t seed) {
+            auto c = std::make_shared<PyScenario>(s);
+            c->scenario.sim.seed = seed;
+            return c;
+          },
+          py::arg("seed"), "A copy with another sim.seed (sensor noise).")
+      .def("__repr__", [](const PyScenario& s) {
+        return fmt::format("<floornav.Scenario '{}': {} robot{}, controller {}, dt {} s>",
+                           s.scenario.name, s.scenario.robots.size(),
+                           s.scenario.robots.size() == 1 ? "" : "s",
+                           s.scenario.robot().controller.kind, s.scenario.sim.dt);
+      });
+
+  m.def("_load_scenario", &load, py::arg("path"), py::arg("overrides"));
+  m.def("_parse_scenario", &parse, py::arg("text"), py::arg("origin"), py::arg("overrides"));
+}
+
+}  // namespace floornav::python

@@ -1,0 +1,440 @@
+// The C++ side of floornav.VecEnv: many copies of a scenario stepped together on all cores
+// (sim/vec_simulation.hpp), every observation written straight into numpy arrays with a leading
+// n_envs dimension (no Python object per copy), the default reward, and the automatic reset of
+// copies whose run ended.
+
+#include <fmt/format.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "bindings.hpp"
+#include "floornav/sim/vec_simulation.hpp"
+
+namespace floornav::python {
+
+namespace {
+
+/// The default reward of one step, per copy: progress * (d_before - d_after) + goal * (goals
+/// reached in the step) - collision * (the step ended in a collision) - time * dt; d is the
+/// distance to the goal that was current when the step began.
+struct RewardParams {
+  double progress{1.0};   ///< per metre of progress towards the goal
+  double goal{1.0};       ///< per goal reached
+  double collision{1.0};  ///< once, on a collision
+  double time{0.0};       ///< per second
+};
+
+// Status codes of the status arrays (floornav.STATUS_NAMES).
+constexpr std::int8_t kRunning = 0;
+std::int8_t status_code(const RobotAgent& a) {
+  if (!a.finished()) return kRunning;
+  switch (a.result().status) {
+    case RunStatus::Reached:
+      return 1;
+    case RunStatus::Collision:
+      return 2;
+    case RunStatus::Timeout:
+      return 3;
+    case RunStatus::Stuck:
+      return 4;
+  }
+  return 3;
+}
+
+// The GIL is released while the copies step: a second Python thread stepping the same VecEnv at
+// that time is refused rather than let race.
+class Busy {
+ public:
+  explicit Busy(std::atomic<bool>& flag) : flag_(flag) {
+    if (flag_.exchange(true))
+      throw std::runtime_error("this VecEnv is being stepped by another thread");
+  }
+  ~Busy() { flag_.store(false); }
+  Busy(const Busy&) = delete;
+  Busy& operator=(const Busy&) = delete;
+
+ private:
+  std::atomic<bool>& flag_;
+};
+
+template <class T>
+T* data_of(py::array& a) {
+  return static_cast<T*>(a.mutable_data());
+}
+
+class VecCore {
+ public:
+  VecCore(std::vector<ScenarioPtr> scenarios, int threads, bool copy, RewardParams reward)
+      : scenarios_(std::move(scenarios)),
+        vec_(copies_of(scenarios_), python_controller(scenarios_) ? 1 : threads),
+        copy_(copy),
+        reward_(reward) {
+    const std::size_t n = scenarios_.size();
+    episode_.assign(n, 0);
+    distance_.assign(n, 0.0);
+    goals_.assign(n, 0);
+    step_goal_.assign(n, 0);
+    ended_.assign(n, 0);
+    beams_ = vec_.beam_count();
+  }
+
+  std::size_t size() const { return scenarios_.size(); }
+  std::size_t beams() const { return beams_; }
+  std::size_t threads() const { return vec_.thread_count(); }
+
+  py::dict reset(std::optional<std::uint64_t> seed) {
+    const Busy busy(busy_);
+    if (seed) base_seed_ = *seed;
+    std::fill(episode_.begin(), episode_.end(), 0);
+    const std::size_t n = size();
+    std::vector<std::size_t> which(n);
+    std::vector<std::uint64_t> seeds(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      which[i] = i;
+      seeds[i] = seed_of(i);
+    }
+    Buffers b = buffers();
+    last_ = b;
+    {
+      py::gil_scoped_release nogil;
+      vec_.reset(which, seeds, [&](std::size_t i) { after_reset(i, b); });
+    }
+    return b.dict();
+  }
+
+  /// One step; with `autoreset`, copies that ended are restarted and their final observations
+  /// returned in info["final_obs"].
+  py::tuple step(py::handle actions, bool autoreset) {
+    const Busy busy(busy_);
+    read_actions(actions);
+    const std::size_t n = size();
+    Buffers b = buffers();
+    last_ = b;
+    py::array_t<double> reward(static_cast<py::ssize_t>(n));
+    py::array_t<double> progress(static_cast<py::ssize_t>(n));
+    py::array_t<double> distance(static_cast<py::ssize_t>(n));
+    py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
+    py::array_t<bool> terminated(static_cast<py::ssize_t>(n));
+    py::array_t<bool> truncated(static_cast<py::ssize_t>(n));
+    py::array_t<std::int32_t> goals(static_cast<py::ssize_t>(n));
+    double* r = reward.mutable_data();
+    double* pr = progress.mutable_data();
+    double* di = distance.mutable_data();
+    std::int8_t* st = status.mutable_data();
+    bool* te = terminated.mutable_data();
+    bool* tr = truncated.mutable_data();
+    std::int32_t* go = goals.mutable_data();
+    {
+      py::gil_scoped_release nogil;
+      vec_.step(commands_, [&](std::size_t i) {
+        const RobotAgent& a = vec_.agent(i);
+        const auto& goal_list = scenario_task(i).goals;
+        // Progress towards the goal that was current when the step began.
+        const Vec2 goal_before = goal_list[std::min(step_goal_[i], goal_list.size() - 1)];
+        const double d_after = (goal_before - a.pose().position).norm();
+        const int reached = a.result().goals_reached - goals_[i];
+        const std::int8_t code = status_code(a);
+        if (ended_[i]) {  // not stepped: nothing happened to reward
+          pr[i] = 0.0;
+          r[i] = 0.0;
+        } else {
+          pr[i] = distance_[i] - d_after;
+          r[i] = reward_.progress * pr[i] + reward_.goal * reached -
+                 (code == 2 ? reward_.collision : 0.0) - reward_.time * dt_of(i);
+        }
+        st[i] = code;
+        te[i] = code == 1 || code == 2;
+        tr[i] = code == 3 || code == 4;
+        go[i] = a.result().goals_reached;
+        write_observation(i, b);
+        di[i] = distance_[i];
+      });
+    }
+    py::dict info;
+    info["status"] = status;
+    info["progress"] = progress;
+    info["goal_distance"] = distance;
+    info["goals_reached"] = goals;
+    info["default_reward"] = reward;
+    py::dict obs = b.dict();
+    if (autoreset) {
+      py::object final_obs = restart_ended(obs, terminated, truncated);
+      if (!final_obs.is_none()) {
+        info["final_obs"] = final_obs;
+        info["_final_obs"] = ended_mask(terminated, truncated);
+      }
+    }
+    return py::make_tuple(obs, reward, terminated, truncated, info);
+  }
+
+  /// Restarts the copies marked in `ended` (each with its next seed), writing their first
+  /// observation into `obs` in place; returns the final observations (rows of `ended`; zeros
+  /// elsewhere), or None when none ended.
+  py::object reset_ended(py::dict obs, const py::array_t<bool>& terminated,
+                         const py::array_t<bool>& truncated) {
+    const Busy busy(busy_);
+    return restart_ended(obs, terminated, truncated);
+  }
+
+ private:
+  py::object restart_ended(py::dict obs, const py::array_t<bool>& terminated,
+                           const py::array_t<bool>& truncated) {
+    const std::size_t n = size();
+    if (static_cast<std::size_t>(terminated.size()) != n ||
+        static_cast<std::size_t>(truncated.size()) != n)
+      throw py::value_error(fmt::format("terminated and truncated need {} entries", n));
+    const bool* te = terminated.data();
+    const bool* tr = truncated.data();
+    std::vector<std::size_t> which;
+    for (std::size_t i = 0; i < n; ++i)
+      if (te[i] || tr[i]) which.push_back(i);
+    if (which.empty()) return py::none();
+    // The arrays of the last step, whatever the caller did to the dict it was handed.
+    if (!last_) throw py::value_error("no step to restart copies after");
+    Buffers b = *last_;
+    const py::dict arrays = b.dict();
+    for (const char* key : {"t", "pose", "goal", "goal_index", "ranges", "points"})
+      if (!obs.contains(key) || !obs[key].is(arrays[key]))
+        throw py::value_error(
+            fmt::format("obs['{}'] is not the array the last step returned", key));
+    const py::module_ np = py::module_::import("numpy");
+    py::dict final_obs;
+    for (auto item : arrays) {
+      const py::array a = py::reinterpret_borrow<py::array>(item.second);
+      py::array f = np.attr("zeros_like")(a);
+      const std::size_t row = static_cast<std::size_t>(a.nbytes()) / n;
+      const auto* src = static_cast<const char*>(a.data());
+      auto* dst = static_cast<char*>(f.mutable_data());
+      for (std::size_t i : which) std::memcpy(dst + i * row, src + i * row, row);
+      final_obs[item.first] = f;
+    }
+    std::vector<std::uint64_t> seeds;
+    for (std::size_t i : which) {
+      ++episode_[i];
+      seeds.push_back(seed_of(i));
+    }
+    {
+      py::gil_scoped_release nogil;
+      vec_.reset(which, seeds, [&](std::size_t i) { after_reset(i, b); });
+    }
+    return final_obs;
+  }
+
+ public:
+  py::array_t<bool> ended_mask(const py::array_t<bool>& terminated,
+                               const py::array_t<bool>& truncated) const {
+    py::array_t<bool> m(static_cast<py::ssize_t>(size()));
+    for (std::size_t i = 0; i < size(); ++i)
+      m.mutable_data()[i] = terminated.data()[i] || truncated.data()[i];
+    return m;
+  }
+
+  /// Where each copy is now: status codes (0 running, 1 reached, 2 collision, 3 timeout, 4 stuck).
+  py::array_t<std::int8_t> statuses() const {
+    py::array_t<std::int8_t> s(static_cast<py::ssize_t>(size()));
+    for (std::size_t i = 0; i < size(); ++i) s.mutable_data()[i] = status_code(vec_.agent(i));
+    return s;
+  }
+
+  std::uint64_t seed_of(std::size_t i) const {
+    return base_seed_ + i + static_cast<std::uint64_t>(size()) * episode_[i];
+  }
+  py::list seeds() const {
+    py::list out;
+    for (std::size_t i = 0; i < size(); ++i) out.append(seed_of(i));
+    return out;
+  }
+
+ private:
+  // The observation arrays (one set per step, or one set for the whole life with copy=False).
+  struct Buffers {
+    py::array t, pose, goal, goal_index, ranges, points;
+    double *t_, *pose_, *goal_, *ranges_, *points_;
+    std::int32_t* goal_index_;
+    py::dict dict() const {
+      py::dict d;
+      d["t"] = t;
+      d["pose"] = pose;
+      d["goal"] = goal;
+      d["goal_index"] = goal_index;
+      d["ranges"] = ranges;
+      d["points"] = points;
+      return d;
+    }
+    void bind() {
+      t_ = data_of<double>(t);
+      pose_ = data_of<double>(pose);
+      goal_ = data_of<double>(goal);
+      goal_index_ = data_of<std::int32_t>(goal_index);
+      ranges_ = data_of<double>(ranges);
+      points_ = data_of<double>(points);
+    }
+  };
+
+  Buffers buffers() {
+    if (!copy_ && persistent_) return *persistent_;
+    const auto n = static_cast<py::ssize_t>(size());
+    const auto beams = static_cast<py::ssize_t>(beams_);
+    Buffers b;
+    b.t = py::array_t<double>(n);
+    b.pose = py::array_t<double>({n, py::ssize_t{3}});
+    b.goal = py::array_t<double>({n, py::ssize_t{2}});
+    b.goal_index = py::array_t<std::int32_t>(n);
+    b.ranges = py::array_t<double>({n, beams});
+    b.points = py::array_t<double>({n, beams, py::ssize_t{2}});
+    b.bind();
+    if (!copy_) persistent_ = b;
+    return b;
+  }
+
+  const RobotTask& scenario_task(std::size_t i) const { return scenarios_[i]->scenario.robot(); }
+  double dt_of(std::size_t i) const { return scenarios_[i]->scenario.sim.dt; }
+
+  // Copy i's observation into row i of the arrays, and what the next step's reward starts from.
+  void write_observation(std::size_t i, Buffers& b) {
+    const RobotAgent& a = vec_.agent(i);
+    const SensingScratch& s = vec_.sensing(i);
+    const Observation obs = vec_.observe(i);
+    b.t_[i] = obs.t;
+    b.pose_[3 * i] = obs.pose.position.x();
+    b.pose_[3 * i + 1] = obs.pose.position.y();
+    b.pose_[3 * i + 2] = obs.pose.theta;
+    b.goal_[2 * i] = obs.goal.x();
+    b.goal_[2 * i + 1] = obs.goal.y();
+    b.goal_index_[i] = obs.goal_index;
+    const auto& sensors = a.robot().sensors;
+    double* ranges = b.ranges_ + i * beams_;
+    double* points = b.points_ + 2 * i * beams_;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t j = 0; j < beams_; ++j) {
+      const double range = s.ranges[j];
+      ranges[j] = range;
+      if (range < sensors[j].max_range) {  // as ranges_to_points
+        const Vec2 p = s.beams[j].origin + range * s.beams[j].dir;
+        points[2 * j] = p.x();
+        points[2 * j + 1] = p.y();
+      } else {
+        points[2 * j] = nan;
+        points[2 * j + 1] = nan;
+      }
+    }
+    distance_[i] = (obs.goal - obs.pose.position).norm();
+    goals_[i] = a.result().goals_reached;
+    step_goal_[i] = a.goal_index();
+    ended_[i] = a.finished() ? 1 : 0;
+  }
+
+  void after_reset(std::size_t i, Buffers& b) { write_observation(i, b); }
+
+  void read_actions(py::handle actions) {
+    commands_.clear();
+    if (actions.is_none()) return;  // the controllers drive
+    if (!py::isinstance<py::array>(actions)) {
+      const py::module_ np = py::module_::import("numpy");
+      py::object a = np.attr("asarray")(actions);
+      return read_array(py::reinterpret_borrow<py::array>(a));
+    }
+    read_array(py::reinterpret_borrow<py::array>(actions));
+  }
+
+  void read_array(const py::array& a) {
+    const std::size_t n = size();
+    if (a.dtype().kind() != 'f')
+      throw py::value_error(
+          fmt::format("actions must be a float array of shape ({}, 2) of (v, omega); got dtype {}",
+                      n, py::str(a.dtype()).cast<std::string>()));
+    if (a.ndim() != 2 || static_cast<std::size_t>(a.shape(0)) != n || a.shape(1) != 2)
+      throw py::value_error(
+          fmt::format("actions must have shape ({}, 2): one (v, omega) per copy; got shape {}", n,
+                      py::str(py::getattr(a, "shape")).cast<std::string>()));
+    const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+    const double* v = d.data();
+    commands_.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!std::isfinite(v[2 * i]) || !std::isfinite(v[2 * i + 1]))
+        throw py::value_error(
+            fmt::format("actions[{}] = ({}, {}) is not finite", i, v[2 * i], v[2 * i + 1]));
+      commands_.push_back(Command::unicycle(v[2 * i], v[2 * i + 1]));
+    }
+  }
+
+  static bool python_controller(const std::vector<ScenarioPtr>& s) {
+    for (const auto& x : s)
+      if (x->python_controller) return true;
+    return false;
+  }
+
+  static std::vector<VecCopy> copies_of(const std::vector<ScenarioPtr>& scenarios) {
+    if (scenarios.empty()) throw py::value_error("a VecEnv needs at least one copy");
+    std::vector<VecCopy> out;
+    for (const auto& s : scenarios) {
+      if (!s) throw py::value_error("a VecEnv scenario is None");
+      if (s->scenario.is_fleet())
+        throw py::value_error(fmt::format(
+            "'{}' is a fleet scenario; a VecEnv steps copies of one robot (its first robot would "
+            "be taken alone: use a scenario with a `robot:` section)",
+            s->scenario.name));
+      out.push_back(
+          {s->scenario.world.get(), &s->scenario.robot(), &s->scenario.sim, s->scenario.name});
+    }
+    return out;
+  }
+
+  std::vector<ScenarioPtr> scenarios_;
+  VecSimulation vec_;
+  bool copy_;
+  RewardParams reward_;
+  std::size_t beams_{0};
+  std::uint64_t base_seed_{0};
+  std::vector<std::uint64_t> episode_;
+  std::vector<double> distance_;        ///< to the current goal, at the current observation
+  std::vector<int> goals_;              ///< goals reached, at the current observation
+  std::vector<std::size_t> step_goal_;  ///< the goal index when the step began
+  std::vector<std::uint8_t> ended_;     ///< the run had ended before this step (no reward)
+  std::vector<Command> commands_;
+  std::optional<Buffers> persistent_;
+  std::optional<Buffers> last_;  ///< the arrays the last step wrote
+  std::atomic<bool> busy_{false};
+};
+
+}  // namespace
+
+void bind_vec_env(py::module_& m) {
+  py::class_<RewardParams>(m, "RewardParams",
+                           "The default VecEnv reward per copy and step: progress * (d_before - "
+                           "d_after) + goal * (goals reached) - collision * (collided) - time * "
+                           "dt, d being the distance to the goal current when the step began.")
+      .def(py::init([](double progress, double goal, double collision, double time) {
+             return RewardParams{progress, goal, collision, time};
+           }),
+           py::arg("progress") = 1.0, py::arg("goal") = 1.0, py::arg("collision") = 1.0,
+           py::arg("time") = 0.0)
+      .def_readwrite("progress", &RewardParams::progress)
+      .def_readwrite("goal", &RewardParams::goal)
+      .def_readwrite("collision", &RewardParams::collision)
+      .def_readwrite("time", &RewardParams::time)
+      .def("__repr__", [](const RewardParams& r) {
+        return fmt::format("RewardParams(progress={}, goal={}, collision={}, time={})", r.progress,
+                           r.goal, r.collision, r.time);
+      });
+
+  py::class_<VecCore>(m, "_VecCore")
+      .def(py::init<std::vector<ScenarioPtr>, int, bool, RewardParams>(), py::arg("scenarios"),
+           py::arg("threads"), py::arg("copy"), py::arg("reward"))
+      .def("reset", &VecCore::reset, py::arg("seed") = py::none())
+      .def("step", &VecCore::step, py::arg("actions"), py::arg("autoreset") = true)
+      .def("reset_ended", &VecCore::reset_ended, py::arg("obs"), py::arg("terminated"),
+           py::arg("truncated"))
+      .def("ended_mask", &VecCore::ended_mask)
+      .def("statuses", &VecCore::statuses)
+      .def("seeds", &VecCore::seeds)
+      .def_property_readonly("n_envs", &VecCore::size)
+      .def_property_readonly("beam_count", &VecCore::beams)
+      .def_property_readonly("threads", &VecCore::threads);
+}
+
+}  // namespace floornav::python

@@ -1,0 +1,176 @@
+#include "floornav/sim/vec_simulation.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
+namespace floornav {
+
+// --- WorkerPool ------------------------------------------------------------------------------
+
+WorkerPool::WorkerPool(int threads) {
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t n = threads > 0 ? static_cast<std::size_t>(threads) : hw;
+  for (std::size_t t = 1; t < n; ++t) workers_.emplace_back([this] { work_loop(); });
+}
+
+WorkerPool::~WorkerPool() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& t : workers_) t.join();
+}
+
+void WorkerPool::take_chunks() {
+  while (true) {
+    std::size_t begin;
+    {
+      std::lock_guard lock(mutex_);
+      if (next_ >= n_ || error_) return;
+      begin = next_;
+      next_ = std::min(n_, next_ + chunk_);
+    }
+    try {
+      (*body_)(begin, std::min(n_, begin + chunk_));
+    } catch (...) {
+      std::lock_guard lock(mutex_);
+      if (!error_) error_ = std::current_exception();
+      return;
+    }
+  }
+}
+
+void WorkerPool::work_loop() {
+  std::uint64_t seen = 0;
+  while (true) {
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+      if (stopping_) return;
+      seen = generation_;
+    }
+    take_chunks();
+    {
+      std::lock_guard lock(mutex_);
+      --busy_;
+    }
+    done_.notify_one();
+  }
+}
+
+void WorkerPool::run(std::size_t n, std::size_t chunk,
+                     const std::function<void(std::size_t, std::size_t)>& body) {
+  if (n == 0) return;
+  chunk = std::max<std::size_t>(chunk, 1);
+  if (workers_.empty() || n <= chunk) {  // nothing to share: no wake-up to pay for
+    body(0, n);
+    return;
+  }
+  {
+    std::lock_guard lock(mutex_);
+    body_ = &body;
+    n_ = n;
+    chunk_ = chunk;
+    next_ = 0;
+    error_ = nullptr;
+    busy_ = workers_.size();
+    ++generation_;
+  }
+  wake_.notify_all();
+  take_chunks();
+  std::exception_ptr error;
+  {
+    std::unique_lock lock(mutex_);
+    done_.wait(lock, [&] { return busy_ == 0; });
+    body_ = nullptr;
+    error = std::exchange(error_, nullptr);
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+// --- VecSimulation ---------------------------------------------------------------------------
+
+namespace {
+// Chunks small enough to balance copies that cost differently, large enough that taking one
+// (a lock) is rare next to stepping it.
+std::size_t chunk_for(std::size_t n, std::size_t threads) {
+  return std::max<std::size_t>(1, n / (8 * threads));
+}
+}  // namespace
+
+VecSimulation::VecSimulation(std::vector<VecCopy> copies, int threads)
+    : copies_(std::move(copies)), pool_(threads) {
+  if (copies_.empty()) throw std::invalid_argument("a vector simulation needs at least one copy");
+  beams_ = copies_.front().task->robot.sensors.size();
+  sims_.reserve(copies_.size());
+  for (const VecCopy& c : copies_) {
+    if (!c.world || !c.task || !c.sim)
+      throw std::invalid_argument("a copy needs a world, a task and sim settings");
+    if (c.task->robot.sensors.size() != beams_)
+      throw std::invalid_argument("every copy must have as many sensors as the first (" +
+                                  std::to_string(beams_) + "), '" + c.name + "' has " +
+                                  std::to_string(c.task->robot.sensors.size()));
+    SimConfig s = *c.sim;
+    s.record_trajectory = false;  // a learner keeps what it needs; a run here is not written out
+    sims_.push_back(s);
+  }
+  agents_.resize(copies_.size());
+  scratch_.assign(copies_.size(), SensingScratch(beams_));
+}
+
+void VecSimulation::reset(std::size_t i, std::uint64_t seed) {
+  const VecCopy& c = copies_.at(i);
+  sims_[i].seed = seed;
+  AgentSetup setup;
+  setup.world = c.world;
+  setup.task = c.task;
+  setup.sim = &sims_[i];
+  {
+    std::lock_guard lock(maker_mutex_);
+    setup.controller = maker_.make(c.task->controller,
+                                   {c.task->robot, c.task->controller.params, c.task->name, 0});
+  }
+  setup.seed = seed;
+  setup.name = c.name;
+  setup.log_transitions = false;  // counts only: resets would otherwise keep growing logs
+  setup.names = false;
+  setup.reserve_trajectory = false;
+  agents_[i].emplace(std::move(setup));
+  agents_[i]->sense(scratch_[i]);
+}
+
+void VecSimulation::reset(std::span<const std::size_t> which, std::span<const std::uint64_t> seeds,
+                          const std::function<void(std::size_t)>& after) {
+  if (which.size() != seeds.size())
+    throw std::invalid_argument("reset: as many seeds as copies are needed");
+  pool_.run(which.size(), chunk_for(which.size(), pool_.size()),
+            [&](std::size_t begin, std::size_t end) {
+              for (std::size_t k = begin; k < end; ++k) {
+                reset(which[k], seeds[k]);
+                if (after) after(which[k]);
+              }
+            });
+}
+
+void VecSimulation::step(std::span<const Command> commands,
+                         const std::function<void(std::size_t)>& after) {
+  if (!commands.empty() && commands.size() != copies_.size())
+    throw std::invalid_argument("step: one command per copy, or none");
+  for (const auto& a : agents_)
+    if (!a) throw std::logic_error("step: every copy must be reset first");
+  pool_.run(copies_.size(), chunk_for(copies_.size(), pool_.size()),
+            [&](std::size_t begin, std::size_t end) {
+              for (std::size_t i = begin; i < end; ++i) {
+                RobotAgent& a = *agents_[i];
+                if (!a.finished()) {
+                  a.act(scratch_[i], commands.empty() ? nullptr : &commands[i]);
+                  a.sense(scratch_[i]);  // the next observation; at the final pose if it ended
+                }
+                if (after) after(i);
+              }
+            });
+}
+
+}  // namespace floornav

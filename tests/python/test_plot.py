@@ -1,0 +1,71 @@
+"""floornav.plot draws what trajectory.svg shows; floornav.animate writes a GIF with Pillow."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+from PIL import Image  # noqa: E402
+
+import floornav  # noqa: E402
+from conftest import SCENARIOS  # noqa: E402
+
+
+def path_lines(ax):
+    return [l for l in ax.lines if l.get_linewidth() == 1.8]
+
+
+def test_plot_draws_the_world_the_path_by_mode_and_the_switches():
+    r = floornav.run(floornav.load_scenario(SCENARIOS / "rectangle.yaml"))
+    ax = floornav.plot(r)
+    # go_to_goal, follow_boundary_cw, go_to_goal: one line per stretch of one mode
+    lines = path_lines(ax)
+    modes = r.trajectory["mode"]
+    stretches = 1 + int(np.count_nonzero(modes[1:] != modes[:-1]))
+    assert len(lines) == stretches == 3
+    assert lines[0].get_color() == "#1f77b4" and lines[1].get_color() == "#ff7f0e"
+    # the lines together hold the whole path
+    xs = np.concatenate([l.get_xdata() for l in lines])
+    assert xs.min() == r.trajectory["x"].min() and xs.max() == r.trajectory["x"].max()
+    switches = [l for l in ax.lines if l.get_marker() == "o" and l.get_markerfacecolor() == "white"]
+    assert len(switches) == len(r.transitions) == 3
+    assert len(ax.patches) >= 3  # the rectangle, the bounds, the robot
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels == ["go_to_goal", "follow_boundary_cw", "mode switch"]
+    assert "rectangle: reached" in ax.get_title()
+    plt.close("all")
+
+
+def test_plot_a_fleet_on_given_axes():
+    r = floornav.run(floornav.load_scenario(SCENARIOS / "fleet_crossing.yaml"))
+    fig, ax = plt.subplots()
+    assert floornav.plot(r, ax=ax) is ax
+    names = [t.get_text() for t in ax.texts]
+    assert len([n for n in names if n]) >= 4  # every robot named at its start
+    plt.close("all")
+
+
+def test_animate_writes_a_gif(tmp_path):
+    r = floornav.run(floornav.load_scenario(SCENARIOS / "week7_pocket.yaml"))
+    from floornav._plot import frame_times
+
+    # 28 s at 4x speed and 5 frames/s: 36 frames, the first included ...
+    times = frame_times(r, fps=5, speed=4.0, max_frames=40)
+    assert len(times) == 36 and times[0] == 0.0 and times[-1] == r.summary["sim_time"]
+    # ... or at most max_frames, spread over the whole run
+    frames = floornav.animate(r, tmp_path / "run.gif", fps=5, speed=4.0, max_frames=8, dpi=30)
+    with Image.open(tmp_path / "run.gif") as im:
+        assert im.format == "GIF"
+        assert im.n_frames == frames == 8
+
+
+def test_animate_refuses_a_run_without_trajectory(tmp_path):
+    r = floornav.run(floornav.load_scenario(SCENARIOS / "week7_pocket.yaml",
+                                            {"sim.record_trajectory": False}))
+    with pytest.raises(ValueError, match="no trajectory"):
+        floornav.animate(r, tmp_path / "x.gif")
+    assert not (tmp_path / "x.gif").exists()
