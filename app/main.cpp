@@ -326,9 +326,10 @@ int main(int argc, char** argv) {
                     "with --worlds: BARN path_N.npy folder, adds optimal_time and the BARN score");
   int batch_floors = 0;
   std::uint64_t batch_floor_seed = 1;
-  batch->add_option("--floors", batch_floors,
-                    "one case per generated factory floor (20 x 20 m, 50 obstacles, a tour of 4 "
-                    "goals): N floors, robot and controller from the template")
+  batch
+      ->add_option("--floors", batch_floors,
+                   "one case per generated factory floor (20 x 20 m, 50 obstacles, a tour of 4 "
+                   "goals): N floors, robot and controller from the template")
       ->check(CLI::Range(1, 100000));
   batch->add_option("--floor-seed", batch_floor_seed, "with --floors: the first floor's seed (1)");
 
@@ -427,8 +428,8 @@ int main(int argc, char** argv) {
       if (batch_floors > 0) {
         if (batch_files.size() != 1)
           throw InputError("", "--floors", "give exactly one template scenario with --floors");
-        source = make_floor_cases(batch_files[0], batch_floors, batch_floor_seed, batch_rq.sets,
-                                  hash);
+        source =
+            make_floor_cases(batch_files[0], batch_floors, batch_floor_seed, batch_rq.sets, hash);
       } else if (!batch_worlds.empty()) {
         if (batch_files.size() != 1)
           throw InputError("", "--worlds", "give exactly one template scenario with --worlds");

@@ -7,7 +7,8 @@
 //
 //   stage_driver WORLD_FILE UPDATES [WARMUP] [ROBOTS]
 //
-// Output: one line, stage updates=<n> seconds=<t> updates_per_s=<u> robot_updates_per_s=<u * ROBOTS>
+// Output: one line, stage updates=<n> seconds=<t> updates_per_s=<u> robot_updates_per_s=<u *
+// ROBOTS>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>

@@ -56,7 +56,8 @@ class PropertyBinder {
       cls_.def_property(
           name,
           [offset](const Owner& o) {
-            return enum_name(*reinterpret_cast<const T*>(reinterpret_cast<const char*>(&o) + offset));
+            return enum_name(
+                *reinterpret_cast<const T*>(reinterpret_cast<const char*>(&o) + offset));
           },
           [offset, name](Owner& o, const std::string& value) {
             *reinterpret_cast<T*>(reinterpret_cast<char*>(&o) + offset) = enum_from<T>(value, name);

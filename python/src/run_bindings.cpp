@@ -15,9 +15,9 @@
 #include "bindings.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/summary_json.hpp"
-#include "floornav/runner/run_summary.hpp"
 #include "floornav/runner/batch.hpp"
 #include "floornav/runner/run_outputs.hpp"
+#include "floornav/runner/run_summary.hpp"
 #include "floornav/scenario/simulate.hpp"
 
 namespace floornav::python {

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <set>
 #include <string>
-#include <type_traits>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "floornav/core/input_error.hpp"

@@ -73,11 +73,11 @@ struct StepCounter {
 BatchCase counting_case(StepCounter& counter, std::size_t id, double t_max = 60.0,
                         double goal_x = 1.0) {
   BatchCase c;
-  c.scenario = load_scenario_text(
-      "world: {bounds: [-1, -1, " + std::to_string(goal_x + 2.0) +
-          ", 1]}\nrobot: {start: [0, 0, 0]}\ngoal: [" +
-          std::to_string(goal_x) + ", 0]\nsim: {t_max: " + std::to_string(t_max) + "}\n",
-      "counting.yaml");
+  c.scenario =
+      load_scenario_text("world: {bounds: [-1, -1, " + std::to_string(goal_x + 2.0) +
+                             ", 1]}\nrobot: {start: [0, 0, 0]}\ngoal: [" + std::to_string(goal_x) +
+                             ", 0]\nsim: {t_max: " + std::to_string(t_max) + "}\n",
+                         "counting.yaml");
   std::atomic<long>* steps = &counter.of(id);
   std::atomic<bool>* stop = &counter.stop;
   const long stop_at = counter.stop_at.count(id) ? counter.stop_at[id] : -1;

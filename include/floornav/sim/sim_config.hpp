@@ -32,7 +32,7 @@ struct SimConfig {
   /// Steps between two recordings of every sensor's range (RunResult::ranges, for the HTML
   /// replay); 0 (the default) records none and costs nothing.
   int record_ranges_every{0};
-  RecordOptions record{};        ///< extra trajectory columns (not a scenario key; see above)
+  RecordOptions record{};  ///< extra trajectory columns (not a scenario key; see above)
 
   template <class Archive>
   void serialize(Archive& a) {
