@@ -7,3 +7,4 @@
 #include "floornav/render.hpp"
 #include "floornav/runner/batch.hpp"
 #include "floornav/runner/run_outputs.hpp"
+#include "floornav/runner/run_summary.hpp"
