@@ -98,7 +98,7 @@ CaseSource make_scen_cases(const std::string& template_file, const std::string& 
   // The template with the benchmark's map, and the first row's start and goal in place of the
   // template's: each of these values is blamed on where it came from, never on a --set.
   const std::string first_line = fmt::format("line {}", first.line);
-  auto pose_of = [&](const MovingAiCase& row) {
+  auto pose_of = [cell_size](const MovingAiCase& row) {  // kept by every case: no reference
     const Vec2 s = movingai_cell_center(row.start_x, row.start_y, row.height, cell_size);
     const Vec2 g = movingai_cell_center(row.goal_x, row.goal_y, row.height, cell_size);
     return std::pair{Pose2{s, std::atan2(g.y() - s.y(), g.x() - s.x())}, g};

@@ -109,6 +109,44 @@ TEST(Cli, BatchWritesOrderedResultsIdenticalForAnyJobCount) {
   EXPECT_DOUBLE_EQ(agg["success_rate"].get<double>(), 1.0);
 }
 
+// Each .scen row's start and goal are its cells' centres at --cell-size, in every case: the cases
+// are made when they run, after the function that read the file has returned (the cell size
+// was once read through a dangling reference there, and the poses came out as 1e-318).
+TEST(Cli, ScenBatchPlacesEveryRowAtItsCellCentres) {
+  const fs::path out = temp_dir("scen_rows");
+  const std::string scen =
+      std::string(FLOORNAV_TEST_DATA_DIR) + "/maps/movingai-mapf/room-32-32-4-random-1.scen";
+  const Output o =
+      floornav("batch " + scenario("movingai_template.yaml") + " --scen " + scen +
+               " --cell-size 0.5 --limit 3 --no-timing --jobs 1 --out " + out.string());
+  ASSERT_EQ(o.status, 0) << o.text;
+  std::istringstream lines(read(out / "results.jsonl"));
+  // Rows 1-3 (file lines 2-4): start cell, goal cell (x, y from the top, 32 rows), optimum.
+  struct Row {
+    int sx, sy, gx, gy;
+    double optimal;
+  };
+  const Row rows[] = {
+      {21, 14, 9, 0, 23.65685425}, {29, 30, 5, 25, 39.82842712}, {1, 25, 22, 22, 25.89949493}};
+  std::string text;
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_TRUE(std::getline(lines, text)) << "line " << k;
+    const auto j = nlohmann::json::parse(text);
+    const Row& r = rows[k];
+    EXPECT_EQ(j["case"], k);
+    EXPECT_EQ(j["source"], scen + ":" + std::to_string(k + 2));
+    // (x + 0.5) * 0.5 and (32 - 1 - y + 0.5) * 0.5: row 1 starts at (10.75, 8.75).
+    EXPECT_DOUBLE_EQ(j["start"][0].get<double>(), (r.sx + 0.5) * 0.5) << text;
+    EXPECT_DOUBLE_EQ(j["start"][1].get<double>(), (31 - r.sy + 0.5) * 0.5) << text;
+    EXPECT_DOUBLE_EQ(j["goals"][0][0].get<double>(), (r.gx + 0.5) * 0.5) << text;
+    EXPECT_DOUBLE_EQ(j["goals"][0][1].get<double>(), (31 - r.gy + 0.5) * 0.5) << text;
+    EXPECT_DOUBLE_EQ(j["optimal_length"].get<double>(), r.optimal * 0.5);
+    // Not a collision at the start: the body is placed on free floor.
+    EXPECT_GT(j["steps"].get<int>(), 0) << text;
+  }
+  EXPECT_FALSE(std::getline(lines, text));
+}
+
 TEST(Cli, BatchWritesTheGridOptimumAndPathEfficiency) {
   const std::string files = scenario("rectangle.yaml") + " " + scenario("circle_obstacle.yaml");
   const fs::path on = temp_dir("optimum_on"), off = temp_dir("optimum_off");
