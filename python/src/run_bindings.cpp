@@ -146,7 +146,10 @@ py::list transitions_of(const RunResult& r) {
     t["t"] = tr.time;
     t["from"] = name(r.mode_names, tr.from, "mode_");
     t["to"] = name(r.mode_names, tr.to, "mode_");
-    t["guard"] = name(r.guard_names, tr.edge, "edge_");
+    if (tr.edge >= 0)
+      t["guard"] = name(r.guard_names, tr.edge, "edge_");
+    else
+      t["guard"] = py::none();  // a mode change no guard made (as summary.json's null)
     t["x"] = i < r.transition_x.size() ? r.transition_x[i] : std::nan("");
     t["y"] = i < r.transition_y.size() ? r.transition_y[i] : std::nan("");
     out.append(t);

@@ -69,7 +69,8 @@ nlohmann::ordered_json summary_to_json(const RunResult& r) {
     t["t"] = number(tr.time);
     t["from"] = mode_name(r, tr.from);
     t["to"] = mode_name(r, tr.to);
-    t["guard"] = name_of(r.guard_names, tr.edge, "edge_");
+    // A mode change that no guard made (a controller without named guards, such as dwa): null.
+    t["guard"] = tr.edge >= 0 ? Json(name_of(r.guard_names, tr.edge, "edge_")) : Json(nullptr);
     t["x"] = number(at_or_nan(r.transition_x, i));
     t["y"] = number(at_or_nan(r.transition_y, i));
     transitions.push_back(std::move(t));
