@@ -224,6 +224,16 @@ TEST(SummaryJson, UnknownIndicesGetPlaceholderNames) {
   EXPECT_EQ(j["transitions"][0]["guard"], "edge_9");
 }
 
+// A mode change that no guard made (dwa's modes, a user's controller giving no guard): null, not
+// an invented name.
+TEST(SummaryJson, ATransitionWithoutAGuardHasANullGuard) {
+  RunResult r = small_run();
+  r.transitions = {Transition{0.5, 0, 1, -1}};
+  const auto j = summary_to_json(r);
+  EXPECT_TRUE(j["transitions"][0]["guard"].is_null());
+  EXPECT_EQ(j["transitions"][0]["to"], "follow_boundary_cw");
+}
+
 // ---- trajectory.csv --------------------------------------------------------------------------
 
 TEST(TrajectoryCsv, HeaderAndRowsExactly) {
