@@ -50,9 +50,9 @@ YAML::Node parse_yaml(const std::string& text, const std::string& file, const st
   const auto at = [&](const YAML::Mark& m) {
     return where.empty() ? fmt::format("line {}", m.line + 1) : where;
   };
-  std::vector<YAML::Node> docs;
+  io_detail::OneDocument doc;
   try {
-    docs = YAML::LoadAll(text);
+    doc = io_detail::load_one_document(text);
   } catch (const YAML::DeepRecursion& e) {
     throw InputError(file, at(e.mark), "not valid YAML: the text nests too deeply");
   } catch (const YAML::ParserException& e) {
@@ -60,8 +60,8 @@ YAML::Node parse_yaml(const std::string& text, const std::string& file, const st
   } catch (const YAML::Exception& e) {
     throw InputError(file, where, std::string("not valid YAML: ") + e.what());
   }
-  if (docs.size() > 1) {
-    const YAML::Mark m = docs[1].Mark();
+  if (doc.second) {
+    const YAML::Mark m = *doc.second;
     const std::string rest =
         m.pos >= 0 && static_cast<std::size_t>(m.pos) < text.size() ? text.substr(m.pos) : "";
     throw InputError(file, at(m),
@@ -70,7 +70,7 @@ YAML::Node parse_yaml(const std::string& text, const std::string& file, const st
                            "follow it (no '---' or '...' with more text after)"
                          : "text after the value: " + quote_input(rest));
   }
-  return docs.empty() ? YAML::Node() : docs[0];
+  return doc.node;
 }
 
 // --- --set overrides ------------------------------------------------------------------------

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <limits>
+#include <sstream>
+
+#include <yaml-cpp/eventhandler.h>
 
 #include <fmt/format.h>
 
@@ -257,6 +260,47 @@ void MapReader::operator()(const char* key, std::uint64_t& field, const char*) {
   if (ec != std::errc() || ptr != s.data() + s.size())
     fail(file_, n, path_of(key), fmt::format("expected a whole number, got {}", quote_input(s)));
   field = v;
+}
+
+namespace {
+
+/// Counts documents and keeps where the second starts; builds nothing.
+class DocumentCounter : public YAML::EventHandler {
+ public:
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    if (++documents == 2) second = mark;
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+
+  int documents{0};
+  std::optional<YAML::Mark> second;
+};
+
+}  // namespace
+
+OneDocument load_one_document(const std::string& text) {
+  OneDocument out;
+  {
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    DocumentCounter counter;
+    // At most two calls: a parser that stops advancing returns true for ever.
+    for (int call = 0; call < 2 && parser.HandleNextDocument(counter); ++call) {
+    }
+    out.second = counter.second;
+  }
+  if (!out.second) out.node = YAML::Load(text);
+  return out;
 }
 
 }  // namespace floornav::io_detail

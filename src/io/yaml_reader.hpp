@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -115,5 +116,17 @@ class MapReader {
   std::vector<Layer> layers_;
   std::set<std::string> known_;
 };
+
+/// A YAML text read as one document: `node` is the first document (null when there is none) and
+/// `second` where a second one starts, if the text holds more (text after `...`, a `---`, or after
+/// a closed flow collection). Instead of YAML::LoadAll, which in yaml-cpp 0.7 never returns on
+/// some inputs (`[3, 2], 0`: the parser stops advancing and every call makes another empty
+/// document, found by the fuzzer), the documents are counted by the parser, at most two.
+/// Throws what yaml-cpp throws for invalid YAML.
+struct OneDocument {
+  YAML::Node node;
+  std::optional<YAML::Mark> second;
+};
+OneDocument load_one_document(const std::string& text);
 
 }  // namespace floornav::io_detail

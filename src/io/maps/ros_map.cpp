@@ -18,6 +18,7 @@
 #include "io/input_file.hpp"
 #include "io/maps/raster_image.hpp"
 #include "io/maps/text_parse.hpp"
+#include "io/yaml_reader.hpp"
 
 namespace floornav {
 namespace {
@@ -98,11 +99,11 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
       io_detail::read_input_file(yaml, "ROS map yaml", io_detail::kMaxMapYamlBytes);
   YAML::Node root;
   try {
-    const std::vector<YAML::Node> docs = YAML::LoadAll(text);
-    if (docs.size() > 1)
-      throw InputError(file, "line " + std::to_string(docs[1].Mark().line + 1),
+    const io_detail::OneDocument doc = io_detail::load_one_document(text);
+    if (doc.second)
+      throw InputError(file, "line " + std::to_string(doc.second->line + 1),
                        "a second YAML document: a map yaml is one document");
-    if (!docs.empty()) root.reset(docs[0]);
+    root.reset(doc.node);
   } catch (const YAML::DeepRecursion& e) {
     throw InputError(file, e.mark.is_null() ? "" : "line " + std::to_string(e.mark.line + 1),
                      "invalid YAML: nested too deeply");
