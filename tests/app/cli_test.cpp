@@ -1,6 +1,8 @@
 // The command-line contract: files written, exit statuses, one clear message for bad input.
 #include <gtest/gtest.h>
 
+#include "cli_harness.hpp"
+
 #include <unistd.h>
 #include <array>
 #include <cstdio>
@@ -15,38 +17,10 @@
 namespace fs = std::filesystem;
 
 namespace {
-struct Output {
-  int status;
-  std::string text;  // stdout and stderr
-};
-
-Output floornav(const std::string& args) {
-  const std::string cmd = std::string(FLOORNAV_BINARY) + " " + args + " 2>&1";
-  Output out{0, ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), p)) out.text += buf.data();
-  const int raw = pclose(p);
-  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return out;
-}
+using namespace cli_harness;
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("floornav_cli_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
-}
-
-std::string scenario(const std::string& file) {
-  return std::string(FLOORNAV_SCENARIO_DIR) + "/" + file;
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return fresh_temp_dir("cli_" + name);
 }
 }  // namespace
 
