@@ -64,8 +64,8 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     a.world = &world_;
     a.task = &t;
     a.sim = &sim_;
-    a.controller =
-        controllers.make(t.controller, {t.robot, t.controller.params, t.name, i, &world});
+    a.controller = controllers.make(
+        t.controller, {t.robot, t.controller.params, t.name, i, &world, robot_seed(sim_.seed, i)});
     a.seed = robot_seed(sim_.seed, i);
     a.name = t.name;
     a.log_transitions = n == 1 || sim_.record_trajectory;
@@ -200,9 +200,8 @@ void FleetSimulation::apply_gaps() {
   // World collisions of this step (robot contacts are not applied yet).
   for (std::size_t i = 0; i < agents_.size(); ++i)
     if (moving_[i] && agents_[i].result().collided)
-      collisions_.push_back(
-          {agents_[i].recorded_time(agents_[i].result().steps), static_cast<int>(i), -1,
-           ContactKind::World});
+      collisions_.push_back({agents_[i].recorded_time(agents_[i].result().steps),
+                             static_cast<int>(i), -1, ContactKind::World});
   // Contacts between bodies at the positions after the move. Robots that stopped or left this
   // step still count: they were there while the others moved.
   for (std::size_t i = 0; i < agents_.size(); ++i) {
@@ -219,9 +218,8 @@ void FleetSimulation::apply_gaps() {
     grid_.for_each_near(p, radius_[i] + max_radius_, [&](std::size_t j) {
       if (j == i || (moving_[j] && j < i)) return;
       if ((positions_[j] - p).norm() - radius_[i] - radius_[j] <= 0.0)
-        collisions_.push_back(
-            {a.recorded_time(a.result().steps), static_cast<int>(i), static_cast<int>(j),
-             ContactKind::Robot});
+        collisions_.push_back({a.recorded_time(a.result().steps), static_cast<int>(i),
+                               static_cast<int>(j), ContactKind::Robot});
     });
     a.collide_with_robot(gap);
   }
