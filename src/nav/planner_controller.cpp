@@ -250,6 +250,21 @@ bool PlannerController::plan_sensed(const Vec2& from, const Vec2& goal, double t
   return attempt(radius_ + p_.inflation) || (p_.inflation > 0.0 && attempt(radius_));
 }
 
+bool PlannerController::sensed_path_clear(const Vec2& x, double t) {
+  const RollingGrid& grid = *grid_;
+  const double c = grid.cell();
+  const GridCell o = grid.origin();
+  const RasterFrame f{Pose2{Vec2(o.x * c, o.y * c), 0.0}, c, grid.side(), grid.side()};
+  grid.inflate(radius_ + p_.inflation, t, raster_);
+  const auto points = path_.points();
+  Vec2 from = x;
+  for (std::size_t i = path_.segment() + 1; i < points.size(); ++i) {
+    if (!line_of_sight(raster_, f.to_cells(from), f.to_cells(points[i]))) return false;
+    from = points[i];
+  }
+  return true;
+}
+
 std::span<const Vec2> PlannerController::points_with_memory(const Observation& obs) {
   if (!grid_ || !(p_.memory_range > 0.0)) return obs.points;
   const std::size_t n = std::min(obs.points.size(), points_.size());
@@ -264,8 +279,14 @@ std::span<const Vec2> PlannerController::points_with_memory(const Observation& o
 Decision PlannerController::follow(const Observation& obs) {
   const Vec2 x = obs.pose.position;
   bool replan = !planned_;
-  if (planned_ && p_.map == PlannerMap::Sensed && obs.t - last_plan_time_ >= p_.replan_period)
-    replan = true;
+  if (planned_ && p_.map == PlannerMap::Sensed && obs.t - last_plan_time_ >= p_.replan_period) {
+    // A sampling planner draws a new, different path every time: replanning a path that is
+    // still clear would move the subgoal about and the robot would dither. Keep it.
+    if (p_.kind == PlannerKind::RrtConnect && sensed_path_clear(x, obs.t))
+      last_plan_time_ = obs.t;
+    else
+      replan = true;
+  }
   if (planned_ && path_.project(x, lookahead_ + corner_) > std::max(lookahead_, 4.0 * radius_))
     replan = true;  // strayed from the path (a long boundary-following episode)
   if (replan && !plan(x, obs.goal, obs.t)) {

@@ -102,6 +102,8 @@ class PlannerController final : public Controller {
   bool plan(const Vec2& from, const Vec2& goal, double t);
   bool plan_known(const Vec2& from, const Vec2& goal);
   bool plan_sensed(const Vec2& from, const Vec2& goal, double t);
+  /// Sensed map: the path from `x` on is still clear of the grid's inflated obstacles.
+  bool sensed_path_clear(const Vec2& x, double t);
   /// The planner kind's path from cell `s` to cell `g` of `raster` (frame `f`), appended to
   /// polyline_ as world points: A*'s cell centres or RRT-Connect's samples. False: none.
   bool search_cells(const FreeRaster& raster, const RasterFrame& f, GridCell s, GridCell g);
