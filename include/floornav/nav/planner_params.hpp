@@ -67,7 +67,7 @@ struct PlannerParams {
   /// rrt_connect: samples (tree extensions) one plan may draw; none connecting start and goal
   /// within them is "no path", as when A* finds none. A count, not a time, so that a plan does
   /// not depend on how fast the machine is.
-  int max_samples{20000};
+  int max_samples{100000};
 
   bool operator==(const PlannerParams&) const = default;
 
