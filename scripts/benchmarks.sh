@@ -152,6 +152,7 @@ fi
 # --- The planning layer (docs/BENCHMARKS.md#planning-layer): the chapter alone, the planner
 # stack and DWA on the same worlds. Rows: hybrid (the chapter), hybrid + astar, dwa, dwa + astar.
 plan_rows=("hybrid|" "hybrid+astar|--set controller.planner.kind=astar"
+           "hybrid+rrt_connect|--set controller.planner.kind=rrt_connect"
            "dwa|--set controller.kind=dwa"
            "dwa+astar|--set controller.kind=dwa --set controller.planner.kind=astar")
 if [[ $what == plan-movingai || $what == plan ]]; then

@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libyaml-cpp-dev libcli11-dev
   nlohmann-json3-dev libfmt-dev libtinyxml2-dev libpng-dev libgtest-dev libgmock-dev
-  libbenchmark-dev libssl-dev python3
+  libbenchmark-dev libssl-dev libompl-dev python3
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-pil)
 missing=()
 for p in "${packages[@]}"; do

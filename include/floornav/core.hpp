@@ -39,6 +39,7 @@
 #include "floornav/nav/progress_checker.hpp"
 #include "floornav/nav/robot_avoidance.hpp"
 #include "floornav/nav/rolling_grid.hpp"
+#include "floornav/nav/sampling_planner.hpp"
 #include "floornav/nav/supervisor_guards.hpp"
 #include "floornav/robot/body_clearance.hpp"
 #include "floornav/robot/robot_spec.hpp"

@@ -95,6 +95,7 @@ std::unique_ptr<Controller> ControllerMaker::make_planned(const ControllerConfig
   setup.robot = &context.robot;
   setup.map = context.map;
   setup.rasters = rasters_;
+  setup.seed = context.seed;
   return std::make_unique<PlannerController>(std::move(setup));
 }
 

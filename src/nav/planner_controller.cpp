@@ -9,6 +9,7 @@
 #include "floornav/geometry/angle.hpp"
 #include "floornav/kinematics/differential_drive.hpp"
 #include "floornav/nav/navigation_automaton.hpp"
+#include "floornav/nav/sampling_planner.hpp"
 #include "floornav/sensing/obstacle_memory.hpp"
 #include "floornav/world/world.hpp"
 
@@ -83,6 +84,7 @@ PlannerController::PlannerController(Setup setup)
       robot_(setup.robot),
       map_(setup.map),
       rasters_(setup.rasters ? setup.rasters : std::make_shared<KnownMapRasters>()),
+      seed_(setup.seed),
       progress_(setup.params.planner.progress_window, 0.0) {
   if (!robot_) throw std::invalid_argument("planner: no robot");
   if (p_.map == PlannerMap::Known && !map_)
@@ -119,7 +121,24 @@ void PlannerController::reset() {
   recoveries_ = 0;
   subgoal_held_ = false;
   last_plan_time_ = kNever;
+  searches_ = 0;
   mode_ = inner_->mode();
+}
+
+bool PlannerController::search_cells(const FreeRaster& raster, const RasterFrame& f, GridCell s,
+                                     GridCell g) {
+  if (p_.kind == PlannerKind::RrtConnect) {
+    // One stream per search (the run's seed and the search's index): the same run, the same
+    // samples, whatever thread it runs on.
+    const std::uint64_t seed = seed_ * 0x100000001b3ULL + ++searches_;
+    if (!rrt_connect_path(raster, s, g, seed, p_.max_samples, samples_)) return false;
+    for (const Vec2& q : samples_) polyline_.push_back(f.to_world(q));
+    return true;
+  }
+  if (!search_.search(raster, s, g, cells_)) return false;
+  for (const GridCell& c : cells_.cells)
+    polyline_.push_back(f.to_world(Vec2(c.x + 0.5, c.y + 0.5)));
+  return true;
 }
 
 int PlannerController::own_mode(Phase p) const {
@@ -183,11 +202,10 @@ bool PlannerController::plan_known(const Vec2& from, const Vec2& goal) {
     const double snap = r / f.cell + 2.0;
     const auto s = snap_to_free(raster, f.to_cells(from), snap);
     const auto g = snap_to_free(raster, f.to_cells(goal), snap);
-    if (!s || !g || !search_.search(raster, *s, *g, cells_)) return false;
+    if (!s || !g) return false;
     polyline_.clear();
     polyline_.push_back(from);
-    for (const GridCell& c : cells_.cells)
-      polyline_.push_back(f.to_world(Vec2(c.x + 0.5, c.y + 0.5)));
+    if (!search_cells(raster, f, *s, *g)) return false;
     polyline_.push_back(goal);
     pull_string(
         polyline_, [&](const Vec2& a, const Vec2& b) { return segment_clear(*map_, a, b, r); },
@@ -216,11 +234,10 @@ bool PlannerController::plan_sensed(const Vec2& from, const Vec2& goal, double t
     const double snap = r / c + 2.0;
     const auto s = snap_to_free(raster_, f.to_cells(from), snap);
     const auto g = snap_to_free(raster_, f.to_cells(plan_goal_), snap);
-    if (!s || !g || !search_.search(raster_, *s, *g, cells_)) return false;
+    if (!s || !g) return false;
     polyline_.clear();
     polyline_.push_back(from);
-    for (const GridCell& cell : cells_.cells)
-      polyline_.push_back(f.to_world(Vec2(cell.x + 0.5, cell.y + 0.5)));
+    if (!search_cells(raster_, f, *s, *g)) return false;
     polyline_.push_back(plan_goal_);
     pull_string(
         polyline_,
@@ -231,6 +248,21 @@ bool PlannerController::plan_sensed(const Vec2& from, const Vec2& goal, double t
     return true;
   };
   return attempt(radius_ + p_.inflation) || (p_.inflation > 0.0 && attempt(radius_));
+}
+
+bool PlannerController::sensed_path_clear(const Vec2& x, double t) {
+  const RollingGrid& grid = *grid_;
+  const double c = grid.cell();
+  const GridCell o = grid.origin();
+  const RasterFrame f{Pose2{Vec2(o.x * c, o.y * c), 0.0}, c, grid.side(), grid.side()};
+  grid.inflate(radius_ + p_.inflation, t, raster_);
+  const auto points = path_.points();
+  Vec2 from = x;
+  for (std::size_t i = path_.segment() + 1; i < points.size(); ++i) {
+    if (!line_of_sight(raster_, f.to_cells(from), f.to_cells(points[i]))) return false;
+    from = points[i];
+  }
+  return true;
 }
 
 std::span<const Vec2> PlannerController::points_with_memory(const Observation& obs) {
@@ -247,8 +279,14 @@ std::span<const Vec2> PlannerController::points_with_memory(const Observation& o
 Decision PlannerController::follow(const Observation& obs) {
   const Vec2 x = obs.pose.position;
   bool replan = !planned_;
-  if (planned_ && p_.map == PlannerMap::Sensed && obs.t - last_plan_time_ >= p_.replan_period)
-    replan = true;
+  if (planned_ && p_.map == PlannerMap::Sensed && obs.t - last_plan_time_ >= p_.replan_period) {
+    // A sampling planner draws a new, different path every time: replanning a path that is
+    // still clear would move the subgoal about and the robot would dither. Keep it.
+    if (p_.kind == PlannerKind::RrtConnect && sensed_path_clear(x, obs.t))
+      last_plan_time_ = obs.t;
+    else
+      replan = true;
+  }
   if (planned_ && path_.project(x, lookahead_ + corner_) > std::max(lookahead_, 4.0 * radius_))
     replan = true;  // strayed from the path (a long boundary-following episode)
   if (replan && !plan(x, obs.goal, obs.t)) {

@@ -85,6 +85,8 @@ void validate_planner(const PlannerParams& p, const RobotKeys& k) {
   if (p.max_recoveries < 0 || p.max_recoveries > 1000)
     bad("max_recoveries", fmt::format("must be in [0, 1000], got {}", p.max_recoveries));
   if (!(p.decay > 0.0)) bad("decay", "must be positive");
+  if (p.max_samples < 1 || p.max_samples > 10000000)
+    bad("max_samples", fmt::format("must be in [1, 10000000], got {}", p.max_samples));
   if (p.cell_size > 0.0 && p.window > 0.0 && p.window / p.cell_size > 2000.0)
     bad("window",
         fmt::format("{} m of {} m cells is more than 2000 cells across", p.window, p.cell_size));

@@ -64,8 +64,8 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     a.world = &world_;
     a.task = &t;
     a.sim = &sim_;
-    a.controller =
-        controllers.make(t.controller, {t.robot, t.controller.params, t.name, i, &world});
+    a.controller = controllers.make(
+        t.controller, {t.robot, t.controller.params, t.name, i, &world, robot_seed(sim_.seed, i)});
     a.seed = robot_seed(sim_.seed, i);
     a.name = t.name;
     a.log_transitions = n == 1 || sim_.record_trajectory;

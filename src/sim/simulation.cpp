@@ -13,8 +13,8 @@ AgentSetup agent_setup(const World& world, const RobotTask& task, const SimConfi
   a.world = &world;
   a.task = &task;
   a.sim = &sim;
-  a.controller = ControllerMaker().make(task.controller,
-                                        {task.robot, task.controller.params, task.name, 0, &world});
+  a.controller = ControllerMaker().make(
+      task.controller, {task.robot, task.controller.params, task.name, 0, &world, sim.seed});
   a.seed = sim.seed;
   a.name = name.empty() ? task.name : std::move(name);
   return a;

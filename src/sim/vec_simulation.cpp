@@ -129,8 +129,8 @@ void VecSimulation::reset(std::size_t i, std::uint64_t seed) {
   setup.sim = &sims_[i];
   {
     std::lock_guard lock(maker_mutex_);
-    setup.controller = maker_.make(c.task->controller,
-                                   {c.task->robot, c.task->controller.params, c.task->name, 0});
+    setup.controller = maker_.make(c.task->controller, {c.task->robot, c.task->controller.params,
+                                                        c.task->name, 0, nullptr, seed});
   }
   setup.seed = seed;
   setup.name = c.name;

@@ -135,3 +135,51 @@ TEST(PlannerOutcomes, WalledOffGoalOnTheSensedMapIsNotReachedAndRecoveriesAreTri
   EXPECT_FALSE(r.collided);
   EXPECT_GT(time_in(r, "recovery_back_up"), 0.0);
 }
+
+// The rrt_connect kind (OMPL's RRT-Connect on the same raster): a QuickBot finds the short way
+// round the wall of long_way() that the chapter alone misses, and the same seed gives the same
+// run bit for bit.
+TEST(PlannerOutcomes, RrtConnectQuickBotTakesTheShortWayTheChapterAloneMisses) {
+  Scenario s = make("quickbot", long_way(), {Vec2(0, 0), kPi / 2}, Vec2(0, 5), 150.0);
+  const RunResult alone = simulate(s);
+  EXPECT_NE(alone.status, RunStatus::Reached) << "the chapter alone goes the long way";
+
+  s.robot().controller.params.planner.kind = PlannerKind::RrtConnect;
+  const RunResult planned = simulate(s);
+  EXPECT_EQ(planned.status, RunStatus::Reached);
+  EXPECT_FALSE(planned.collided);
+  EXPECT_GT(planned.min_clearance, 0.0);
+  // East round the end of the wall (about 6.5 m, as astar's); string pulling straightens the
+  // sampled path, so it is not much longer.
+  EXPECT_LT(planned.path_length, 9.0);
+  EXPECT_EQ(time_in(planned, "recovery_back_up"), 0.0);
+}
+
+TEST(PlannerOutcomes, RrtConnectSameSeedSameTrajectoryBitForBit) {
+  // Mapless: many plans (each path is checked every second and replanned when blocked).
+  Scenario s = make("turtlebot3_burger", long_way(), {Vec2(0, 0), kPi / 2}, Vec2(0, 5), 150.0);
+  s.robot().controller.params.planner.kind = PlannerKind::RrtConnect;
+  s.robot().controller.params.planner.map = PlannerMap::Sensed;
+  s.sim.seed = 11;
+  const RunResult a = simulate(s), b = simulate(s);
+  // It gets there, the long way: 17.2 m where astar drives 6.8 m (docs/SCENARIOS.md says why).
+  EXPECT_EQ(a.status, RunStatus::Reached);
+  EXPECT_FALSE(a.collided);
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (std::size_t i = 0; i < a.trajectory.size(); ++i) {
+    ASSERT_EQ(a.trajectory[i].x, b.trajectory[i].x) << i;
+    ASSERT_EQ(a.trajectory[i].y, b.trajectory[i].y) << i;
+    ASSERT_EQ(a.trajectory[i].theta, b.trajectory[i].theta) << i;
+  }
+}
+
+TEST(PlannerOutcomes, RrtConnectWalledOffGoalIsStuckAtOnceOnAKnownMap) {
+  Scenario s =
+      make("turtlebot3_burger", walled_off(), {Vec2(1.0, 2.0), 0.0}, Vec2(4.5, 2.0), 120.0);
+  s.robot().controller.params.planner.kind = PlannerKind::RrtConnect;
+  s.robot().controller.params.planner.max_samples = 3000;
+  const RunResult r = simulate(s);
+  EXPECT_EQ(r.status, RunStatus::Stuck);
+  EXPECT_FALSE(r.collided);
+  EXPECT_EQ(r.steps, 0) << "no path within the budget: the same as astar finding none";
+}

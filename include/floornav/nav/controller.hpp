@@ -145,6 +145,9 @@ struct ControllerContext {
   /// The map known in advance (the simulator passes its world), for planners that plan on one
   /// (controller.planner.map: known); nullptr when there is none. Reactive kinds ignore it.
   const World* map{nullptr};
+  /// The run's seed (sim.seed; a fleet's robot_seed of it), for controllers that sample (the
+  /// rrt_connect planner): same scenario and seed, the same decisions.
+  std::uint64_t seed{1};
 };
 
 /// Makes one controller per robot (fleets call it once for each robot).

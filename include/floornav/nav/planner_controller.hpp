@@ -23,6 +23,7 @@
 /// Mode names: the inner controller's, then recovery_back_up, recovery_turn, stuck. Guard
 /// names: the inner's, then progress_stalled, no_path, recovered.
 
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -70,6 +71,7 @@ class PlannerController final : public Controller {
     const RobotSpec* robot{nullptr};           ///< must outlive the controller
     const World* map{nullptr};                 ///< the known map (planner.map: known)
     std::shared_ptr<KnownMapRasters> rasters;  ///< shared raster cache; made when null
+    std::uint64_t seed{1};  ///< the run's seed: rrt_connect's samples (ControllerContext::seed)
   };
   /// Throws std::invalid_argument when the known map is asked for and not given.
   explicit PlannerController(Setup setup);
@@ -100,6 +102,11 @@ class PlannerController final : public Controller {
   bool plan(const Vec2& from, const Vec2& goal, double t);
   bool plan_known(const Vec2& from, const Vec2& goal);
   bool plan_sensed(const Vec2& from, const Vec2& goal, double t);
+  /// Sensed map: the path from `x` on is still clear of the grid's inflated obstacles.
+  bool sensed_path_clear(const Vec2& x, double t);
+  /// The planner kind's path from cell `s` to cell `g` of `raster` (frame `f`), appended to
+  /// polyline_ as world points: A*'s cell centres or RRT-Connect's samples. False: none.
+  bool search_cells(const FreeRaster& raster, const RasterFrame& f, GridCell s, GridCell g);
   /// Fills points_ with the observation's points and the remembered ones; the span over them.
   std::span<const Vec2> points_with_memory(const Observation& obs);
   int own_mode(Phase p) const;
@@ -128,6 +135,9 @@ class PlannerController final : public Controller {
   FreeRaster raster_;  ///< sensed map: the inflated window; known: the tight fallback
   std::shared_ptr<const KnownMapRaster> known_;
   std::vector<Vec2> polyline_;  ///< the octile path before pulling
+  std::vector<Vec2> samples_;   ///< rrt_connect: the sampled path, cell units
+  std::uint64_t seed_{1};
+  std::uint64_t searches_{0};  ///< since reset: each sampling search draws from its own stream
   std::vector<Vec2> pulled_;
   std::vector<Vec2> points_;  ///< observation points plus remembered ones
   std::vector<Vec2> remembered_;

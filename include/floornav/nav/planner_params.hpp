@@ -16,6 +16,9 @@ namespace floornav {
 enum class PlannerKind {
   None,   ///< the chapter alone: the automaton drives straight for the goal
   AStar,  ///< octile A* on the inflated raster, string-pulled (world/shortest_path.hpp)
+  /// OMPL's RRT-Connect in R^2 on the same inflated raster, seeded from sim.seed, a budget of
+  /// max_samples per plan, string-pulled like astar (nav/sampling_planner.hpp)
+  RrtConnect,
 };
 
 /// Which map the planner plans on (`planner.map`).
@@ -25,8 +28,10 @@ enum class PlannerMap {
 };
 
 inline std::span<const std::pair<PlannerKind, std::string_view>> enum_names(PlannerKind) {
-  static constexpr std::array<std::pair<PlannerKind, std::string_view>, 2> kNames{
-      {{PlannerKind::None, "none"}, {PlannerKind::AStar, "astar"}}};
+  static constexpr std::array<std::pair<PlannerKind, std::string_view>, 3> kNames{
+      {{PlannerKind::None, "none"},
+       {PlannerKind::AStar, "astar"},
+       {PlannerKind::RrtConnect, "rrt_connect"}}};
   return kNames;
 }
 inline std::span<const std::pair<PlannerMap, std::string_view>> enum_names(PlannerMap) {
@@ -59,12 +64,16 @@ struct PlannerParams {
   /// m of clearance: remembered occupied cells this close to the body are given to the automaton
   /// as obstacle points, besides what the sensors see now (sparse IR rings); 0: off.
   double memory_range{0.0};
+  /// rrt_connect: samples (tree extensions) one plan may draw; none connecting start and goal
+  /// within them is "no path", as when A* finds none. A count, not a time, so that a plan does
+  /// not depend on how fast the machine is.
+  int max_samples{100000};
 
   bool operator==(const PlannerParams&) const = default;
 
   template <class Archive>
   void serialize(Archive& a) {
-    a("kind", kind, "none (the chapter alone) | astar");
+    a("kind", kind, "none (the chapter alone) | astar | rrt_connect");
     a("map", map, "known (the world's map) | sensed (a rolling grid from the robot's ranges)");
     a("radius", radius, "disc the plan is made for, m (0: the body radius)");
     a("inflation", inflation, "margin the plan keeps beyond the radius, m");
@@ -82,6 +91,7 @@ struct PlannerParams {
     a("sense_range", sense_range, "m of each beam entered in the rolling grid (0: sensor range)");
     a("memory_range", memory_range,
       "remembered cells within this clearance are obstacle points for the automaton, m (0: off)");
+    a("max_samples", max_samples, "rrt_connect: samples per plan before it gives up");
   }
 };
 
