@@ -6,7 +6,9 @@
 #      README.md, so the README is what is tested), runs it on an installed chapter scenario and
 #      checks the outcome; the program must be examples/01_go_to_goal.cpp word for word;
 #   3. builds examples/ on their own (find_package) and runs their tests;
-#   4. runs the installed floornav tool on an installed scenario.
+#   4. runs the installed floornav tool on an installed scenario;
+#   5. imports the installed Python package (when the build has it) from outside the repository,
+#      with no PYTHONPATH into the build tree, and runs an installed scenario with it.
 # Usage: scripts/consumer_test.sh [BUILD_DIR]   (default: build; it must be built already)
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
@@ -87,4 +89,18 @@ out=$("$prefix/bin/floornav" run "$prefix/share/floornav/scenarios/week7_pocket.
 [ -f "$work/run/summary.json" ] || fail "the installed floornav wrote no summary.json"
 grep -q '"status": *"reached"' "$work/run/summary.json" ||
   fail "the installed floornav did not reach the goal of week7_pocket.yaml"
+# 5. The installed Python package (built when pybind11 and Debian's Python were found).
+pkg=$(find "$prefix/lib" -path '*-packages/floornav/__init__.py' 2>/dev/null | head -n 1)
+if [ -n "$pkg" ]; then
+  out=$(cd "$work" && PYTHONPATH=$(dirname "$(dirname "$pkg")") /usr/bin/python3 -c '
+import sys, floornav
+assert floornav.__file__.startswith(sys.argv[1]), floornav.__file__
+r = floornav.run(floornav.load_scenario(sys.argv[2]))
+print(floornav.__version__, r.summary["status"])' "$prefix" "$prefix/share/floornav/scenarios/circle_obstacle.yaml" 2>&1) ||
+    fail "the installed Python package failed: $out"
+  [[ "$out" == *" reached" ]] || fail "the installed Python package did not reach the goal: $out"
+  echo "consumer test: installed Python package floornav $out"
+else
+  echo "consumer test: no Python package in this build (skipped)"
+fi
 echo "consumer test: passed"
