@@ -249,10 +249,50 @@ Json robot_json(const Track& t, const SimConfig& sim, std::size_t beam_stride) {
   return j;
 }
 
+/// One person's or forklift's samples, every `stride`-th one and the last, as rows of the run.
+Json crowd_track_json(const CrowdTrack& t, const SimConfig& sim, std::size_t stride) {
+  std::vector<std::int64_t> rows;
+  std::vector<double> xs, ys, ths;
+  for (std::size_t i = 0; i < t.samples.size(); ++i) {
+    if (i % stride != 0 && i + 1 != t.samples.size()) continue;
+    const CrowdSample& c = t.samples[i];
+    const std::int64_t row = std::isfinite(c.t / sim.dt) ? std::llround(c.t / sim.dt) : 0;
+    if (!rows.empty() && row <= rows.back()) continue;  // rows strictly increase
+    rows.push_back(row);
+    xs.push_back(c.x);
+    ys.push_back(c.y);
+    ths.push_back(c.theta);
+  }
+  Json j;
+  j["name"] = t.name;
+  j["size"] = {micro(t.size.x()), micro(t.size.y())};
+  j["track"] = pose_series(rows, xs, ys, ths);
+  return j;
+}
+
+Json crowd_json(const CrowdResult& c, const SimConfig& sim) {
+  std::size_t samples = 0;
+  for (const auto* group : {&c.people, &c.forklifts})
+    for (const CrowdTrack& t : *group) samples += t.samples.size();
+  const std::size_t stride =
+      std::max<std::size_t>(1, (samples + kMaxReplayCrowdSamples - 1) / kMaxReplayCrowdSamples);
+  Json j;
+  j["people"] = Json::array();
+  for (const CrowdTrack& t : c.people) j["people"].push_back(crowd_track_json(t, sim, stride));
+  j["forklifts"] = Json::array();
+  for (const CrowdTrack& t : c.forklifts)
+    j["forklifts"].push_back(crowd_track_json(t, sim, stride));
+  j["person_contacts"] = c.metrics.person_contacts;
+  j["forklift_contacts"] = c.metrics.forklift_contacts;
+  j["intrusions"] = c.metrics.intrusions;
+  return j;
+}
+
 }  // namespace
 
 Json replay_data(const World* world, std::span<const Track> tracks, const SimConfig& sim,
-                 const Caption& caption, std::string_view status, double duration) {
+                 const Caption& caption, std::string_view status, double duration,
+                 const CrowdResult* crowd) {
   Json j;
   j["format"] = "floornav-replay";
   j["version"] = 1;
@@ -281,6 +321,7 @@ Json replay_data(const World* world, std::span<const Track> tracks, const SimCon
   Json robots = Json::array();
   for (const Track& t : tracks) robots.push_back(robot_json(t, sim, stride));
   j["robots"] = std::move(robots);
+  j["crowd"] = crowd && !crowd->empty() ? crowd_json(*crowd, sim) : Json(nullptr);
   return j;
 }
 

@@ -19,22 +19,27 @@
 ///            mode_runs [row, mode, ...], switches [row, from, to, guard, ...],
 ///            sensors [[x, y, theta, max_range, cone_angle]],
 ///            beams {k, x, y, th (delta-coded, as track), r: mm per sensor per frame, -1 for
-///                   nothing seen} | null}]}
+///                   nothing seen} | null}],
+///  crowd: null | {people: [{name, size [length, width] (m), track {k, x, y, th}}],
+///                 forklifts: [the same], person_contacts, forklift_contacts, intrusions}}
 
 #include <span>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "floornav/sim/crowd.hpp"
 #include "floornav/sim/sim_config.hpp"
 #include "picture_layout.hpp"
 #include "run_caption.hpp"
 
 namespace floornav::render_detail {
 
-/// The replay of `tracks` in `world` (may be null); `status` and `duration` (s) of the whole run.
+/// The replay of `tracks` in `world` (may be null); `status` and `duration` (s) of the whole run;
+/// `crowd`, when given and not empty, the people and forklifts that moved with them.
 nlohmann::ordered_json replay_data(const World* world, std::span<const Track> tracks,
                                    const SimConfig& sim, const Caption& caption,
-                                   std::string_view status, double duration);
+                                   std::string_view status, double duration,
+                                   const CrowdResult* crowd = nullptr);
 
 }  // namespace floornav::render_detail

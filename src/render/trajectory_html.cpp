@@ -80,9 +80,10 @@ std::string fill_template(
 }
 
 std::string render_page(const Scenario& scenario, std::span<const Track> tracks,
-                        const Caption& caption, std::string_view status, double duration) {
+                        const Caption& caption, std::string_view status, double duration,
+                        const CrowdResult* crowd = nullptr) {
   const std::string data = script_safe_json(
-      replay_data(scenario.world.get(), tracks, scenario.sim, caption, status, duration));
+      replay_data(scenario.world.get(), tracks, scenario.sim, caption, status, duration, crowd));
   const std::string title = html_text(caption.title);
   return fill_template(kReplayTemplate, {{"title", title},
                                          {"style", kReplayStyle},
@@ -120,7 +121,8 @@ std::string render_fleet_html(const Scenario& s, const FleetResult& f) {
   for (std::size_t i = 0; i < f.robots.size() && i < s.robots.size(); ++i)
     tracks.push_back({&s.robots[i], &f.robots[i], robot_color(i)});
   if (tracks.size() == 1) tracks.front().color.clear();
-  return render_page(s, tracks, fleet_caption(s, f), to_string(f.status), duration_of(tracks));
+  return render_page(s, tracks, fleet_caption(s, f), to_string(f.status), duration_of(tracks),
+                     &f.crowd);
 }
 
 }  // namespace floornav

@@ -87,6 +87,39 @@ function writeMapScenario() {
   return scenario;
 }
 
+/**
+ * A walled 10 x 6 m hall: a QuickBot crossing it low, a person walking across the top and a
+ * forklift driving the middle; returns the scenario's path.
+ */
+function writeCrowdScenario() {
+  const scenario = path.join(work, 'crowd_run.yaml');
+  fs.writeFileSync(scenario, [
+    'name: crowd',
+    'world: {bounds: [0, 0, 10, 6]}',
+    'robot: {preset: quickbot, start: [1, 0.8, 0]}',
+    'goal: [9, 0.8]',
+    'people:',
+    '  - {name: ann, start: [1.5, 5], waypoints: [[8.5, 5]], speed: 1.0, cyclic: false}',
+    'forklifts:',
+    '  - {name: fork1, route: [[1.5, 3], [8.5, 3]], speed: 0.8, size: [1.2, 0.6], cyclic: false}',
+    'sim: {t_max: 60}',
+    '',
+  ].join('\n'));
+  return scenario;
+}
+
+/** crowd.csv -> {name: [{t, kind, x, y, theta}]}. */
+function readCrowdCsv(file) {
+  const lines = fs.readFileSync(file, 'utf8').trim().split('\n');
+  assert.equal(lines[0], 't,kind,name,x,y,theta');
+  const byName = {};
+  for (const line of lines.slice(1)) {
+    const [t, kind, name, x, y, theta] = line.split(',');
+    (byName[name] ??= []).push({ t: +t, kind, x: +x, y: +y, theta: +theta });
+  }
+  return byName;
+}
+
 /** trajectory.csv -> {robot name: [{t, x, y, theta, mode}]} (a lone robot is named ''). */
 function readCsv(file) {
   const lines = fs.readFileSync(file, 'utf8').trim().split('\n');
@@ -238,10 +271,12 @@ function colorGap(a, b) {
 let single;
 let fleet;
 let map;
+let crowd;
 before(async () => {
   single = run('rectangle.yaml', path.join(work, 'rectangle'));
   fleet = run('fleet_crossing.yaml', path.join(work, 'fleet'));
   map = run(writeMapScenario(), path.join(work, 'map'));
+  crowd = run(writeCrowdScenario(), path.join(work, 'crowd'));
   browser = await puppeteer.launch({
     executablePath: chromium,
     headless: true,
@@ -254,7 +289,7 @@ after(async () => {
 });
 
 test('the page loads with no console error and requests nothing but itself', async () => {
-  for (const dir of [single, fleet, map]) {
+  for (const dir of [single, fleet, map, crowd]) {
     const { page, problems, requests, url, openMs } = await open(path.join(dir, 'trajectory.html'));
     // Let a few frames run, so that drawing errors would show.
     await nextFrames(page);
@@ -343,6 +378,50 @@ test('a screenshot at a known time shows the robot where the CSV says', async ()
     assert.ok(Math.hypot(start.x - centre.x, start.y - centre.y) > 4 * bodyPx);
     assert.ok(colorGap(png.at(start.x, start.y - 0.5 * bodyPx), want) > 60, 'no body at the start');
   }
+  await page.close();
+});
+
+test('people and forklifts move as crowd.csv says, and are drawn where they are', async () => {
+  const csv = readCrowdCsv(path.join(crowd, 'crowd.csv'));
+  assert.deepEqual(Object.keys(csv).sort(), ['ann', 'fork1']);
+  const { page, problems } = await open(path.join(crowd, 'trajectory.html'));
+  const duration = await page.evaluate(() => window.floornavReplay.duration);
+  // Every 50th recorded state of each (the replay keeps them to the millimetre).
+  const times = csv.ann.filter((_, i) => i % 50 === 0).map((r) => r.t).filter((t) => t <= duration);
+  const states = await page.evaluate((ts) => ts.map((t) => {
+    window.floornavReplay.seek(t);
+    return window.floornavReplay.state().crowd;
+  }), times);
+  let worst = 0;
+  states.forEach((shown, i) => {
+    assert.equal(shown.length, 2);
+    for (const c of shown) {
+      const row = rowAt(csv[c.name], times[i]);
+      assert.equal(c.kind, row.kind);
+      const gap = Math.hypot(c.x - row.x, c.y - row.y);
+      worst = Math.max(worst, gap);
+      assert.ok(gap <= POSITION_TOLERANCE, `${c.name} at t=${times[i]}: ${gap} m from crowd.csv`);
+    }
+  });
+  // Mid-way, the person's disc is drawn in the people's colour where the CSV puts her, and the
+  // forklift's rectangle where it is; where the person started there is nobody any more.
+  const row = csv.ann[Math.floor(csv.ann.length / 2)];
+  const fork = rowAt(csv.fork1, row.t);
+  await page.evaluate((t) => window.floornavReplay.seek(t), row.t);
+  await nextFrames(page);
+  const [at, behind, forkAt, start] = await page.evaluate((r, f, s) => [
+    window.floornavReplay.toPage(r.x, r.y),
+    window.floornavReplay.toPage(r.x - 0.15 * Math.cos(r.theta), r.y - 0.15 * Math.sin(r.theta)),
+    window.floornavReplay.toPage(f.x - 0.3 * Math.cos(f.theta), f.y - 0.3 * Math.sin(f.theta)),
+    window.floornavReplay.toPage(s.x, s.y),
+  ], row, fork, csv.ann[0]);
+  assert.ok(Math.hypot(at.x - start.x, at.y - start.y) > 40, 'the person has moved on screen');
+  const png = decodePng(Buffer.from(await page.screenshot({ type: 'png' })));
+  assert.ok(colorGap(png.at(behind.x, behind.y), hexRgb('#7b3fa0')) <= 50, `person pixel ${png.at(behind.x, behind.y)}`);
+  assert.ok(colorGap(png.at(forkAt.x, forkAt.y), hexRgb('#b35900')) <= 50, `forklift pixel ${png.at(forkAt.x, forkAt.y)}`);
+  assert.ok(colorGap(png.at(start.x, start.y), hexRgb('#7b3fa0')) > 80, 'no person at her start any more');
+  assert.deepEqual(problems, []);
+  console.log(`  crowd: ${states.length} times x 2, worst position error ${(worst * 1000).toFixed(2)} mm`);
   await page.close();
 });
 

@@ -185,6 +185,34 @@ TEST(TrajectoryHtml, NoNameCanEndTheScriptEarly) {
             std::string::npos);
 }
 
+TEST(TrajectoryHtml, AFleetsCrowdIsThinnedToItsBudgetAndKeepsItsLastState) {
+  Scenario s = hall(1);
+  s.sim.dt = 0.01;
+  FleetResult f;
+  f.scenario = "hall";
+  f.robots.push_back(wiggly_run("r0", 100, 1.0));
+  // 30 people and a forklift walking for 10 minutes: 31 x 60,001 = 1,860,031 states; the budget
+  // of 200,000 keeps every 10th (ceil(1,860,031 / 200,000)) and the last.
+  for (int p = 0; p <= 30; ++p) {
+    CrowdTrack t;
+    t.name = p < 30 ? robot_name(p) : "fork";
+    t.size = p < 30 ? Vec2(0.5, 0.5) : Vec2(1.8, 0.9);
+    for (int k = 0; k <= 60000; ++k) t.samples.push_back({0.01 * k, 0.001 * k, 1.0 * p, 0.0});
+    (p < 30 ? f.crowd.people : f.crowd.forklifts).push_back(std::move(t));
+  }
+  f.crowd.metrics.intrusions = 3;
+  const std::string html = render_fleet_html(s, f);
+  EXPECT_LT(html.size(), 5'000'000u);
+  // Rows 0, 10, 20, ... 60000: the last sample (row 60000) is a kept one.
+  EXPECT_NE(html.find("\"name\":\"r0\",\"size\":[0.5,0.5],\"track\":{\"k\":[0,10,10,"),
+            std::string::npos);
+  EXPECT_NE(html.find("\"name\":\"fork\",\"size\":[1.8,0.9]"), std::string::npos);
+  EXPECT_NE(html.find("\"intrusions\":3"), std::string::npos);
+  // Without people or forklifts the replay says so.
+  f.crowd = {};
+  EXPECT_NE(render_fleet_html(s, f).find("\"crowd\":null"), std::string::npos);
+}
+
 TEST(TrajectoryHtml, ARunWithoutRangesHasNoBeams) {
   RunResult r = wiggly_run("quiet", 100, 1.0);
   r.range_steps.clear();

@@ -10,7 +10,9 @@
 /// Positions are kept where linear interpolation in time would miss a recorded row by more than
 /// 9 mm or 0.01 rad (stored in millimetres, so what the page shows at a recorded time is within
 /// 1 cm of trajectory.csv). The beams come from RunResult::ranges (sim.record_ranges_every; a
-/// run without them shows no beams), thinned to at most kMaxReplayRangeValues ranges.
+/// run without them shows no beams), thinned to at most kMaxReplayRangeValues ranges. A fleet's
+/// people (discs) and forklifts (rectangles) move with the robots, from FleetResult::crowd, at
+/// most kMaxReplayCrowdSamples positions in all (every n-th step, linear in between).
 
 #include <cstddef>
 #include <string>
@@ -23,6 +25,8 @@ namespace floornav {
 
 /// Ranges a replay holds at most (over all robots and frames): about 1.5 MB of the file.
 inline constexpr std::size_t kMaxReplayRangeValues = 300'000;
+/// People's and forklifts' positions a replay holds at most (all of them together).
+inline constexpr std::size_t kMaxReplayCrowdSamples = 200'000;
 
 /// The sim.record_ranges_every that a run of `scenario` needs for its replay's beams: every
 /// step when the robots' sensors over t_max fit kMaxReplayRangeValues, else the fewest steps

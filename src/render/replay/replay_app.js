@@ -20,6 +20,8 @@
     beamHit: 'rgba(214, 39, 40, 0.55)',
     point: '#d62728',
     collided: '#d62728',
+    person: '#7b3fa0',
+    forklift: '#b35900',
   };
   const GRID_RGBA = { 1: [169, 173, 179, 255], 2: [222, 214, 240, 255] };
 
@@ -68,6 +70,16 @@
   });
   const duration = data.duration;
   const lastRow = Math.round(C.timeToRow(data, duration));
+  // People (discs) and forklifts (rectangles): their tracks, as the robots' are stored.
+  const crowd = [];
+  if (data.crowd) {
+    data.crowd.people.forEach(function (p) {
+      crowd.push({ kind: 'person', name: p.name, size: p.size, track: C.decodeSeries(p.track) });
+    });
+    data.crowd.forklifts.forEach(function (f) {
+      crowd.push({ kind: 'forklift', name: f.name, size: f.size, track: C.decodeSeries(f.track) });
+    });
+  }
 
   // The trail: the kept rows plus a point at every mode change (interpolated), each with its
   // mode, so that a lone robot's trail changes colour exactly where the mode did.
@@ -157,6 +169,10 @@
       });
     }
     items.push([COLORS.band, 'd_o band (guard distance)']);
+    const people = crowd.filter(function (c) { return c.kind === 'person'; }).length;
+    if (people) items.push([COLORS.person, people === 1 ? 'person' : people + ' people']);
+    const forklifts = crowd.length - people;
+    if (forklifts) items.push([COLORS.forklift, forklifts === 1 ? 'forklift' : forklifts + ' forklifts']);
     if (data.world.grid && data.world.grid.rle.some(function (v, i) { return i % 2 === 0 && v === 2; })) {
       items.push(['rgb(222,214,240)', 'unknown (map)']);
     }
@@ -283,6 +299,10 @@
         const s = robotState(robot, row);
         return { name: robot.name, x: s.pose.x, y: s.pose.y, theta: s.pose.theta, mode: modeName(robot, s.mode) };
       }),
+      crowd: crowd.map(function (c) {
+        const p = C.poseAt(c.track, row);
+        return { kind: c.kind, name: c.name, x: p.x, y: p.y, theta: p.theta };
+      }),
     };
   }
 
@@ -351,6 +371,7 @@
     for (const r of robots) drawTrail(r, row, px);
     for (const r of robots) drawBand(r, states[r.index], px);
     for (const r of robots) drawBeams(r, row, px);
+    drawCrowd(row, px);
     for (const r of robots) drawBody(r, states[r.index], px);
     ctx.restore();
     drawLabels(states);
@@ -581,6 +602,43 @@
       ctx.beginPath();
       ctx.arc(points[i], points[i + 1], 2.5 * px, 0, 2 * Math.PI);
       ctx.fill();
+    }
+  }
+
+  // People as discs with a tick in their walking direction, forklifts as their rectangles.
+  function drawCrowd(row, px) {
+    for (const c of crowd) {
+      const p = C.poseAt(c.track, row);
+      ctx.beginPath();
+      if (c.kind === 'person') {
+        ctx.arc(p.x, p.y, Math.max(0.5 * c.size[0], 3 * px), 0, 2 * Math.PI);
+      } else {
+        const cos = Math.cos(p.theta);
+        const sin = Math.sin(p.theta);
+        const hl = 0.5 * c.size[0];
+        const hw = 0.5 * c.size[1];
+        [[hl, hw], [-hl, hw], [-hl, -hw], [hl, -hw]].forEach(function (q, i) {
+          const x = p.x + q[0] * cos - q[1] * sin;
+          const y = p.y + q[0] * sin + q[1] * cos;
+          if (i === 0) ctx.moveTo(x, y);
+          else ctx.lineTo(x, y);
+        });
+        ctx.closePath();
+      }
+      ctx.fillStyle = c.kind === 'person' ? COLORS.person : COLORS.forklift;
+      ctx.globalAlpha = 0.85;
+      ctx.fill();
+      ctx.globalAlpha = 1;
+      ctx.strokeStyle = '#263238';
+      ctx.lineWidth = 1.2 * px;
+      ctx.stroke();
+      const front = 0.5 * c.size[0];
+      ctx.beginPath();
+      ctx.moveTo(p.x, p.y);
+      ctx.lineTo(p.x + front * Math.cos(p.theta), p.y + front * Math.sin(p.theta));
+      ctx.strokeStyle = '#ffffff';
+      ctx.lineWidth = 1.6 * px;
+      ctx.stroke();
     }
   }
 
