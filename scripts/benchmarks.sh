@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Reproduces the tables of docs/BENCHMARKS.md. Usage:
 #   scripts/benchmarks.sh [chapter|fleet|avoidance|crowd|movingai|ros|barn|all]
-#   scripts/benchmarks.sh [plan-movingai|plan-barn|plan-floors|plan]   (the planning layer and DWA)
+#   scripts/benchmarks.sh [plan-movingai|plan-barn|plan-floors|plan-fleets|plan]   (the planning layer and DWA)
 # Needs ./build (scripts/quickstart.sh) and ../shared/maps beside the repository.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -205,5 +205,17 @@ if [[ $what == plan-floors || $what == plan ]]; then
     $fn batch scenarios/floor_template.yaml --floors 200 --floor-seed 1001 $sets --no-timing \
       --no-optimum --out "$out/plan-floors-$label" >/dev/null
     row "$label" "$out/plan-floors-$label/aggregate.json"
+  done
+fi
+if [[ $what == plan-fleets || $what == plan ]]; then
+  # The fleet and crowd files as they are (their own robot_avoidance), each row's controller.
+  echo "### Fleets, people and forklifts (scenarios/fleet_*.yaml, scenarios/crowd/*.yaml)"
+  echo "| scenario | case | robots | reached | robot-robot collisions | world collisions | deliveries | time (s) | min clearance (m) | person contacts | forklift contacts | intrusions | min person gap (m) | robot wait (s) | people blocked (s) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  for row in "${plan_rows[@]}"; do
+    label=${row%%|*}; sets=${row#*|}
+    $fn batch scenarios/fleet_*.yaml scenarios/crowd/*.yaml $sets --no-timing \
+      --out "$out/plan-fleets-$label" >/dev/null
+    fleet_rows "$label" "$out/plan-fleets-$label/results.jsonl"
   done
 fi
