@@ -537,29 +537,36 @@ bool run_octile_astar(SearchBuffers& b, const FreeRaster& raster, GridCell start
     ++expanded;
     if (u == t) break;
     const int ux = static_cast<int>(u % w), uy = static_cast<int>(u / w);
-    // Away from the raster's border every neighbour exists: no bounds checks.
-    const bool inner = ux > 0 && uy > 0 && ux + 1 < width && uy + 1 < height;
     const double gu = cell[u].g;
-    for (int k = 0; k < 8; ++k) {
-      const int vx = ux + kDx[k], vy = uy + kDy[k];
-      const bool diagonal = k >= 4;
-      if (inner) {
-        if (!free[u + kStep[k]]) continue;
-        if (diagonal && (!free[u + kDx[k]] || !free[u + kStep[k] - kDx[k]])) continue;
-      } else {
-        if (!raster.is_free(vx, vy)) continue;
-        if (diagonal && (!raster.is_free(ux + kDx[k], uy) || !raster.is_free(ux, uy + kDy[k])))
-          continue;  // no corner cutting
-      }
-      const std::size_t v = index(vx, vy);
+    // Neighbour v = u + kStep[k] (k < 4 straight, else diagonal) is reached through a free cell,
+    // not by cutting a corner; the order of the relaxations does not matter (each pair once).
+    auto relax = [&](int k) {
+      const std::size_t v = u + static_cast<std::size_t>(kStep[k]);
       CellState& cv = cell[v];
       const std::uint32_t m = cv.mark;
-      if (m == closed_mark) continue;
-      const double gv = gu + (diagonal ? kSqrt2 : 1.0);
+      if (m == closed_mark) return;
+      const double gv = gu + (k >= 4 ? kSqrt2 : 1.0);
       if (m != open_mark || gv < cv.g) {
         cv = {gv, static_cast<std::int32_t>(u), open_mark};
-        push(gv + octile_distance(goal.x - vx, goal.y - vy), gv, v);
+        push(gv + octile_distance(goal.x - ux - kDx[k], goal.y - uy - kDy[k]), gv, v);
       }
+    };
+    if (ux > 0 && uy > 0 && ux + 1 < width && uy + 1 < height) {
+      // Away from the raster's border every neighbour exists: the moves as a bit mask of the
+      // 3 x 3 block, without bounds checks or a branch per neighbour.
+      const std::uint8_t* c = free + u;
+      const unsigned e = c[1] != 0, west = c[-1] != 0, n = c[sw] != 0, south = c[-sw] != 0;
+      unsigned moves = e | west << 1 | n << 2 | south << 3 | (e & n & (c[sw + 1] != 0)) << 4 |
+                       (e & south & (c[-sw + 1] != 0)) << 5 | (west & n & (c[sw - 1] != 0)) << 6 |
+                       (west & south & (c[-sw - 1] != 0)) << 7;
+      for (; moves != 0; moves &= moves - 1) relax(std::countr_zero(moves));
+      continue;
+    }
+    for (int k = 0; k < 8; ++k) {
+      if (!raster.is_free(ux + kDx[k], uy + kDy[k])) continue;
+      if (k >= 4 && (!raster.is_free(ux + kDx[k], uy) || !raster.is_free(ux, uy + kDy[k])))
+        continue;  // no corner cutting
+      relax(k);
     }
   }
   if (cell[t].mark != closed_mark) return false;
