@@ -269,6 +269,53 @@ TEST(OctileAstar, RandomRastersGiveThePlainSearchsPathCellForCell) {
   EXPECT_GT(none, 50);
 }
 
+// Open rasters with a few blocks, as the batch's floors are: wide plateaus of equal f (hundreds
+// of open entries that tie, and f values an ulp apart after long sums of 1 and sqrt 2), where
+// the open list keeps its ties in a sorted vector rather than a heap. Every search, fresh or on
+// reused buffers, finds the plain search's path cell for cell and its length to the bit; the
+// detours make it expand far more cells than the path has (the ties are really exercised).
+TEST(OctileAstar, OpenRastersWithBlocksGiveThePlainSearchsPathCellForCell) {
+  Rng rng(2026);
+  GridSearch search;
+  GridPath reused;
+  int detours = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    FreeRaster r;
+    r.width = 120 + static_cast<int>(rng.uniform(0.0, 130.0));
+    r.height = 100 + static_cast<int>(rng.uniform(0.0, 120.0));
+    r.free.assign(static_cast<std::size_t>(r.width * r.height), 1);
+    const int blocks = 3 + static_cast<int>(rng.uniform(0.0, 25.0));
+    for (int k = 0; k < blocks; ++k) {
+      const int x0 = static_cast<int>(rng.uniform(0.0, r.width - 1e-9));
+      const int y0 = static_cast<int>(rng.uniform(0.0, r.height - 1e-9));
+      const int bw = 2 + static_cast<int>(rng.uniform(0.0, 40.0));
+      const int bh = 2 + static_cast<int>(rng.uniform(0.0, 40.0));
+      for (int y = y0; y < std::min(r.height, y0 + bh); ++y)
+        for (int x = x0; x < std::min(r.width, x0 + bw); ++x)
+          r.free[static_cast<std::size_t>(y * r.width + x)] = 0;
+    }
+    auto free_cell = [&] {
+      for (;;) {
+        const GridCell c{static_cast<int>(rng.uniform(0.0, r.width - 1e-9)),
+                         static_cast<int>(rng.uniform(0.0, r.height - 1e-9))};
+        if (r.is_free(c.x, c.y)) return c;
+      }
+    };
+    const GridCell a = free_cell(), b = free_cell();
+    const auto want = reference_astar(r, a, b);
+    const auto got = octile_astar(r, a, b);
+    ASSERT_EQ(got.has_value(), want.has_value()) << trial;
+    ASSERT_EQ(search.search(r, a, b, reused), want.has_value()) << trial;
+    if (!want) continue;
+    EXPECT_EQ(got->cells, want->cells) << trial;
+    EXPECT_EQ(got->length, want->length) << trial;
+    EXPECT_EQ(reused.cells, want->cells) << trial;
+    EXPECT_EQ(reused.length, want->length) << trial;
+    if (search.expanded() > 4 * want->cells.size()) ++detours;
+  }
+  EXPECT_GT(detours, 10);
+}
+
 // The MovingAI benchmark's own optima (octile, no corner cutting), row by row: octile_astar on the
 // map's cells, and scenario_optimum's octile length on the map as a world (1 m cells, r = 0.1 m, so
 // every free cell's centre is free: its clearance is at least half a cell).
