@@ -540,7 +540,7 @@ bool run_octile_astar(SearchBuffers& b, const FreeRaster& raster, GridCell start
     const double gu = cell[u].g;
     // Neighbour v = u + kStep[k] (k < 4 straight, else diagonal) is reached through a free cell,
     // not by cutting a corner; the order of the relaxations does not matter (each pair once).
-    auto relax = [&](int k) {
+    auto relax = [&](int k) __attribute__((always_inline)) {
       const std::size_t v = u + static_cast<std::size_t>(kStep[k]);
       CellState& cv = cell[v];
       const std::uint32_t m = cv.mark;
