@@ -579,6 +579,147 @@ bool run_octile_astar(SearchBuffers& b, const FreeRaster& raster, GridCell start
   return true;
 }
 
+/// Jump point search (Harabor and Grastien 2011) for octile moves without corner cutting (the
+/// rules of PathFinding.js's JPFMoveDiagonallyIfNoObstacles): the same optimal octile length as
+/// run_octile_astar, found by expanding only the jump points, where a straight run meets a
+/// forced turn or a diagonal run sees one along its straight sub-runs. Same working memory and
+/// open list; `expanded` counts the jump points expanded. The path is one of the optimal ones,
+/// not necessarily run_octile_astar's (ties go another way), filled in cell by cell.
+class JumpPoints {
+ public:
+  JumpPoints(const FreeRaster& raster, GridCell goal)
+      : free_(raster.free.data()), w_(raster.width), h_(raster.height), goal_(goal) {}
+
+  bool is_free(int x, int y) const {
+    return x >= 0 && y >= 0 && x < w_ && y < h_ &&
+           free_[static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) +
+                 static_cast<std::size_t>(x)] != 0;
+  }
+
+  /// The jump point reached from (x, y) by straight steps (dx, dy) (one of them 0), if any.
+  std::optional<GridCell> straight(int x, int y, int dx, int dy) const {
+    for (;;) {
+      x += dx;
+      y += dy;
+      if (!is_free(x, y)) return std::nullopt;
+      if (x == goal_.x && y == goal_.y) return GridCell{x, y};
+      // A forced neighbour: a side cell reachable (without cutting the corner) only through here.
+      if (dx != 0) {
+        if ((is_free(x, y - 1) && !is_free(x - dx, y - 1)) ||
+            (is_free(x, y + 1) && !is_free(x - dx, y + 1)))
+          return GridCell{x, y};
+      } else if ((is_free(x - 1, y) && !is_free(x - 1, y - dy)) ||
+                 (is_free(x + 1, y) && !is_free(x + 1, y - dy))) {
+        return GridCell{x, y};
+      }
+    }
+  }
+
+  /// The jump point reached from (x, y) by diagonal steps (dx, dy), if any: the first cell of the
+  /// run whose straight sub-runs find one.
+  std::optional<GridCell> diagonal(int x, int y, int dx, int dy) const {
+    for (;;) {
+      if (!is_free(x + dx, y) || !is_free(x, y + dy) || !is_free(x + dx, y + dy))
+        return std::nullopt;  // blocked, or a corner to cut
+      x += dx;
+      y += dy;
+      if (x == goal_.x && y == goal_.y) return GridCell{x, y};
+      if (straight(x, y, dx, 0) || straight(x, y, 0, dy)) return GridCell{x, y};
+    }
+  }
+
+ private:
+  const std::uint8_t* free_;
+  int w_, h_;
+  GridCell goal_;
+};
+
+bool run_octile_jps(SearchBuffers& b, const FreeRaster& raster, GridCell start, GridCell goal,
+                    GridPath& path, std::size_t& expanded) {
+  path.length = 0.0;
+  path.cells.clear();
+  expanded = 0;
+  if (!raster.is_free(start.x, start.y) || !raster.is_free(goal.x, goal.y)) return false;
+  const std::size_t w = static_cast<std::size_t>(raster.width);
+  b.begin(w * static_cast<std::size_t>(raster.height));
+  const std::uint32_t open_mark = 2 * b.search, closed_mark = open_mark + 1;
+  CellState* cell = b.cells.data();
+  auto index = [w](int x, int y) {
+    return static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x);
+  };
+  const JumpPoints jump(raster, goal);
+  const std::size_t s = index(start.x, start.y), t = index(goal.x, goal.y);
+  cell[s] = {0.0, -1, open_mark};
+  b.open.push(
+      {octile_distance(goal.x - start.x, goal.y - start.y), -0.0, static_cast<std::uint32_t>(s)});
+  while (!b.open.empty()) {
+    const std::size_t u = b.open.pop().index;
+    if (cell[u].mark == closed_mark) continue;
+    cell[u].mark = closed_mark;
+    ++expanded;
+    if (u == t) break;
+    const int ux = static_cast<int>(u % w), uy = static_cast<int>(u / w);
+    const double gu = cell[u].g;
+    auto relax = [&](const std::optional<GridCell>& j) {
+      if (!j) return;
+      const std::size_t v = index(j->x, j->y);
+      CellState& cv = cell[v];
+      if (cv.mark == closed_mark) return;
+      const double gv = gu + octile_distance(j->x - ux, j->y - uy);
+      if (cv.mark != open_mark || gv < cv.g) {
+        cv = {gv, static_cast<std::int32_t>(u), open_mark};
+        b.open.push({gv + octile_distance(goal.x - j->x, goal.y - j->y), -gv,
+                     static_cast<std::uint32_t>(v)});
+      }
+    };
+    // The directions worth searching from u: all at the start; else those a move in direction
+    // (dx, dy) from the parent leaves (natural and forced neighbours, pruned as JPS does).
+    int dx = 0, dy = 0;
+    if (cell[u].parent >= 0) {
+      const std::size_t p = static_cast<std::size_t>(cell[u].parent);
+      dx = (ux > static_cast<int>(p % w)) - (ux < static_cast<int>(p % w));
+      dy = (uy > static_cast<int>(p / w)) - (uy < static_cast<int>(p / w));
+    }
+    const bool all = dx == 0 && dy == 0;
+    for (int ddy = -1; ddy <= 1; ++ddy)
+      for (int ddx = -1; ddx <= 1; ++ddx) {
+        if (ddx == 0 && ddy == 0) continue;
+        if (!all) {
+          // Diagonal arrival: its two straight parts and itself. Straight arrival: onwards, the
+          // sides and the diagonals between onwards and a side.
+          const bool keep = dx != 0 && dy != 0 ? (ddx == dx || ddx == 0) && (ddy == dy || ddy == 0)
+                            : dx != 0          ? ddx != -dx
+                                               : ddy != -dy;
+          if (!keep) continue;
+        }
+        if (ddx != 0 && ddy != 0)
+          relax(jump.diagonal(ux, uy, ddx, ddy));
+        else
+          relax(jump.straight(ux, uy, ddx, ddy));
+      }
+  }
+  if (cell[t].mark != closed_mark) return false;
+  path.length = cell[t].g;
+  // The jump points, goal first, then every cell between each and its parent (a straight or a
+  // diagonal run).
+  for (std::int64_t v = static_cast<std::int64_t>(t); v >= 0;) {
+    const int vx = static_cast<int>(static_cast<std::size_t>(v) % w);
+    const int vy = static_cast<int>(static_cast<std::size_t>(v) / w);
+    path.cells.push_back({vx, vy});
+    const std::int32_t p = cell[static_cast<std::size_t>(v)].parent;
+    if (p >= 0) {
+      const int px = static_cast<int>(static_cast<std::size_t>(p) % w);
+      const int py = static_cast<int>(static_cast<std::size_t>(p) / w);
+      const int sx = (px > vx) - (px < vx), sy = (py > vy) - (py < vy);
+      for (int x = vx + sx, y = vy + sy; x != px || y != py; x += sx, y += sy)
+        path.cells.push_back({x, y});
+    }
+    v = p;
+  }
+  std::reverse(path.cells.begin(), path.cells.end());
+  return true;
+}
+
 }  // namespace
 
 std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, GridCell goal) {
@@ -586,6 +727,15 @@ std::optional<GridPath> octile_astar(const FreeRaster& raster, GridCell start, G
   GridPath path;
   std::size_t expanded = 0;
   if (!run_octile_astar(buffers, raster, start, goal, path, expanded)) return std::nullopt;
+  return path;
+}
+
+std::optional<GridPath> octile_jump_point_search(const FreeRaster& raster, GridCell start,
+                                                 GridCell goal) {
+  thread_local SearchBuffers buffers;
+  GridPath path;
+  std::size_t expanded = 0;
+  if (!run_octile_jps(buffers, raster, start, goal, path, expanded)) return std::nullopt;
   return path;
 }
 
@@ -724,7 +874,7 @@ Optimum scenario_optimum(const OptimumRaster& grid, const Vec2& start, std::span
       out.status = OptimumStatus::NoFreeCell;
       return out;
     }
-    const auto path = octile_astar(raster, *from_cell, *to_cell);
+    const auto path = octile_jump_point_search(raster, *from_cell, *to_cell);
     if (!path) {
       out.status = OptimumStatus::Unreachable;
       return out;
