@@ -596,23 +596,38 @@ class JumpPoints {
                  static_cast<std::size_t>(x)] != 0;
   }
 
-  /// The jump point reached from (x, y) by straight steps (dx, dy) (one of them 0), if any.
+  /// The jump point reached from (x, y) by straight steps (dx, dy) (one of them 0), if any: the
+  /// goal, or a cell with a forced neighbour (a side cell reachable, without cutting a corner,
+  /// only through it: free, while the side cell behind it is blocked). A side row or column
+  /// outside the raster has no cells to force.
   std::optional<GridCell> straight(int x, int y, int dx, int dy) const {
-    for (;;) {
-      x += dx;
-      y += dy;
-      if (!is_free(x, y)) return std::nullopt;
-      if (x == goal_.x && y == goal_.y) return GridCell{x, y};
-      // A forced neighbour: a side cell reachable (without cutting the corner) only through here.
-      if (dx != 0) {
-        if ((is_free(x, y - 1) && !is_free(x - dx, y - 1)) ||
-            (is_free(x, y + 1) && !is_free(x - dx, y + 1)))
+    const std::size_t w = static_cast<std::size_t>(w_);
+    auto at = [&](int cx, int cy) {
+      return free_ + static_cast<std::size_t>(cy) * w + static_cast<std::size_t>(cx);
+    };
+    if (dy == 0) {
+      const std::uint8_t* row = at(0, y);
+      const std::uint8_t* below = y > 0 ? row - w : nullptr;
+      const std::uint8_t* above = y + 1 < h_ ? row + w : nullptr;
+      const int goal_x = y == goal_.y ? goal_.x : -2;
+      for (x += dx; x >= 0 && x < w_ && row[x]; x += dx) {
+        if (x == goal_x) return GridCell{x, y};
+        if ((below && below[x] && !below[x - dx]) || (above && above[x] && !above[x - dx]))
           return GridCell{x, y};
-      } else if ((is_free(x - 1, y) && !is_free(x - 1, y - dy)) ||
-                 (is_free(x + 1, y) && !is_free(x + 1, y - dy))) {
-        return GridCell{x, y};
       }
+      return std::nullopt;
     }
+    const std::ptrdiff_t step = dy * static_cast<std::ptrdiff_t>(w);
+    const bool left = x > 0, right = x + 1 < w_;
+    const int goal_y = x == goal_.x ? goal_.y : -2;
+    for (y += dy; y >= 0 && y < h_; y += dy) {
+      const std::uint8_t* c = at(x, y);
+      if (!*c) return std::nullopt;
+      if (y == goal_y) return GridCell{x, y};
+      if ((left && c[-1] && !c[-1 - step]) || (right && c[1] && !c[1 - step]))
+        return GridCell{x, y};
+    }
+    return std::nullopt;
   }
 
   /// The jump point reached from (x, y) by diagonal steps (dx, dy), if any: the first cell of the
