@@ -6,8 +6,10 @@
 //
 // BM_FloorOptimum: raster and search, as the batch does for a floor it has not seen;
 // BM_FloorOptimumRaster: the raster alone (build_optimum_raster);
-// BM_FloorOptimumSearch: the four A* legs and their string pulling on a raster built beforehand;
-// BM_FloorOptimumAstar: the four A* legs alone (with the cells expanded per floor).
+// BM_FloorOptimumSearch: the four legs' search (jump point search) and their string pulling on a
+// raster built beforehand;
+// BM_FloorOptimumAstar: the four legs by octile A* alone (GridSearch, the planners' search), with
+// the cells it expands per floor.
 
 #include <benchmark/benchmark.h>
 
