@@ -182,7 +182,9 @@ std::optional<RasterFrame> choose_raster_frame(const World& world, double body_r
 /// world has one (in its frame and resolution), else square cells of `options.cell_size` (or
 /// body_radius / 2 if smaller) over the bounds, or over the obstacles, start and goals with a
 /// margin. A cell is free when `world.clearance` at its centre exceeds `body_radius`. Each leg runs
-/// from the exact point to the nearest free cell centre, along the octile path, to the exact goal.
+/// from the exact point to the nearest free cell centre, along the octile path (of
+/// octile_jump_point_search: octile_astar's length, perhaps another of the shortest paths), to the
+/// exact goal.
 Optimum scenario_optimum(const World& world, double body_radius, const Vec2& start,
                          std::span<const Vec2> goals, const OptimumOptions& options = {});
 
