@@ -41,9 +41,10 @@ struct OptimumCache {
   OptimumRaster raster;  ///< its memory is reused for the next world
 };
 
-/// The grid optimum of a case's scenario: a length in metres, or the reason there is none.
-Optimum case_optimum(const Scenario& s, OptimumCache& cache) {
-  if (!s.world) return {};
+/// compute_optimum (run_summary.hpp) through the worker's cache: the same optimum (a length in
+/// metres, or the reason there is none), nullopt where compute_optimum gives none.
+std::optional<Optimum> cached_optimum(const Scenario& s, OptimumCache& cache) {
+  if (!s.world || s.is_fleet() || s.robots.empty()) return std::nullopt;
   const RobotTask& t = s.robot();
   const double r = t.robot.body_radius;
   if (cache.world != s.world || cache.radius != r) {
@@ -53,12 +54,6 @@ Optimum case_optimum(const Scenario& s, OptimumCache& cache) {
   }
   if (!cache.usable) return scenario_optimum(*s.world, r, t.start.position, t.goals);
   return scenario_optimum(cache.raster, t.start.position, t.goals);
-}
-
-/// compute_optimum (run_summary.hpp) through the worker's cache: the same optimum.
-std::optional<Optimum> cached_optimum(const Scenario& s, OptimumCache& cache) {
-  if (!s.world || s.is_fleet() || s.robots.empty()) return std::nullopt;
-  return case_optimum(s, cache);
 }
 
 /// A batch line: the case, where it came from, then the run's summary (run_summary, the keys of

@@ -269,6 +269,129 @@ TEST(OctileAstar, RandomRastersGiveThePlainSearchsPathCellForCell) {
   EXPECT_GT(none, 50);
 }
 
+// Open rasters with a few blocks, as the batch's floors are: wide plateaus of equal f (hundreds
+// of open entries that tie, and f values an ulp apart after long sums of 1 and sqrt 2), where
+// the open list keeps its ties in a sorted vector rather than a heap. Every search, fresh or on
+// reused buffers, finds the plain search's path cell for cell and its length to the bit; the
+// detours make it expand far more cells than the path has (the ties are really exercised).
+TEST(OctileAstar, OpenRastersWithBlocksGiveThePlainSearchsPathCellForCell) {
+  Rng rng(2026);
+  GridSearch search;
+  GridPath reused;
+  int detours = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    FreeRaster r;
+    r.width = 120 + static_cast<int>(rng.uniform(0.0, 130.0));
+    r.height = 100 + static_cast<int>(rng.uniform(0.0, 120.0));
+    r.free.assign(static_cast<std::size_t>(r.width * r.height), 1);
+    const int blocks = 3 + static_cast<int>(rng.uniform(0.0, 25.0));
+    for (int k = 0; k < blocks; ++k) {
+      const int x0 = static_cast<int>(rng.uniform(0.0, r.width - 1e-9));
+      const int y0 = static_cast<int>(rng.uniform(0.0, r.height - 1e-9));
+      const int bw = 2 + static_cast<int>(rng.uniform(0.0, 40.0));
+      const int bh = 2 + static_cast<int>(rng.uniform(0.0, 40.0));
+      for (int y = y0; y < std::min(r.height, y0 + bh); ++y)
+        for (int x = x0; x < std::min(r.width, x0 + bw); ++x)
+          r.free[static_cast<std::size_t>(y * r.width + x)] = 0;
+    }
+    auto free_cell = [&] {
+      for (;;) {
+        const GridCell c{static_cast<int>(rng.uniform(0.0, r.width - 1e-9)),
+                         static_cast<int>(rng.uniform(0.0, r.height - 1e-9))};
+        if (r.is_free(c.x, c.y)) return c;
+      }
+    };
+    const GridCell a = free_cell(), b = free_cell();
+    const auto want = reference_astar(r, a, b);
+    const auto got = octile_astar(r, a, b);
+    ASSERT_EQ(got.has_value(), want.has_value()) << trial;
+    ASSERT_EQ(search.search(r, a, b, reused), want.has_value()) << trial;
+    if (!want) continue;
+    EXPECT_EQ(got->cells, want->cells) << trial;
+    EXPECT_EQ(got->length, want->length) << trial;
+    EXPECT_EQ(reused.cells, want->cells) << trial;
+    EXPECT_EQ(reused.length, want->length) << trial;
+    if (search.expanded() > 4 * want->cells.size()) ++detours;
+  }
+  EXPECT_GT(detours, 10);
+}
+
+// A path of octile moves between free cells that cuts no corner, from `a` to `b`; its length.
+double checked_octile_length(const FreeRaster& r, const std::vector<GridCell>& cells, GridCell a,
+                             GridCell b) {
+  EXPECT_FALSE(cells.empty());
+  if (cells.empty()) return -1.0;
+  EXPECT_EQ(cells.front(), a);
+  EXPECT_EQ(cells.back(), b);
+  double length = 0.0;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    EXPECT_TRUE(r.is_free(cells[i].x, cells[i].y)) << i;
+    if (i == 0) continue;
+    const int dx = cells[i].x - cells[i - 1].x, dy = cells[i].y - cells[i - 1].y;
+    EXPECT_TRUE(std::abs(dx) <= 1 && std::abs(dy) <= 1 && (dx != 0 || dy != 0)) << i;
+    if (dx != 0 && dy != 0) {
+      EXPECT_TRUE(r.is_free(cells[i - 1].x + dx, cells[i - 1].y)) << "cuts a corner at " << i;
+      EXPECT_TRUE(r.is_free(cells[i - 1].x, cells[i - 1].y + dy)) << "cuts a corner at " << i;
+      length += kSqrt2;
+    } else {
+      length += 1.0;
+    }
+  }
+  return length;
+}
+
+// Jump point search finds a path exactly as short as the plain search's (to the rounding of the
+// sums), made of legal moves, and none where there is none: on the random rasters (cluttered,
+// with cut-off cells) and on open rasters with blocks (long runs, many equal paths), where it
+// expands far fewer cells' worth of jump points than A* expands cells.
+TEST(OctileJumpPointSearch, AsShortAsThePlainSearchOnRandomRasters) {
+  Rng rng(4242);
+  int found = 0, none = 0, other_path = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    FreeRaster r;
+    const bool open = trial % 2 == 1;
+    r.width = open ? 60 + static_cast<int>(rng.uniform(0.0, 140.0))
+                   : 1 + static_cast<int>(rng.uniform(0.0, 90.0));
+    r.height = open ? 50 + static_cast<int>(rng.uniform(0.0, 120.0))
+                    : 1 + static_cast<int>(rng.uniform(0.0, 70.0));
+    r.free.assign(static_cast<std::size_t>(r.width * r.height), 1);
+    if (open) {
+      for (int k = 0, n = 2 + static_cast<int>(rng.uniform(0.0, 25.0)); k < n; ++k) {
+        const int x0 = static_cast<int>(rng.uniform(0.0, r.width - 1e-9));
+        const int y0 = static_cast<int>(rng.uniform(0.0, r.height - 1e-9));
+        const int bw = 1 + static_cast<int>(rng.uniform(0.0, 30.0));
+        const int bh = 1 + static_cast<int>(rng.uniform(0.0, 30.0));
+        for (int y = y0; y < std::min(r.height, y0 + bh); ++y)
+          for (int x = x0; x < std::min(r.width, x0 + bw); ++x)
+            r.free[static_cast<std::size_t>(y * r.width + x)] = 0;
+      }
+    } else {
+      const double blocked = rng.uniform(0.0, 0.45);
+      for (auto& c : r.free) c = rng.uniform() >= blocked;
+    }
+    const GridCell a{static_cast<int>(rng.uniform(0.0, r.width - 1e-9)),
+                     static_cast<int>(rng.uniform(0.0, r.height - 1e-9))};
+    const GridCell b{static_cast<int>(rng.uniform(0.0, r.width - 1e-9)),
+                     static_cast<int>(rng.uniform(0.0, r.height - 1e-9))};
+    const auto want = reference_astar(r, a, b);
+    const auto got = octile_jump_point_search(r, a, b);
+    ASSERT_EQ(got.has_value(), want.has_value()) << trial;
+    if (!want) {
+      ++none;
+      continue;
+    }
+    ++found;
+    EXPECT_NEAR(got->length, want->length, 1e-9 * (1.0 + want->length)) << trial;
+    EXPECT_NEAR(checked_octile_length(r, got->cells, a, b), want->length,
+                1e-9 * (1.0 + want->length))
+        << trial;
+    if (got->cells != want->cells) ++other_path;
+  }
+  EXPECT_GT(found, 300);
+  EXPECT_GT(none, 30);
+  EXPECT_GT(other_path, 0);  // ties do go another way: its paths are its own
+}
+
 // The MovingAI benchmark's own optima (octile, no corner cutting), row by row: octile_astar on the
 // map's cells, and scenario_optimum's octile length on the map as a world (1 m cells, r = 0.1 m, so
 // every free cell's centre is free: its clearance is at least half a cell).
