@@ -8,6 +8,7 @@
 
 #include "floornav/geometry/angle.hpp"
 #include "floornav/kinematics/differential_drive.hpp"
+#include "floornav/nav/heading_tracker.hpp"
 #include "floornav/nav/navigation_automaton.hpp"
 #include "floornav/nav/sampling_planner.hpp"
 #include "floornav/sensing/obstacle_memory.hpp"
@@ -109,6 +110,23 @@ PlannerController::PlannerController(Setup setup)
     grid_.emplace(cell, std::max(4, static_cast<int>(std::ceil(window / cell))), p_.decay);
   }
   points_.resize(robot_->sensors.size() + ObstacleMemory::kCapacity + kMaxRemembered);
+  if (p_.guard_horizon > 0.0) {
+    std::vector<Vec2> footprint = robot_->footprint;
+    if (footprint.size() < 3) {  // a disc robot: the 16-gon around its body disc
+      constexpr int kSides = 16;
+      const double R = r / std::cos(kPi / kSides);
+      for (int k = 0; k < kSides; ++k)
+        footprint.emplace_back(R * std::cos(2.0 * kPi * k / kSides),
+                               R * std::sin(2.0 * kPi * k / kSides));
+    }
+    FootprintGuardParams gp;
+    gp.horizon = p_.guard_horizon;
+    gp.margin = p_.guard_margin;
+    gp.turn_rate = std::min(1.0, 0.5 * max_turn_rate(robot_->drive));
+    gp.back_speed = 0.25 * nav_.v0;
+    guard_.emplace(std::move(footprint), gp);
+    remembered_.resize(4 * kMaxRemembered);
+  }
   reset();
 }
 
@@ -122,6 +140,8 @@ void PlannerController::reset() {
   subgoal_held_ = false;
   last_plan_time_ = kNever;
   searches_ = 0;
+  pid_ = {};
+  turn_sign_ = 0;
   mode_ = inner_->mode();
 }
 
@@ -166,8 +186,51 @@ Decision PlannerController::decide(const Observation& obs) {
   }
   if (phase_ == Phase::Stuck) return {Command::stuck(), mode_};
   if (obs.goal_distance() < nav_.epsilon) return {Command::goal_reached(), mode_};
-  if (phase_ != Phase::Follow) return recover(obs);
-  return follow(obs);
+  if (!guard_) return phase_ != Phase::Follow ? recover(obs) : follow(obs);
+  guard_points(obs);
+  return guarded(obs, phase_ != Phase::Follow ? recover(obs) : follow(obs));
+}
+
+void PlannerController::guard_points(const Observation& obs) {
+  guard_->set_points(obs.pose, obs.points, max_forward_speed(robot_->drive));
+  if (!grid_) return;
+  // The rolling grid remembers what the sensors do not see now (a lidar's blind sector behind).
+  const std::size_t n = grid_->remembered_points(obs.pose.position, guard_->keep_radius(), obs.t,
+                                                 std::span<Vec2>(remembered_));
+  guard_->add_points(std::span<const Vec2>(remembered_.data(), n));
+}
+
+Decision PlannerController::guarded(const Observation& obs, Decision d) {
+  const Command& c = d.command;
+  UnicycleCommand wanted;
+  switch (c.kind()) {
+    case Command::Kind::Velocity:  // the pipeline of Fig 5.12, as the simulator runs it
+      wanted = track_velocity(c.u(), obs.pose.theta, nav_.v0, nav_.heading_pid, pid_, obs.dt,
+                              nav_.slow_when_turning);
+      break;
+    case Command::Kind::Unicycle:
+      wanted = c.unicycle_command();
+      break;
+    case Command::Kind::Wheels:
+      wanted = wheels_to_unicycle(robot_->drive, c.wheel_speeds());
+      break;
+    default:
+      return d;
+  }
+  // What the wheels will drive (saturation keeps omega, sheds V).
+  const UnicycleCommand driven =
+      wheels_to_unicycle(robot_->drive, saturate_wheels(robot_->drive, wanted));
+  const GuardResult r = guard_->check(driven.v, driven.omega);
+  if (r.replaced)
+    ++guard_replaced_;
+  else if (r.scale < 1.0)
+    ++guard_slowed_;
+  d.command = Command::unicycle(r.v, r.omega);
+  return d;
+}
+
+bool PlannerController::guard_blocks(double v, double omega) const {
+  return guard_->free_fraction(v, omega) < guard_->params().min_scale;
 }
 
 bool PlannerController::plan(const Vec2& from, const Vec2& goal, double t) {
@@ -344,9 +407,13 @@ Decision PlannerController::recover(const Observation& obs) {
   if (phase_ == Phase::BackUp) {
     const Vec2 h = obs.pose.heading();
     bool blocked = false;  // something right behind: backing further would hit it
-    const double near = robot_->body_radius + std::max(nav_.d_unsafe, 0.02);
-    for (const Vec2& q : obs.points)
-      if ((q - x).dot(h) < 0.0 && (q - x).squaredNorm() < near * near) blocked = true;
+    if (guard_) {
+      blocked = guard_blocks(-v_back, 0.0);
+    } else {
+      const double near = robot_->body_radius + std::max(nav_.d_unsafe, 0.02);
+      for (const Vec2& q : obs.points)
+        if ((q - x).dot(h) < 0.0 && (q - x).squaredNorm() < near * near) blocked = true;
+    }
     const bool done = (x - phase_pose_.position).norm() >= backup_distance_ ||
                       obs.t - phase_start_ >= backup_distance_ / v_back + 1.0;
     if (!blocked && !done) return {Command::unicycle(-v_back, 0.0), mode_};
@@ -360,13 +427,25 @@ Decision PlannerController::recover(const Observation& obs) {
         wrap_angle(obs.pose.theta + std::clamp(want, -p_.recovery_turn, p_.recovery_turn));
     phase_ = Phase::Turn;
     phase_start_ = obs.t;
+    turn_sign_ = 0;
     mode_ = own_mode(phase_);
   }
   const double omega = std::min(1.0, 0.5 * max_turn_rate(robot_->drive));
   const double err = wrap_angle(turn_target_ - obs.pose.theta);
-  if (std::abs(err) > 0.1 && obs.t - phase_start_ < p_.recovery_turn / omega + 1.0)
-    return {Command::unicycle(0.0, err > 0.0 ? omega : -omega), mode_};
+  // The long way round (the short one blocked) may take up to a whole turn.
+  const double limit = (turn_sign_ != 0 ? 2.0 * kPi : p_.recovery_turn) / omega + 1.0;
+  if (std::abs(err) > 0.1 && obs.t - phase_start_ < limit) {
+    int dir = turn_sign_ != 0 ? turn_sign_ : (err > 0.0 ? 1 : -1);
+    if (guard_ && guard_blocks(0.0, dir * omega)) {
+      // A corner would swing into a point: round the other way, once; both blocked: done.
+      dir = turn_sign_ == 0 ? -dir : 0;
+      turn_sign_ = dir;
+      if (dir != 0 && guard_blocks(0.0, dir * omega)) dir = 0;
+    }
+    if (dir != 0) return {Command::unicycle(0.0, dir * omega), mode_};
+  }
   // Recovered: follow the (new) path again.
+  turn_sign_ = 0;
   phase_ = Phase::Follow;
   inner_->reset();
   subgoal_held_ = false;
