@@ -134,6 +134,7 @@ void PlannerController::reset() {
   inner_->reset();
   phase_ = Phase::Follow;
   planned_ = false;
+  replan_now_ = false;
   path_.clear();
   tail_ = 0.0;
   recoveries_ = 0;
@@ -237,6 +238,7 @@ bool PlannerController::plan(const Vec2& from, const Vec2& goal, double t) {
   ++plans_;
   last_plan_time_ = t;
   const bool had_path = planned_;
+  replan_now_ = false;
   planned_ = p_.map == PlannerMap::Known ? plan_known(from, goal) : plan_sensed(from, goal, t);
   if (!planned_) {
     path_.clear();
@@ -302,10 +304,17 @@ bool PlannerController::plan_sensed(const Vec2& from, const Vec2& goal, double t
     polyline_.push_back(from);
     if (!search_cells(raster_, f, *s, *g)) return false;
     polyline_.push_back(plan_goal_);
+    // A robot standing in an inflated cell sees nothing from where it is: the sight lines start
+    // at the free cell it snapped to instead, or the path would keep every cell of the octile
+    // path near it and the subgoal would be a cell away (reached at once, again and again).
+    const Vec2 at = f.to_cells(from);
+    const bool inside = !raster_.is_free(static_cast<int>(std::floor(at.x())),
+                                         static_cast<int>(std::floor(at.y())));
+    const Vec2 sight_from = inside ? Vec2(s->x + 0.5, s->y + 0.5) : at;
     pull_string(
         polyline_,
         [&](const Vec2& a, const Vec2& b) {
-          return line_of_sight(raster_, f.to_cells(a), f.to_cells(b));
+          return line_of_sight(raster_, a == from ? sight_from : f.to_cells(a), f.to_cells(b));
         },
         pulled_);
     return true;
@@ -341,7 +350,7 @@ std::span<const Vec2> PlannerController::points_with_memory(const Observation& o
 
 Decision PlannerController::follow(const Observation& obs) {
   const Vec2 x = obs.pose.position;
-  bool replan = !planned_;
+  bool replan = !planned_ || replan_now_;
   if (planned_ && p_.map == PlannerMap::Sensed && obs.t - last_plan_time_ >= p_.replan_period) {
     // A sampling planner draws a new, different path every time: replanning a path that is
     // still clear would move the subgoal about and the robot would dither. Keep it.
@@ -372,7 +381,9 @@ Decision PlannerController::follow(const Observation& obs) {
     inner_->reset();
     subgoal_held_ = false;
     last_plan_time_ = kNever;
-    planned_ = false;
+    // Plan again at once, but as a replan: a fresh start would reset the progress checker, and
+    // a subgoal reached again and again where the robot stands would never count as a stall.
+    replan_now_ = true;
     mode_ = inner_->mode();
     return {Command::unicycle(0.0, 0.0), mode_, d.guard};
   }

@@ -171,6 +171,7 @@ class PlannerController final : public Controller {
   double last_plan_time_{-1e300};
   double last_t_{-1e300};
   bool planned_{false};
+  bool replan_now_{false};  ///< the inner controller reached its subgoal: plan again
   Phase phase_{Phase::Follow};
   double phase_start_{0.0};
   Pose2 phase_pose_{};
