@@ -370,7 +370,16 @@ Decision PlannerController::follow(const Observation& obs) {
     return begin_recovery(obs, inner_guards_);
   if (progress_.anchor_time() != before) recoveries_ = 0;  // progress: a fresh budget
 
-  if (!subgoal_held_) subgoal_ = path_.subgoal(x, lookahead_, corner_);
+  if (!subgoal_held_) {
+    subgoal_ = path_.subgoal(x, lookahead_, corner_);
+    // On the sensed map a robot in a narrow pocket keeps the octile path's cells near it (no
+    // sight line past them), and the subgoal may be a cell away: the inner controller would
+    // call it reached at once, again after every replan, and stand still. Then the point
+    // `lookahead` along the path instead.
+    const double reached = std::min(nav_.epsilon, 0.5 * robot_->body_radius);
+    if (p_.map == PlannerMap::Sensed && (subgoal_ - x).norm() < 2.0 * reached)
+      subgoal_ = path_.point_at(path_.length() - path_.remaining() + lookahead_);
+  }
   Observation in = obs;
   in.goal = subgoal_;
   in.points = points_with_memory(obs);
