@@ -373,9 +373,6 @@ TEST(Dwa, NeverDrivesAtAWallItCannotStopBefore) {
   }
 }
 
-}  // namespace
-}  // namespace floornav
-
 // --- PlannerController: the footprint guard ------------------------------------------------------
 
 // A Jackal at (1, 2) facing +x in an empty, known 6 x 4 m room, its goal straight to its left
@@ -462,7 +459,10 @@ TEST(PlannerController, TheFootprintGuardNeverTurnsACornerIntoThePoint) {
   const std::vector<Vec2> local{Vec2(0.28, -0.05)};
   EXPECT_EQ(time_to_contact(rig.robot.footprint, local, first.v, first.omega, 0.4, 0.0),
             std::numeric_limits<double>::infinity());
-  // Two seconds of it: never closer than half the margin's way in.
+  // Two seconds of it, the robot moving as commanded: the rectangle never touches the point.
   GuardRig again(0.5);
   EXPECT_GT(again.run(), 0.0);
 }
+
+}  // namespace
+}  // namespace floornav
