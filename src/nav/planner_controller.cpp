@@ -8,6 +8,7 @@
 
 #include "floornav/geometry/angle.hpp"
 #include "floornav/kinematics/differential_drive.hpp"
+#include "floornav/nav/heading_tracker.hpp"
 #include "floornav/nav/navigation_automaton.hpp"
 #include "floornav/nav/sampling_planner.hpp"
 #include "floornav/sensing/obstacle_memory.hpp"
@@ -109,6 +110,23 @@ PlannerController::PlannerController(Setup setup)
     grid_.emplace(cell, std::max(4, static_cast<int>(std::ceil(window / cell))), p_.decay);
   }
   points_.resize(robot_->sensors.size() + ObstacleMemory::kCapacity + kMaxRemembered);
+  if (p_.guard_horizon > 0.0) {
+    std::vector<Vec2> footprint = robot_->footprint;
+    if (footprint.size() < 3) {  // a disc robot: the 16-gon around its body disc
+      constexpr int kSides = 16;
+      const double R = r / std::cos(kPi / kSides);
+      for (int k = 0; k < kSides; ++k)
+        footprint.emplace_back(R * std::cos(2.0 * kPi * k / kSides),
+                               R * std::sin(2.0 * kPi * k / kSides));
+    }
+    FootprintGuardParams gp;
+    gp.horizon = p_.guard_horizon;
+    gp.margin = p_.guard_margin;
+    gp.turn_rate = std::min(1.0, 0.5 * max_turn_rate(robot_->drive));
+    gp.back_speed = 0.25 * nav_.v0;
+    guard_.emplace(std::move(footprint), gp);
+    remembered_.resize(4 * kMaxRemembered);
+  }
   reset();
 }
 
@@ -116,12 +134,15 @@ void PlannerController::reset() {
   inner_->reset();
   phase_ = Phase::Follow;
   planned_ = false;
+  replan_now_ = false;
   path_.clear();
   tail_ = 0.0;
   recoveries_ = 0;
   subgoal_held_ = false;
   last_plan_time_ = kNever;
   searches_ = 0;
+  pid_ = {};
+  turn_sign_ = 0;
   mode_ = inner_->mode();
 }
 
@@ -166,14 +187,58 @@ Decision PlannerController::decide(const Observation& obs) {
   }
   if (phase_ == Phase::Stuck) return {Command::stuck(), mode_};
   if (obs.goal_distance() < nav_.epsilon) return {Command::goal_reached(), mode_};
-  if (phase_ != Phase::Follow) return recover(obs);
-  return follow(obs);
+  if (!guard_) return phase_ != Phase::Follow ? recover(obs) : follow(obs);
+  guard_points(obs);
+  return guarded(obs, phase_ != Phase::Follow ? recover(obs) : follow(obs));
+}
+
+void PlannerController::guard_points(const Observation& obs) {
+  guard_->set_points(obs.pose, obs.points, max_forward_speed(robot_->drive));
+  if (!grid_) return;
+  // The rolling grid remembers what the sensors do not see now (a lidar's blind sector behind).
+  const std::size_t n = grid_->remembered_points(obs.pose.position, guard_->keep_radius(), obs.t,
+                                                 std::span<Vec2>(remembered_));
+  guard_->add_points(std::span<const Vec2>(remembered_.data(), n));
+}
+
+Decision PlannerController::guarded(const Observation& obs, Decision d) {
+  const Command& c = d.command;
+  UnicycleCommand wanted;
+  switch (c.kind()) {
+    case Command::Kind::Velocity:  // the pipeline of Fig 5.12, as the simulator runs it
+      wanted = track_velocity(c.u(), obs.pose.theta, nav_.v0, nav_.heading_pid, pid_, obs.dt,
+                              nav_.slow_when_turning);
+      break;
+    case Command::Kind::Unicycle:
+      wanted = c.unicycle_command();
+      break;
+    case Command::Kind::Wheels:
+      wanted = wheels_to_unicycle(robot_->drive, c.wheel_speeds());
+      break;
+    default:
+      return d;
+  }
+  // What the wheels will drive (saturation keeps omega, sheds V).
+  const UnicycleCommand driven =
+      wheels_to_unicycle(robot_->drive, saturate_wheels(robot_->drive, wanted));
+  const GuardResult r = guard_->check(driven.v, driven.omega);
+  if (r.replaced)
+    ++guard_replaced_;
+  else if (r.scale < 1.0)
+    ++guard_slowed_;
+  d.command = Command::unicycle(r.v, r.omega);
+  return d;
+}
+
+bool PlannerController::guard_blocks(double v, double omega) const {
+  return guard_->free_fraction(v, omega) < guard_->params().min_scale;
 }
 
 bool PlannerController::plan(const Vec2& from, const Vec2& goal, double t) {
   ++plans_;
   last_plan_time_ = t;
   const bool had_path = planned_;
+  replan_now_ = false;
   planned_ = p_.map == PlannerMap::Known ? plan_known(from, goal) : plan_sensed(from, goal, t);
   if (!planned_) {
     path_.clear();
@@ -239,10 +304,17 @@ bool PlannerController::plan_sensed(const Vec2& from, const Vec2& goal, double t
     polyline_.push_back(from);
     if (!search_cells(raster_, f, *s, *g)) return false;
     polyline_.push_back(plan_goal_);
+    // A robot standing in an inflated cell sees nothing from where it is: the sight lines start
+    // at the free cell it snapped to instead, or the path would keep every cell of the octile
+    // path near it and the subgoal would be a cell away (reached at once, again and again).
+    const Vec2 at = f.to_cells(from);
+    const bool inside = !raster_.is_free(static_cast<int>(std::floor(at.x())),
+                                         static_cast<int>(std::floor(at.y())));
+    const Vec2 sight_from = inside ? Vec2(s->x + 0.5, s->y + 0.5) : at;
     pull_string(
         polyline_,
         [&](const Vec2& a, const Vec2& b) {
-          return line_of_sight(raster_, f.to_cells(a), f.to_cells(b));
+          return line_of_sight(raster_, a == from ? sight_from : f.to_cells(a), f.to_cells(b));
         },
         pulled_);
     return true;
@@ -278,7 +350,7 @@ std::span<const Vec2> PlannerController::points_with_memory(const Observation& o
 
 Decision PlannerController::follow(const Observation& obs) {
   const Vec2 x = obs.pose.position;
-  bool replan = !planned_;
+  bool replan = !planned_ || replan_now_;
   if (planned_ && p_.map == PlannerMap::Sensed && obs.t - last_plan_time_ >= p_.replan_period) {
     // A sampling planner draws a new, different path every time: replanning a path that is
     // still clear would move the subgoal about and the robot would dither. Keep it.
@@ -298,7 +370,16 @@ Decision PlannerController::follow(const Observation& obs) {
     return begin_recovery(obs, inner_guards_);
   if (progress_.anchor_time() != before) recoveries_ = 0;  // progress: a fresh budget
 
-  if (!subgoal_held_) subgoal_ = path_.subgoal(x, lookahead_, corner_);
+  if (!subgoal_held_) {
+    subgoal_ = path_.subgoal(x, lookahead_, corner_);
+    // On the sensed map a robot in a narrow pocket keeps the octile path's cells near it (no
+    // sight line past them), and the subgoal may be a cell away: the inner controller would
+    // call it reached at once, again after every replan, and stand still. Then the point
+    // `lookahead` along the path instead.
+    const double reached = std::min(nav_.epsilon, 0.5 * robot_->body_radius);
+    if (p_.map == PlannerMap::Sensed && (subgoal_ - x).norm() < 2.0 * reached)
+      subgoal_ = path_.point_at(path_.length() - path_.remaining() + lookahead_);
+  }
   Observation in = obs;
   in.goal = subgoal_;
   in.points = points_with_memory(obs);
@@ -309,7 +390,9 @@ Decision PlannerController::follow(const Observation& obs) {
     inner_->reset();
     subgoal_held_ = false;
     last_plan_time_ = kNever;
-    planned_ = false;
+    // Plan again at once, but as a replan: a fresh start would reset the progress checker, and
+    // a subgoal reached again and again where the robot stands would never count as a stall.
+    replan_now_ = true;
     mode_ = inner_->mode();
     return {Command::unicycle(0.0, 0.0), mode_, d.guard};
   }
@@ -344,9 +427,13 @@ Decision PlannerController::recover(const Observation& obs) {
   if (phase_ == Phase::BackUp) {
     const Vec2 h = obs.pose.heading();
     bool blocked = false;  // something right behind: backing further would hit it
-    const double near = robot_->body_radius + std::max(nav_.d_unsafe, 0.02);
-    for (const Vec2& q : obs.points)
-      if ((q - x).dot(h) < 0.0 && (q - x).squaredNorm() < near * near) blocked = true;
+    if (guard_) {
+      blocked = guard_blocks(-v_back, 0.0);
+    } else {
+      const double near = robot_->body_radius + std::max(nav_.d_unsafe, 0.02);
+      for (const Vec2& q : obs.points)
+        if ((q - x).dot(h) < 0.0 && (q - x).squaredNorm() < near * near) blocked = true;
+    }
     const bool done = (x - phase_pose_.position).norm() >= backup_distance_ ||
                       obs.t - phase_start_ >= backup_distance_ / v_back + 1.0;
     if (!blocked && !done) return {Command::unicycle(-v_back, 0.0), mode_};
@@ -360,13 +447,25 @@ Decision PlannerController::recover(const Observation& obs) {
         wrap_angle(obs.pose.theta + std::clamp(want, -p_.recovery_turn, p_.recovery_turn));
     phase_ = Phase::Turn;
     phase_start_ = obs.t;
+    turn_sign_ = 0;
     mode_ = own_mode(phase_);
   }
   const double omega = std::min(1.0, 0.5 * max_turn_rate(robot_->drive));
   const double err = wrap_angle(turn_target_ - obs.pose.theta);
-  if (std::abs(err) > 0.1 && obs.t - phase_start_ < p_.recovery_turn / omega + 1.0)
-    return {Command::unicycle(0.0, err > 0.0 ? omega : -omega), mode_};
+  // The long way round (the short one blocked) may take up to a whole turn.
+  const double limit = (turn_sign_ != 0 ? 2.0 * kPi : p_.recovery_turn) / omega + 1.0;
+  if (std::abs(err) > 0.1 && obs.t - phase_start_ < limit) {
+    int dir = turn_sign_ != 0 ? turn_sign_ : (err > 0.0 ? 1 : -1);
+    if (guard_ && guard_blocks(0.0, dir * omega)) {
+      // A corner would swing into a point: round the other way, once; both blocked: done.
+      dir = turn_sign_ == 0 ? -dir : 0;
+      turn_sign_ = dir;
+      if (dir != 0 && guard_blocks(0.0, dir * omega)) dir = 0;
+    }
+    if (dir != 0) return {Command::unicycle(0.0, dir * omega), mode_};
+  }
   // Recovered: follow the (new) path again.
+  turn_sign_ = 0;
   phase_ = Phase::Follow;
   inner_->reset();
   subgoal_held_ = false;

@@ -87,6 +87,10 @@ void validate_planner(const PlannerParams& p, const RobotKeys& k) {
   if (!(p.decay > 0.0)) bad("decay", "must be positive");
   if (p.max_samples < 1 || p.max_samples > 10000000)
     bad("max_samples", fmt::format("must be in [1, 10000000], got {}", p.max_samples));
+  if (!(p.guard_horizon >= 0.0 && p.guard_horizon <= 10.0))
+    bad("guard_horizon", fmt::format("must be in [0, 10] s (0: off), got {}", p.guard_horizon));
+  if (!(p.guard_margin >= 0.0 && p.guard_margin <= 1.0))
+    bad("guard_margin", fmt::format("must be in [0, 1] m, got {}", p.guard_margin));
   if (p.cell_size > 0.0 && p.window > 0.0 && p.window / p.cell_size > 2000.0)
     bad("window",
         fmt::format("{} m of {} m cells is more than 2000 cells across", p.window, p.cell_size));

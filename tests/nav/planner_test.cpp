@@ -4,11 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <vector>
 
 #include "floornav/geometry/angle.hpp"
+#include "floornav/kinematics/differential_drive.hpp"
 #include "floornav/nav/dwa_controller.hpp"
+#include "floornav/nav/footprint_guard.hpp"
+#include "floornav/nav/heading_tracker.hpp"
 #include "floornav/nav/navigation_controller.hpp"
 #include "floornav/nav/planned_path.hpp"
 #include "floornav/nav/planner_controller.hpp"
@@ -367,6 +371,97 @@ TEST(Dwa, NeverDrivesAtAWallItCannotStopBefore) {
     const double t_brake = u.v / robot.max_acceleration;
     EXPECT_LT(u.v * t_brake, 0.15) << k;
   }
+}
+
+// --- PlannerController: the footprint guard ------------------------------------------------------
+
+// A Jackal at (1, 2) facing +x in an empty, known 6 x 4 m room, its goal straight to its left
+// (+y): the automaton's u points at +y and the heading PID turns the robot on the spot,
+// counter-clockwise, at up to 10 rad/s. One point 0.026 m ahead of its front edge, beside the
+// front-right corner (robot frame (0.28, -0.05)): a counter-clockwise turn on the spot swings that
+// corner into it after acos(0.254 / 0.28443) - atan2(0.05, 0.28) = 0.4670 - 0.1767 = 0.29 rad.
+struct GuardRig {
+  RobotSpec robot = find_robot_preset("jackal")->robot;
+  NavigationParams nav = find_robot_preset("jackal")->navigation;
+  std::shared_ptr<World> world;
+  std::unique_ptr<Controller> c;
+  std::vector<Vec2> points{Vec2(1.28, 1.95)};
+  PidState pid;  // the simulator's pipeline, for commands that are velocities
+
+  explicit GuardRig(double horizon) {
+    WorldDesc desc;
+    desc.bounds = Box2{Vec2(-2, -1), Vec2(4, 5)};
+    world = std::make_shared<World>(std::move(desc));
+    nav.planner.kind = PlannerKind::AStar;
+    nav.planner.guard_horizon = horizon;
+    ControllerConfig cfg;
+    cfg.params = nav;
+    c = ControllerMaker().make(cfg, {robot, nav, "r", 0, world.get()});
+  }
+  // What the robot drives after deciding at `pose`: a velocity through the pipeline (as the
+  // simulator does it), a unicycle as it is; saturated as the wheels would.
+  UnicycleCommand drive(const Pose2& pose, double t) {
+    Observation o;
+    o.t = t;
+    o.dt = 0.05;
+    o.pose = pose;
+    o.goal = Vec2(1.0, 3.5);
+    o.goal_count = 1;
+    o.points = points;
+    o.robot = &robot;
+    o.params = &nav;
+    const Command cmd = c->decide(o).command;
+    UnicycleCommand u = cmd.kind() == Command::Kind::Velocity
+                            ? track_velocity(cmd.u(), pose.theta, nav.v0, nav.heading_pid, pid,
+                                             o.dt, nav.slow_when_turning)
+                            : cmd.unicycle_command();
+    return wheels_to_unicycle(robot.drive, saturate_wheels(robot.drive, u));
+  }
+  double clearance(const Pose2& pose) const {
+    const double c0 = std::cos(pose.theta), s0 = std::sin(pose.theta);
+    std::vector<Vec2> local;
+    for (const Vec2& q : points) {
+      const Vec2 d = q - pose.position;
+      local.emplace_back(c0 * d.x() + s0 * d.y(), -s0 * d.x() + c0 * d.y());
+    }
+    return footprint_clearance(robot.footprint, local);
+  }
+  // Two seconds of 20 Hz steps, integrated exactly (the unicycle's arc); the least clearance.
+  double run() {
+    Pose2 pose{Vec2(1.0, 2.0), 0.0};
+    double least = clearance(pose);
+    for (int k = 0; k < 40; ++k) {
+      const UnicycleCommand u = drive(pose, 0.05 * k);
+      const double th = pose.theta + u.omega * 0.05;
+      if (std::abs(u.omega) > 1e-12)
+        pose.position += Vec2(u.v / u.omega * (std::sin(th) - std::sin(pose.theta)),
+                              -u.v / u.omega * (std::cos(th) - std::cos(pose.theta)));
+      else
+        pose.position += u.v * 0.05 * Vec2(std::cos(pose.theta), std::sin(pose.theta));
+      pose.theta = th;
+      least = std::min(least, clearance(pose));
+    }
+    return least;
+  }
+};
+
+TEST(PlannerController, WithoutTheGuardTheTurnOnTheSpotSwingsACornerIntoThePoint) {
+  GuardRig rig(0.0);
+  EXPECT_NEAR(rig.clearance({Vec2(1.0, 2.0), 0.0}), 0.026, 1e-12);
+  EXPECT_LE(rig.run(), 0.0) << "the corner reaches the point";
+}
+
+TEST(PlannerController, TheFootprintGuardNeverTurnsACornerIntoThePoint) {
+  GuardRig rig(0.5);
+  // The first command: not the fast counter-clockwise turn on the spot (contact 0.29 rad away),
+  // and free of the point for most of the horizon at its own speed.
+  const UnicycleCommand first = rig.drive({Vec2(1.0, 2.0), 0.0}, 0.0);
+  const std::vector<Vec2> local{Vec2(0.28, -0.05)};
+  EXPECT_EQ(time_to_contact(rig.robot.footprint, local, first.v, first.omega, 0.4, 0.0),
+            std::numeric_limits<double>::infinity());
+  // Two seconds of it, the robot moving as commanded: the rectangle never touches the point.
+  GuardRig again(0.5);
+  EXPECT_GT(again.run(), 0.0);
 }
 
 }  // namespace

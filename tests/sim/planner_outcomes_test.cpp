@@ -136,6 +136,88 @@ TEST(PlannerOutcomes, WalledOffGoalOnTheSensedMapIsNotReachedAndRecoveriesAreTri
   EXPECT_GT(time_in(r, "recovery_back_up"), 0.0);
 }
 
+// BARN world 180 (Perille et al. 2020; the BARN challenge's worlds, MIT, (c) 2022 Zifan Xu): its
+// cylinders (r = 0.075 m) on BARN's 0.15 m grid, row 0 at y = 9.525, column 0 at x = -4.425,
+// '#' a cylinder. The Jackal from (-2, 3) to (-2, 13) with the BARN template's controller
+// (scenarios/barn_template.yaml) under the planner on its rolling grid.
+namespace {
+Scenario barn_world_180() {
+  static constexpr const char* kRows[] = {
+      "#............................#", "#...........##...............#",
+      "###..........#.........##...##", "##.##..................#...###",
+      "##..##....................####", "#...........................##",
+      "#..##.......................##", "#..#.......................###",
+      "#...#........####...........##", "#............#####...........#",
+      "##.....#..##..##.............#", "##....###..#...........###...#",
+      "###...##................#...##", "##...........................#",
+      "##...........................#", "##..........................##",
+      "##........................####", "#........................#####",
+      "#..####..................#..##", "#..#####.....................#",
+      "#.....###....................#", "##.#...##......##.####......##",
+      "###......#.....####.###...####", "##...............####....#.###",
+      "##...............#..#.....#.##", "##.........................###",
+      "###..........................#", "##....................#......#",
+      "#...#................###.....#", "#..##...............##.......#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "#............................#",
+      "#............................#", "##############################",
+  };
+  WorldDesc d;
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 30; ++i)
+      if (kRows[j][i] == '#')
+        d.circles.push_back({Vec2(-4.425 + 0.15 * i, 9.525 - 0.15 * j), 0.075});
+  Scenario s = make("jackal", std::move(d), {Vec2(-2, 3), 1.5708}, Vec2(-2, 13), 100.0);
+  NavigationParams& p = s.robot().controller.params;
+  p.epsilon = 1.0;
+  p.clear_shot_corridor = 1.0;
+  p.footprint_clearance = true;
+  p.d_o = 0.3;
+  p.d_fb = 0.15;
+  p.d_unsafe = 0.04;
+  p.hysteresis = 0.04;
+  p.obstacle_range = 0.4;
+  p.planner.kind = PlannerKind::AStar;
+  p.planner.map = PlannerMap::Sensed;
+  return s;
+}
+}  // namespace
+
+// In a gap barely wider than the Jackal, the automaton turns on the spot (avoid-obstacle and
+// go-to-goal taking turns) and the recovery then backs up into a cylinder in the lidar's blind
+// sector: a collision. With the footprint guard the same stack slows or changes each command that
+// would bring the rectangle within 2 cm of a sensed or remembered point, and gets through.
+TEST(PlannerOutcomes, FootprintGuardGetsTheJackalThroughAGapWhereTheStackWithoutItTouches) {
+  Scenario s = barn_world_180();
+  const RunResult unguarded = simulate(s);
+  EXPECT_EQ(unguarded.status, RunStatus::Collision);
+  EXPECT_TRUE(unguarded.collided);
+
+  s.robot().controller.params.planner.guard_horizon = 0.5;
+  const RunResult guarded = simulate(s);
+  EXPECT_EQ(guarded.status, RunStatus::Reached);
+  EXPECT_FALSE(guarded.collided);
+  EXPECT_GT(guarded.min_clearance, 0.0) << "the rectangle never touches a cylinder";
+  // It passes where the unguarded run ended: north of y = 6.5, within the 100 s.
+  ASSERT_FALSE(guarded.trajectory.empty());
+  EXPECT_GT(guarded.trajectory.back().y, 12.0);
+  EXPECT_LT(guarded.sim_time, 40.0);
+}
+
 // The rrt_connect kind (OMPL's RRT-Connect on the same raster): a QuickBot finds the short way
 // round the wall of long_way() that the chapter alone misses, and the same seed gives the same
 // run bit for bit.

@@ -20,6 +20,12 @@
 ///      progress guard, eq. 5.26, measures against a fixed point) goes to the inner controller,
 ///      with the remembered obstacle points added to what the sensors see now.
 ///
+///   6. guard (planner.guard_horizon > 0): the command (a velocity u tracked here by the pipeline
+///      of Fig 5.12, as the simulator would) is checked by sweeping the footprint along it
+///      against this step's points and the rolling grid's remembered ones
+///      (nav/footprint_guard.hpp), and slowed or replaced; the recovery's back-up ends when it is
+///      blocked behind, and its turn goes the other way round when blocked (both ways: it ends).
+///
 /// Mode names: the inner controller's, then recovery_back_up, recovery_turn, stuck. Guard
 /// names: the inner's, then progress_stalled, no_path, recovered.
 
@@ -30,6 +36,8 @@
 #include <vector>
 
 #include "floornav/nav/controller.hpp"
+#include "floornav/nav/footprint_guard.hpp"
+#include "floornav/nav/pid.hpp"
 #include "floornav/nav/planned_path.hpp"
 #include "floornav/nav/progress_checker.hpp"
 #include "floornav/nav/rolling_grid.hpp"
@@ -90,6 +98,9 @@ class PlannerController final : public Controller {
   /// The planning radius and lookahead in use (the 0 defaults resolved), m.
   double plan_radius() const { return radius_; }
   double lookahead() const { return lookahead_; }
+  /// Steps at which the footprint guard slowed (scaled) or replaced the command.
+  int guard_slowed() const { return guard_slowed_; }
+  int guard_replaced() const { return guard_replaced_; }
 
  private:
   enum class Phase { Follow, BackUp, Turn, Stuck };
@@ -110,6 +121,12 @@ class PlannerController final : public Controller {
   /// Fills points_ with the observation's points and the remembered ones; the span over them.
   std::span<const Vec2> points_with_memory(const Observation& obs);
   int own_mode(Phase p) const;
+  /// The guard's points for this step: the observation's and the remembered ones nearby.
+  void guard_points(const Observation& obs);
+  /// The decision's command through the footprint guard (a velocity tracked to a unicycle).
+  Decision guarded(const Observation& obs, Decision d);
+  /// The guard says the recovery's command (v, omega) is blocked.
+  bool guard_blocks(double v, double omega) const;
 
   std::unique_ptr<Controller> inner_;
   NavigationParams nav_;
@@ -141,6 +158,8 @@ class PlannerController final : public Controller {
   std::vector<Vec2> pulled_;
   std::vector<Vec2> points_;  ///< observation points plus remembered ones
   std::vector<Vec2> remembered_;
+  std::optional<FootprintGuard> guard_;
+  PidState pid_{};  ///< the pipeline's heading PID, when the guard tracks u itself
 
   // State.
   PlannedPath path_;
@@ -152,6 +171,7 @@ class PlannerController final : public Controller {
   double last_plan_time_{-1e300};
   double last_t_{-1e300};
   bool planned_{false};
+  bool replan_now_{false};  ///< the inner controller reached its subgoal: plan again
   Phase phase_{Phase::Follow};
   double phase_start_{0.0};
   Pose2 phase_pose_{};
@@ -160,6 +180,9 @@ class PlannerController final : public Controller {
   int recoveries_total_{0};
   int plans_{0};
   int mode_{0};
+  int turn_sign_{0};  ///< recovery turn: 0 the short way; +1/-1 forced (the short way blocked)
+  int guard_slowed_{0};
+  int guard_replaced_{0};
 };
 
 }  // namespace floornav

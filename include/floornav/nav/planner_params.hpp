@@ -68,6 +68,12 @@ struct PlannerParams {
   /// within them is "no path", as when A* finds none. A count, not a time, so that a plan does
   /// not depend on how fast the machine is.
   int max_samples{100000};
+  /// s: the footprint guard's horizon (nav/footprint_guard.hpp): every command is checked by
+  /// sweeping the robot's footprint (or its body disc) along it this long against the sensed and
+  /// remembered points, and slowed or replaced when it would come within guard_margin; the
+  /// recovery's back-up and turn stop or turn the other way when blocked. 0: off (the default).
+  double guard_horizon{0.0};
+  double guard_margin{0.02};  ///< m the footprint guard keeps from every point
 
   bool operator==(const PlannerParams&) const = default;
 
@@ -92,6 +98,10 @@ struct PlannerParams {
     a("memory_range", memory_range,
       "remembered cells within this clearance are obstacle points for the automaton, m (0: off)");
     a("max_samples", max_samples, "rrt_connect: samples per plan before it gives up");
+    a("guard_horizon", guard_horizon,
+      "s: sweep the footprint along each command this long and slow or replace it when it "
+      "would come within guard_margin of a sensed or remembered point (0: off)");
+    a("guard_margin", guard_margin, "m the footprint guard keeps between footprint and points");
   }
 };
 
