@@ -6,6 +6,7 @@
 
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/ray.hpp"
+#include "floornav/world/occupancy_grid.hpp"
 
 namespace floornav {
 
@@ -24,6 +25,9 @@ SensorBeam beam_of(const Pose2& robot, double c, double s, const RangeSensorSpec
 
 // A margin against rounding: the disc's radius is a lower bound computed in floating point.
 constexpr double kFreeMargin = 1e-9;  // m
+// A ray that stays this far inside the free disc cannot meet a shape, even through the rounding of
+// a ray-segment test (its collinear tolerance is 1e-12 m).
+constexpr double kReachMargin = 1e-6;  // m
 
 // The nearest of `others` along the ray, or `best` when none is nearer.
 double nearest_disc(std::span<const Circle> others, const Vec2& origin, const Vec2& dir,
@@ -50,11 +54,20 @@ double sense_one(const World& world, const SensorBeam& b, const RangeSensorSpec&
                  double noise_stddev, Rng& rng, const FreeDisc& free,
                  std::span<const Circle> others, std::span<const OrientedBox> boxes) {
   const double free_radius = free.radius - kFreeMargin;
-  const bool known_free =
-      free_radius > 0.0 && (b.origin - free.centre).squaredNorm() < free_radius * free_radius;
+  const double from_centre2 = (b.origin - free.centre).squaredNorm();
+  const bool known_free = free_radius > 0.0 && from_centre2 < free_radius * free_radius;
+  // Every ray of the sensor ends inside the free disc: no shape of the world is within its reach,
+  // so the world's cast would return max_range (or the occupancy grid's hit, which the disc does
+  // not rule out), bit for bit, without walking its cells.
+  const bool reach_free =
+      known_free && std::sqrt(from_centre2) + s.max_range < free_radius - kReachMargin;
+  const OccupancyGrid* grid = world.grid();
   const auto cast = [&](const Vec2& dir) {
-    const double r = known_free ? world.cast_ray_from_free(b.origin, dir, s.max_range)
-                                : world.cast_ray(b.origin, dir, s.max_range);
+    const double r = reach_free
+                         ? (grid ? std::min(s.max_range, grid->cast_ray(b.origin, dir, s.max_range))
+                                 : s.max_range)
+                     : known_free ? world.cast_ray_from_free(b.origin, dir, s.max_range)
+                                  : world.cast_ray(b.origin, dir, s.max_range);
     const double near = others.empty() ? r : nearest_disc(others, b.origin, dir, r);
     return boxes.empty() ? near : nearest_box(boxes, b.origin, dir, near);
   };
