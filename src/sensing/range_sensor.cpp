@@ -211,6 +211,11 @@ std::size_t lidar_end(std::span<const RangeSensorSpec> sensors, std::size_t i) {
 void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
                           std::span<SensorBeam> beams) {
   const double c = std::cos(robot.theta), s = std::sin(robot.theta);
+  // Fewer sensors than a lidar's run (IR rings, sonars): no run to look for.
+  if (sensors.size() < kMinFanBeams) {
+    for (std::size_t i = 0; i < sensors.size(); ++i) beams[i] = beam_of(robot, c, s, sensors[i]);
+    return;
+  }
   for (std::size_t i = 0; i < sensors.size();) {
     const std::size_t end = lidar_end(sensors, i);
     if (end - i < kMinFanBeams) {
@@ -250,6 +255,12 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
                   std::span<double> ranges, FanScratch& scratch, const FreeDisc& free,
                   std::span<const Circle> others, std::span<const OrientedBox> boxes) {
+  // Fewer sensors than a fan needs: each is cast on its own, as below.
+  if (sensors.size() < kMinFanBeams) {
+    for (std::size_t i = 0; i < sensors.size(); ++i)
+      ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free, others, boxes);
+    return;
+  }
   for (std::size_t i = 0; i < sensors.size();) {
     const std::size_t end = fan_end(beams, sensors, i);
     if (end - i >= kMinFanBeams) {
