@@ -6,6 +6,7 @@
 
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/ray.hpp"
+#include "floornav/world/occupancy_grid.hpp"
 
 namespace floornav {
 
@@ -24,6 +25,9 @@ SensorBeam beam_of(const Pose2& robot, double c, double s, const RangeSensorSpec
 
 // A margin against rounding: the disc's radius is a lower bound computed in floating point.
 constexpr double kFreeMargin = 1e-9;  // m
+// A ray that stays this far inside the free disc cannot meet a shape, even through the rounding of
+// a ray-segment test (its collinear tolerance is 1e-12 m).
+constexpr double kReachMargin = 1e-6;  // m
 
 // The nearest of `others` along the ray, or `best` when none is nearer.
 double nearest_disc(std::span<const Circle> others, const Vec2& origin, const Vec2& dir,
@@ -50,11 +54,20 @@ double sense_one(const World& world, const SensorBeam& b, const RangeSensorSpec&
                  double noise_stddev, Rng& rng, const FreeDisc& free,
                  std::span<const Circle> others, std::span<const OrientedBox> boxes) {
   const double free_radius = free.radius - kFreeMargin;
-  const bool known_free =
-      free_radius > 0.0 && (b.origin - free.centre).squaredNorm() < free_radius * free_radius;
+  const double from_centre2 = (b.origin - free.centre).squaredNorm();
+  const bool known_free = free_radius > 0.0 && from_centre2 < free_radius * free_radius;
+  // Every ray of the sensor ends inside the free disc: no shape of the world is within its reach,
+  // so the world's cast would return max_range (or the occupancy grid's hit, which the disc does
+  // not rule out), bit for bit, without walking its cells.
+  const bool reach_free =
+      known_free && std::sqrt(from_centre2) + s.max_range < free_radius - kReachMargin;
+  const OccupancyGrid* grid = world.grid();
   const auto cast = [&](const Vec2& dir) {
-    const double r = known_free ? world.cast_ray_from_free(b.origin, dir, s.max_range)
-                                : world.cast_ray(b.origin, dir, s.max_range);
+    const double r = reach_free
+                         ? (grid ? std::min(s.max_range, grid->cast_ray(b.origin, dir, s.max_range))
+                                 : s.max_range)
+                     : known_free ? world.cast_ray_from_free(b.origin, dir, s.max_range)
+                                  : world.cast_ray(b.origin, dir, s.max_range);
     const double near = others.empty() ? r : nearest_disc(others, b.origin, dir, r);
     return boxes.empty() ? near : nearest_box(boxes, b.origin, dir, near);
   };
@@ -198,6 +211,11 @@ std::size_t lidar_end(std::span<const RangeSensorSpec> sensors, std::size_t i) {
 void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
                           std::span<SensorBeam> beams) {
   const double c = std::cos(robot.theta), s = std::sin(robot.theta);
+  // Fewer sensors than a lidar's run (IR rings, sonars): no run to look for.
+  if (sensors.size() < kMinFanBeams) {
+    for (std::size_t i = 0; i < sensors.size(); ++i) beams[i] = beam_of(robot, c, s, sensors[i]);
+    return;
+  }
   for (std::size_t i = 0; i < sensors.size();) {
     const std::size_t end = lidar_end(sensors, i);
     if (end - i < kMinFanBeams) {
@@ -237,6 +255,12 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
                   std::span<double> ranges, FanScratch& scratch, const FreeDisc& free,
                   std::span<const Circle> others, std::span<const OrientedBox> boxes) {
+  // Fewer sensors than a fan needs: each is cast on its own, as below.
+  if (sensors.size() < kMinFanBeams) {
+    for (std::size_t i = 0; i < sensors.size(); ++i)
+      ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free, others, boxes);
+    return;
+  }
   for (std::size_t i = 0; i < sensors.size();) {
     const std::size_t end = fan_end(beams, sensors, i);
     if (end - i >= kMinFanBeams) {

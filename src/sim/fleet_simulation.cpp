@@ -104,7 +104,12 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
   present_.assign(n, 0);
   moving_.assign(n, 0);
   gap_.assign(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) positions_[i] = agents_[i].pose().position;
+  status_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    positions_[i] = agents_[i].pose().position;
+    note_status(i);
+  }
+  moved_to_ = positions_;
   update_snapshot();
 
   // Robots that start touching each other have collided before the first step.
@@ -122,9 +127,9 @@ void FleetSimulation::update_snapshot() {
   const bool park = sim_.park_finished;
   bool presence_changed = false;
   for (std::size_t i = 0; i < agents_.size(); ++i) {
-    const RobotAgent& a = agents_[i];
-    moving_[i] = !a.finished();
-    const std::uint8_t present = !a.finished() || park || a.result().collided;
+    const bool ended = (status_[i] & kEnded) != 0;
+    moving_[i] = !ended;
+    const std::uint8_t present = !ended || park || (status_[i] & kCollided) != 0;
     presence_changed = presence_changed || present != present_[i];
     present_[i] = present;
     running_ += moving_[i];
@@ -151,10 +156,19 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
     if (crowd_) {
       crowd_->people_near(p, reach, others);
       agents_[i].step(scratch, others, crowd_->forklifts());
-      continue;
+    } else {
+      agents_[i].step(scratch, others);
     }
-    agents_[i].step(scratch, others);
+    // What the serial part needs of the robot, written while its state is in this core's cache.
+    moved_to_[i] = agents_[i].pose().position;
+    note_status(i);
   }
+}
+
+void FleetSimulation::note_status(std::size_t i) {
+  const RobotAgent& a = agents_[i];
+  status_[i] = static_cast<std::uint8_t>((a.finished() ? kEnded : 0) |
+                                         (a.result().collided ? kCollided : 0));
 }
 
 void FleetSimulation::tell_nearby(std::size_t i, SensingScratch& scratch) const {
@@ -171,10 +185,11 @@ void FleetSimulation::tell_nearby(std::size_t i, SensingScratch& scratch) const 
 
 void FleetSimulation::prepare_contacts() {
   ++steps_;
-  for (std::size_t i = 0; i < agents_.size(); ++i) positions_[i] = agents_[i].pose().position;
+  for (std::size_t i = 0; i < agents_.size(); ++i)
+    if (moving_[i]) positions_[i] = moved_to_[i];
   if (!velocities_.empty())
     for (std::size_t i = 0; i < agents_.size(); ++i)
-      velocities_[i] = agents_[i].finished() ? Vec2::Zero() : agents_[i].velocity();
+      velocities_[i] = (status_[i] & kEnded) != 0 ? Vec2::Zero() : agents_[i].velocity();
   grid_.build(positions_, present_);
   if (crowd_) crowd_->step(static_cast<double>(steps_ - 1) * sim_.dt, sim_.dt, bodies());
 }
@@ -192,26 +207,29 @@ double FleetSimulation::nearest_gap(std::size_t i) const {
 }
 
 void FleetSimulation::measure_gaps(std::size_t begin, std::size_t end) {
-  for (std::size_t i = begin; i < end; ++i)
-    if (moving_[i]) gap_[i] = nearest_gap(i);
+  // A gap that is not a contact only lowers the robot's own min_clearance: taken here, on the
+  // robot's thread, rather than in the serial part (a touching pair is left to apply_gaps).
+  for (std::size_t i = begin; i < end; ++i) {
+    if (!moving_[i]) continue;
+    const double gap = nearest_gap(i);
+    gap_[i] = gap;
+    if (gap > 0.0 && gap < std::numeric_limits<double>::infinity()) agents_[i].note_robot_gap(gap);
+  }
 }
 
 void FleetSimulation::apply_gaps() {
   // World collisions of this step (robot contacts are not applied yet).
   for (std::size_t i = 0; i < agents_.size(); ++i)
-    if (moving_[i] && agents_[i].result().collided)
+    if (moving_[i] && (status_[i] & kCollided) != 0)
       collisions_.push_back({agents_[i].recorded_time(agents_[i].result().steps),
                              static_cast<int>(i), -1, ContactKind::World});
   // Contacts between bodies at the positions after the move. Robots that stopped or left this
   // step still count: they were there while the others moved.
   for (std::size_t i = 0; i < agents_.size(); ++i) {
     if (!moving_[i]) continue;
-    RobotAgent& a = agents_[i];
     const double gap = gap_[i];
-    if (gap > 0.0) {
-      if (gap < std::numeric_limits<double>::infinity()) a.note_robot_gap(gap);
-      continue;
-    }
+    if (gap > 0.0) continue;  // noted by measure_gaps
+    RobotAgent& a = agents_[i];
     // Touching (rare): each touching pair is logged once, by its lower index unless that robot
     // was not moving.
     const Vec2 p = positions_[i];
@@ -222,6 +240,7 @@ void FleetSimulation::apply_gaps() {
                                static_cast<int>(j), ContactKind::Robot});
     });
     a.collide_with_robot(gap);
+    note_status(i);
   }
   if (crowd_) apply_crowd_contacts();
   update_snapshot();
@@ -242,6 +261,7 @@ void FleetSimulation::apply_crowd_contacts() {
     collisions_.push_back({a.time(), static_cast<int>(c.robot), static_cast<int>(c.other),
                            c.forklift ? ContactKind::Forklift : ContactKind::Person});
     a.collide_with_robot(c.gap);
+    note_status(c.robot);
   }
 }
 

@@ -47,7 +47,9 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
                           std::span<SensorBeam> beams);
 
 /// `sense_ranges` below, from beams already computed (`beams[i]` belongs to `sensors[i]`).
-/// Beams starting inside `free` skip the inside-obstacle test; the ranges are the same. A run of
+/// Beams starting inside `free` skip the inside-obstacle test, and a beam whose whole reach lies
+/// inside it does not walk the world's cells at all (only the occupancy grid is cast); the ranges
+/// are the same. A run of
 /// at least 16 consecutive single-beam sensors with one origin and one max_range (a lidar) is cast
 /// as one fan (`World::cast_fan`), again with the same ranges and the same noise draws.
 /// `others` are further solid discs the rays hit besides the world: the bodies of other robots

@@ -114,7 +114,13 @@ class FleetSimulation {
   std::vector<std::uint8_t> present_;  ///< still an obstacle to the others
   std::vector<std::uint8_t> moving_;   ///< running at the start of the step
   std::vector<double> radius_;
-  std::vector<double> gap_;    ///< m to the nearest other body after the move (moving robots)
+  std::vector<double> gap_;  ///< m to the nearest other body after the move (moving robots)
+  // Each robot's position and status after its move, written by the thread that moved it, so
+  // that the serial part reads small arrays rather than every robot's state.
+  std::vector<Vec2> moved_to_;
+  static constexpr std::uint8_t kEnded = 1, kCollided = 2;
+  std::vector<std::uint8_t> status_;  ///< kEnded | kCollided, as of the last note_status(i)
+  void note_status(std::size_t i);
   std::vector<double> reach_;  ///< m from the centre: the farthest a sensor of robot i sees
   // Robot avoidance (nav/robot_avoidance.hpp): who is told of the others, how far, and the
   // velocities they are told (start of the step). Empty when no robot uses it.
