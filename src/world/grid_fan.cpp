@@ -243,12 +243,34 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   // its beams is either outside the run's extent (the run's box is inside the tile's), so its
   // walk touches no cell of the run, or sees the run's lower bound (not below the tile's) above
   // its hit so far or above t_max, which a hit h >= lower bound cannot beat.
+  //
+  // First, without an atan2: a fan narrower than a full turn (a lidar of 180 degrees) leaves out
+  // the boxes that lie wholly behind it. Every beam is within half_width (+ 1e-8 for the angles'
+  // tolerance and the rounding of the directions) of the fan's centre line c. The points p (from
+  // the origin) more than `behind` >= pi / 2 from c form a convex cone, so a box whose four
+  // corners are in it lies in it, and no beam passes through it.
+  const double half_width = 0.5 * (fan->n - 1) * fan->step;
+  const double behind = std::max(half_width + fan_detail::kFanMargin, 0.5 * kPi);
+  const bool cone_test = behind < kPi;
+  const double centre = fan->first + half_width - yaw;
+  const double cx = std::cos(centre), cy = std::sin(centre);
+  const double cos_behind = std::cos(behind);  // <= 0
+  const auto wholly_behind = [&](double x0, double x1, double y0, double y1) {
+    const auto corner_behind = [&](double x, double y) {
+      const double px = x - o.x(), py = y - o.y();
+      const double along = px * cx + py * cy;
+      return along < 0.0 && along * along > cos_behind * cos_behind * (px * px + py * py);
+    };
+    return cone_test && corner_behind(x0, y0) && corner_behind(x1, y0) && corner_behind(x0, y1) &&
+           corner_behind(x1, y1);
+  };
   const auto wanted = [&](double x0, double x1, double y0, double y1) {
     const double gx = std::max({0.0, x0 - o.x(), o.x() - x1});
     const double gy = std::max({0.0, y0 - o.y(), o.y() - y1});
     const double gap2 = gx * gx + gy * gy;
     if (gap2 > reach2) return false;
     if (gap2 < 1e-12) return true;
+    if (wholly_behind(x0, x1, y0, y1)) return false;
     const double lower = std::sqrt(gap2) * (1.0 - 1e-5);
     bool any = false;
     for_beams_towards(x0, x1, y0, y1, [&](int k) {

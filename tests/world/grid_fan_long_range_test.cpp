@@ -104,6 +104,31 @@ TEST(GridFanLongRange, MatchesTheCellByCellWalkOnRealMaps) {
   }
 }
 
+// Turned grids (the fan works in the grid's frame: its centre line and its beams turned by the
+// map's yaw), with half-turn and full-turn fans, on random walls and noise.
+TEST(GridFanLongRange, MatchesTheCellByCellWalkOnTurnedRandomGrids) {
+  Rng rng(16);
+  for (int m = 0; m < 30; ++m) {
+    const int w = 20 + static_cast<int>(rng.uniform(0.0, 200.0));
+    const int h = 20 + static_cast<int>(rng.uniform(0.0, 200.0));
+    const double density = std::pow(10.0, rng.uniform(-3.0, -1.0));
+    std::vector<std::uint8_t> cells(static_cast<std::size_t>(w) * h);
+    for (auto& c : cells) c = rng.uniform() < density ? 1 : 0;
+    for (int k = 0; k < 6; ++k) {  // a few straight walls
+      const bool column = rng.uniform() < 0.5;
+      const int at = static_cast<int>(rng.uniform(0.0, column ? w : h));
+      for (int i = 0; i < (column ? h : w); ++i)
+        if (rng.uniform() < 0.9)
+          cells[column ? static_cast<std::size_t>(i) * w + at
+                       : static_cast<std::size_t>(at) * w + i] = 1;
+    }
+    const double yaw = m % 2 == 0 ? rng.uniform(-kPi, kPi) : 0.0;
+    const OccupancyGrid g(w, h, 0.05, Pose2{Vec2(1.5, -0.7), yaw}, cells);
+    expect_fans_match_oracle(g, rng, 40, {8.0, 2.0, 20.0}, "random grid");
+    ASSERT_FALSE(::testing::Test::HasFailure()) << "grid " << m;
+  }
+}
+
 // Worked by hand: a wall (column 20, rows 0..39) seen across a tile border, and a second wall
 // behind it (column 30) that the first hides; the origin on the tile border y = 16.
 TEST(GridFanLongRange, ANearWallHidesTheOneBehindIt) {
