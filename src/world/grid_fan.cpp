@@ -16,6 +16,11 @@ namespace floornav {
 using cell_detail::clamp_cell;
 using grid_detail::kInf;
 
+// The side of the square tiles (cells) the runs are kept by. Instructions per fan (callgrind,
+// 180-beam fans at 8 m on the cave maps): 16 cells 1.32x those of 32, 64 cells 0.97x, 128 cells
+// 1.12x; 32 also keeps the tiles fine for 3.5 m lidars.
+constexpr int kTile = 32;
+
 void OccupancyGrid::compute_boundary() {
   const auto free_at = [&](int x, int y) {
     return x >= 0 && y >= 0 && x < width_ && y < height_ &&
@@ -24,7 +29,7 @@ void OccupancyGrid::compute_boundary() {
   const auto occupied_at = [&](int x, int y) {
     return occupied_[static_cast<std::size_t>(y) * width_ + x] != 0;
   };
-  constexpr int T = kFanTile;
+  constexpr int T = kTile;
   tile_cols_ = (width_ + T - 1) / T;
   tile_rows_ = (height_ + T - 1) / T;
   const std::size_t tiles = static_cast<std::size_t>(tile_cols_) * tile_rows_;
@@ -280,8 +285,8 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   };
   // The tiles in rings about the origin's tile (ring r: Chebyshev distance r in tiles), nearest
   // first, so that near hits skip the tiles behind them. Every cell of ring r >= 1 is at least
-  // (r - 1) * kFanTile cells from the origin: past the farthest a beam can still reach, stop.
-  constexpr int T = kFanTile;
+  // (r - 1) * kTile cells from the origin: past the farthest a beam can still reach, stop.
+  constexpr int T = kTile;
   const int tx0 = ix0 / T, ty0 = iy0 / T;
   const auto tile = [&](int tx, int ty) {
     const std::size_t t = static_cast<std::size_t>(ty) * tile_cols_ + tx;

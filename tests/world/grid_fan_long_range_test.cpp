@@ -38,7 +38,7 @@ void lidar(double heading, double fov, int n, std::vector<Vec2>& dirs,
   }
 }
 
-// Fans from `fans` free origins of `g` (some on cell corners and on the 16-cell tile borders),
+// Fans from `fans` free origins of `g` (some on cell corners and on the 32-cell tile borders),
 // half of them 180 degrees wide and half full turns, each at one of `ranges`: every beam bit for
 // bit the cell-by-cell walk. Returns the number of beams that hit something.
 long expect_fans_match_oracle(const OccupancyGrid& g, Rng& rng, int fans,
@@ -59,7 +59,7 @@ long expect_fans_match_oracle(const OccupancyGrid& g, Rng& rng, int fans,
     }
     if (g.origin().theta == 0.0 && f % 4 == 2) {
       const Vec2 cell = (p - g.origin().position) / res;
-      p = g.origin().position + Vec2(16.0 * std::round(cell.x() / 16.0), cell.y()) * res;
+      p = g.origin().position + Vec2(32.0 * std::round(cell.x() / 32.0), cell.y()) * res;
     }
     if (!(g.clearance(p) > 0.0)) {
       --f;
@@ -129,31 +129,32 @@ TEST(GridFanLongRange, MatchesTheCellByCellWalkOnTurnedRandomGrids) {
   }
 }
 
-// Worked by hand: a wall (column 20, rows 0..39) seen across a tile border, and a second wall
-// behind it (column 30) that the first hides; the origin on the tile border y = 16.
+// Worked by hand: a wall (column 40, rows 0..79) seen across a tile border, and a second wall
+// behind it (column 60) that the first hides; the origin on the tile border y = 32.
 TEST(GridFanLongRange, ANearWallHidesTheOneBehindIt) {
-  std::vector<std::uint8_t> cells(40 * 40, 0);
-  for (int y = 0; y < 40; ++y) {
-    cells[static_cast<std::size_t>(y) * 40 + 20] = 1;
-    cells[static_cast<std::size_t>(y) * 40 + 30] = 1;
+  constexpr int n = 80;
+  std::vector<std::uint8_t> cells(n * n, 0);
+  for (int y = 0; y < n; ++y) {
+    cells[static_cast<std::size_t>(y) * n + 40] = 1;
+    cells[static_cast<std::size_t>(y) * n + 60] = 1;
   }
-  const OccupancyGrid g(40, 40, 0.5, Pose2{Vec2(0.0, 0.0), 0.0}, cells);
-  const Vec2 o(5.5 * 0.5, 16.0 * 0.5);  // cell units (5.5, 16)
+  const OccupancyGrid g(n, n, 0.5, Pose2{Vec2(0.0, 0.0), 0.0}, cells);
+  const Vec2 o(5.5 * 0.5, 32.0 * 0.5);  // cell units (5.5, 32)
   std::vector<Vec2> dirs;
   std::vector<double> angles;
   lidar(0.0, kPi, 181, dirs, angles);  // 1 degree apart; beam 90 points along +x
   std::vector<double> out(dirs.size());
   g.cast_fan(o, dirs, angles, 100.0, out);
-  // Along +x the walk enters column 20 at x = 20: 14.5 cells = 7.25 m, not column 30's 12.25 m.
-  EXPECT_EQ(out[90], 7.25);
-  // At 60 degrees: x = 20 is reached at t = 14.5 / cos 60 = 29 cells, y = 16 + 29 sin 60 = 41.1,
-  // past the grid's top (40): that beam leaves the grid and reads the range.
+  // Along +x the walk enters column 40 at x = 40: 34.5 cells = 17.25 m, not column 60's 27.25 m.
+  EXPECT_EQ(out[90], 17.25);
+  // At 60 degrees: x = 40 is reached at t = 34.5 / cos 60 = 69 cells, y = 32 + 69 sin 60 = 91.8,
+  // past the grid's top (80): that beam leaves the grid and reads the range.
   EXPECT_EQ(out[150], 100.0);
   for (std::size_t k = 0; k < dirs.size(); ++k) {
     EXPECT_EQ(bits(out[k]), bits(g.cast_ray_cell_by_cell(o, dirs[k], 100.0))) << k;
-    // Nothing reads the hidden wall's distance: every hit is on column 20's face.
+    // Nothing reads the hidden wall's distance: every hit is on column 40's face.
     if (out[k] < 100.0) {
-      EXPECT_NEAR((o.x() + out[k] * dirs[k].x()) / 0.5, 20.0, 1e-9) << k;
+      EXPECT_NEAR((o.x() + out[k] * dirs[k].x()) / 0.5, 40.0, 1e-9) << k;
     }
   }
 }

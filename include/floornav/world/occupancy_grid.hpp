@@ -132,17 +132,16 @@ class OccupancyGrid {
   /// Runs of occupied cells whose neighbour on one side is a free cell of the grid: side 0
   /// (x - 1) and 1 (x + 1) as runs of rows in a column, side 2 (y - 1) and 3 (y + 1) as runs of
   /// columns in a row. A walk enters or touches an occupied cell first only from a free
-  /// neighbour on a side facing its origin. The runs are cut at the borders of square tiles of
-  /// kFanTile cells and kept tile by tile, so that a fan can pass over a whole tile at once (when
-  /// none of its beams can still reach it nearer than its hit so far): tile t (row-major,
-  /// tile_cols_ per row) has the runs tile_runs_[tile_start_[4 t + s] .. tile_start_[4 t + s + 1])
-  /// of side s.
+  /// neighbour on a side facing its origin. The runs are cut at the borders of square tiles
+  /// (grid_fan.cpp's kTile cells) and kept tile by tile, so that a fan can pass over a whole tile
+  /// at once (when none of its beams can still reach it nearer than its hit so far): tile t
+  /// (row-major, tile_cols_ per row) has the runs
+  /// tile_runs_[tile_start_[4 t + s] .. tile_start_[4 t + s + 1]) of side s.
   struct Run {
     std::int32_t line;   ///< the column (sides 0, 1) or row (sides 2, 3)
     std::int32_t first;  ///< along the line
     std::int32_t last;   ///< inclusive
   };
-  static constexpr int kFanTile = 16;
   int tile_cols_{0};
   int tile_rows_{0};
   std::vector<Run> tile_runs_;
