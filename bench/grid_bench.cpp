@@ -167,6 +167,9 @@ struct CaveFans {
   std::vector<Vec2> origins;
   std::vector<std::vector<Vec2>> dirs;
   std::vector<std::vector<double>> angles;
+  /// The same, 180 beams over 180 degrees (1.006 degrees apart), as the peer benchmark's laser.
+  std::vector<std::vector<Vec2>> half_dirs;
+  std::vector<std::vector<double>> half_angles;
 };
 
 constexpr int kCaveBeams = 180;
@@ -188,6 +191,13 @@ const CaveFans& cave_fans() {
         f.angles[j][k] = a;
         f.dirs[j][k] = Vec2(std::cos(a), std::sin(a));
       }
+      f.half_dirs.emplace_back(kCaveBeams);
+      f.half_angles.emplace_back(kCaveBeams);
+      for (int k = 0; k < kCaveBeams; ++k) {
+        const double a = wrap_angle(0.37 * j - 0.5 * kPi + kPi * k / (kCaveBeams - 1));
+        f.half_angles[j][k] = a;
+        f.half_dirs[j][k] = Vec2(std::cos(a), std::sin(a));
+      }
     }
     return f;
   }();
@@ -196,8 +206,8 @@ const CaveFans& cave_fans() {
 
 /// Argument: the beams' range in centimetres (350: TurtleBot3 LDS-01; 800: Stage's sicklaser).
 /// How: 0 the fan (OccupancyGrid::cast_fan), 1 cast_ray per beam, 2 cast_ray_cell_by_cell per
-/// beam (the oracle). Items are rays.
-void cave_fan(benchmark::State& state, int how) {
+/// beam (the oracle). Items are rays. `half`: the 180-degree laser instead of the full turn.
+void cave_fan(benchmark::State& state, int how, bool half = false) {
   const CaveFans& f = cave_fans();
   const OccupancyGrid& grid = *f.map.grid;
   const double range = static_cast<double>(state.range(0)) / 100.0;
@@ -205,10 +215,10 @@ void cave_fan(benchmark::State& state, int how) {
   FanScratch scratch;
   std::size_t i = 0;
   for (auto _ : state) {
-    const std::vector<Vec2>& dirs = f.dirs[i % 8];
+    const std::vector<Vec2>& dirs = half ? f.half_dirs[i % 8] : f.dirs[i % 8];
     const Vec2& o = f.origins[i];
     if (how == 0) {
-      grid.cast_fan(o, dirs, f.angles[i % 8], range, out, scratch);
+      grid.cast_fan(o, dirs, half ? f.half_angles[i % 8] : f.angles[i % 8], range, out, scratch);
     } else if (how == 1) {
       for (int k = 0; k < kCaveBeams; ++k) out[k] = grid.cast_ray(o, dirs[k], range);
     } else {
@@ -228,7 +238,16 @@ void BM_CaveGridCastRay180(benchmark::State& state) {
 void BM_CaveGridCellByCell180(benchmark::State& state) {
   cave_fan(state, 2);
 }
+/// The peer benchmark's laser: 180 beams over 180 degrees.
+void BM_CaveGridCastFanHalfTurn180(benchmark::State& state) {
+  cave_fan(state, 0, true);
+}
+void BM_CaveGridCastRayHalfTurn180(benchmark::State& state) {
+  cave_fan(state, 1, true);
+}
 BENCHMARK(BM_CaveGridCastFan180)->Arg(350)->Arg(800);
+BENCHMARK(BM_CaveGridCastFanHalfTurn180)->Arg(800);
+BENCHMARK(BM_CaveGridCastRayHalfTurn180)->Arg(800);
 BENCHMARK(BM_CaveGridCastRay180)->Arg(350)->Arg(800);
 BENCHMARK(BM_CaveGridCellByCell180)->Arg(350)->Arg(800);
 

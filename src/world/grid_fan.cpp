@@ -16,6 +16,11 @@ namespace floornav {
 using cell_detail::clamp_cell;
 using grid_detail::kInf;
 
+// The side of the square tiles (cells) the runs are kept by. Instructions per fan (callgrind,
+// 180-beam fans at 8 m on the cave maps): 16 cells 1.32x those of 32, 64 cells 0.97x, 128 cells
+// 1.12x; 32 also keeps the tiles fine for 3.5 m lidars.
+constexpr int kTile = 32;
+
 void OccupancyGrid::compute_boundary() {
   const auto free_at = [&](int x, int y) {
     return x >= 0 && y >= 0 && x < width_ && y < height_ &&
@@ -24,29 +29,46 @@ void OccupancyGrid::compute_boundary() {
   const auto occupied_at = [&](int x, int y) {
     return occupied_[static_cast<std::size_t>(y) * width_ + x] != 0;
   };
+  constexpr int T = kTile;
+  tile_cols_ = (width_ + T - 1) / T;
+  tile_rows_ = (height_ + T - 1) / T;
+  const std::size_t tiles = static_cast<std::size_t>(tile_cols_) * tile_rows_;
+  // Each side's runs, line by line, cut at the tile borders along the line; then counted and
+  // placed tile by tile (tile-major, side-minor).
+  std::vector<Run> runs[4];
+  const auto tile_of = [&](int s, const Run& r) {
+    const bool rows = s >= 2;
+    const int x = rows ? r.first : r.line, y = rows ? r.line : r.first;
+    return static_cast<std::size_t>(y / T) * tile_cols_ + static_cast<std::size_t>(x / T);
+  };
   for (int s = 0; s < 4; ++s) {
     const bool rows = s >= 2;  // runs along rows (of columns)
     const int lines = rows ? height_ : width_;
     const int along = rows ? width_ : height_;
     const int dx = s == 0 ? -1 : (s == 1 ? 1 : 0);
     const int dy = s == 2 ? -1 : (s == 3 ? 1 : 0);
-    runs_[s].clear();
-    run_start_[s].assign(static_cast<std::size_t>(lines) + 1, 0);
     for (int l = 0; l < lines; ++l) {
-      run_start_[s][l] = static_cast<std::int32_t>(runs_[s].size());
       int open = -1;
       for (int i = 0; i <= along; ++i) {
         const int x = rows ? i : l, y = rows ? l : i;
         const bool in = i < along && occupied_at(x, y) && free_at(x + dx, y + dy);
         if (in && open < 0) open = i;
-        if (!in && open >= 0) {
-          runs_[s].push_back({open, i - 1});
+        // A run ends where the cells stop, and at a tile border.
+        if (open >= 0 && (!in || i % T == T - 1)) {
+          runs[s].push_back({l, open, in ? i : i - 1});
           open = -1;
         }
       }
     }
-    run_start_[s][lines] = static_cast<std::int32_t>(runs_[s].size());
   }
+  tile_start_.assign(4 * tiles + 1, 0);
+  for (int s = 0; s < 4; ++s)
+    for (const Run& r : runs[s]) ++tile_start_[4 * tile_of(s, r) + s + 1];
+  for (std::size_t i = 1; i < tile_start_.size(); ++i) tile_start_[i] += tile_start_[i - 1];
+  tile_runs_.resize(static_cast<std::size_t>(tile_start_.back()));
+  std::vector<std::int32_t> fill(tile_start_.begin(), tile_start_.end() - 1);
+  for (int s = 0; s < 4; ++s)
+    for (const Run& r : runs[s]) tile_runs_[fill[4 * tile_of(s, r) + s]++] = r;
 }
 
 void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dirs,
@@ -127,6 +149,22 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   const double reach = t_max * (1.0 + 1e-5) + 1e-6;
   const double reach2 = reach * reach;
   const double yaw = origin_.theta;
+  // Calls f(k) for the beams within the angular extent of box [x0, x1] x [y0, y1] (cells), at
+  // gap2 (> 1e-12) from the origin, and possibly a few more: those whose angle lies between the
+  // box's silhouette corners as seen from the origin (outside the box), the clockwise-most one
+  // then counter-clockwise (less than pi) to the other, widened by kFanMargin on each side.
+  const auto for_beams_towards = [&](double x0, double x1, double y0, double y1, auto&& f) {
+    const double ox = o.x(), oy = o.y();
+    const double cw_x = oy < y0 ? x1 : (oy > y1 ? x0 : (ox > x1 ? x1 : x0));
+    const double cw_y = ox > x1 ? y1 : (ox < x0 ? y0 : (oy < y0 ? y0 : y1));
+    const double ccw_x = oy > y1 ? x1 : (oy < y0 ? x0 : (ox < x0 ? x0 : x1));
+    const double ccw_y = ox < x0 ? y1 : (ox > x1 ? y0 : (oy > y1 ? y1 : y0));
+    const double a_cw = fan_detail::coarse_atan2(cw_y - oy, cw_x - ox);
+    double width = fan_detail::coarse_atan2(ccw_y - oy, ccw_x - ox) - a_cw;
+    if (width < 0.0) width += fan_detail::kTwoPi;
+    const double m = fan_detail::kFanMargin;
+    fan_detail::for_beams_in(*fan, a_cw + yaw - m, width + 2.0 * m, f);
+  };
   // Run `r` of side `s` on line `l`: the box [x0, x1] x [y0, y1] of its cells.
   const auto run = [&](auto side, int l, const Run& r) {
     constexpr int s = decltype(side)::value;
@@ -188,40 +226,106 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
       for (int k = 0; k < fan->n; ++k) each(k);
       return;
     }
-    // The box's angular extent, from its silhouette corners as seen from the origin (outside
-    // the box): the clockwise-most one, then counter-clockwise (less than pi) to the other.
-    const double ox = o.x(), oy = o.y();
-    const double cw_x = oy < y0 ? x1 : (oy > y1 ? x0 : (ox > x1 ? x1 : x0));
-    const double cw_y = ox > x1 ? y1 : (ox < x0 ? y0 : (oy < y0 ? y0 : y1));
-    const double ccw_x = oy > y1 ? x1 : (oy < y0 ? x0 : (ox < x0 ? x0 : x1));
-    const double ccw_y = ox < x0 ? y1 : (ox > x1 ? y0 : (oy > y1 ? y1 : y0));
-    const double a_cw = fan_detail::coarse_atan2(cw_y - oy, cw_x - ox);
-    double width = fan_detail::coarse_atan2(ccw_y - oy, ccw_x - ox) - a_cw;
-    if (width < 0.0) width += fan_detail::kTwoPi;
-    const double m = fan_detail::kFanMargin;
-    fan_detail::for_beams_in(*fan, a_cw + yaw - m, width + 2.0 * m, each);
+    for_beams_towards(x0, x1, y0, y1, each);
   };
   // Only runs whose side faces the origin: side 0 on columns right of the origin's column, 1 on
-  // those left of it, 2 on rows above, 3 on rows below. Nearest lines first.
-  const auto line = [&](auto side, int l) {
+  // those left of it, 2 on rows above, 3 on rows below.
+  const auto tile_side = [&](auto side, std::size_t t) {
     constexpr int s = decltype(side)::value;
-    // The runs of the line that overlap the reach's span along it (they are disjoint and in
-    // order, so their ends are in order too).
-    const double along = s >= 2 ? o.x() : o.y();
-    const double a_lo = along - reach - 1.0, a_hi = along + reach + 1.0;
-    const Run* first = runs_[s].data() + run_start_[s][l];
-    const Run* last = runs_[s].data() + run_start_[s][l + 1];
-    first = std::partition_point(first, last, [&](const Run& r) { return r.last < a_lo; });
-    for (; first != last && first->first <= a_hi; ++first) run(side, l, *first);
+    const Run* r = tile_runs_.data() + tile_start_[4 * t + s];
+    const Run* end = tile_runs_.data() + tile_start_[4 * t + s + 1];
+    for (; r != end; ++r) {
+      const bool faces = s == 0   ? r->line > ix0
+                         : s == 1 ? r->line < ix0
+                         : s == 2 ? r->line > iy0
+                                  : r->line < iy0;
+      if (faces) run(side, r->line, *r);
+    }
   };
-  const int reach_cells = static_cast<int>(std::min(reach + 2.0, 1e9));
-  for (int j = 1; j <= reach_cells; ++j) {
+  // Whether some beam may still take a hit from a cell of box [x0, x1] x [y0, y1] (a tile): a
+  // beam within the box's angular extent whose hit so far (or t_max) is not nearer than the
+  // box's lower bound. When none may, `run` would leave every run of the box untested: each of
+  // its beams is either outside the run's extent (the run's box is inside the tile's), so its
+  // walk touches no cell of the run, or sees the run's lower bound (not below the tile's) above
+  // its hit so far or above t_max, which a hit h >= lower bound cannot beat.
+  //
+  // First, without an atan2: a fan narrower than a full turn (a lidar of 180 degrees) leaves out
+  // the boxes that lie wholly behind it. Every beam is within half_width (+ 1e-8 for the angles'
+  // tolerance and the rounding of the directions) of the fan's centre line c. The points p (from
+  // the origin) more than `behind` >= pi / 2 from c form a convex cone, so a box whose four
+  // corners are in it lies in it, and no beam passes through it.
+  const double half_width = 0.5 * (fan->n - 1) * fan->step;
+  const double behind = std::max(half_width + fan_detail::kFanMargin, 0.5 * kPi);
+  const bool cone_test = behind < kPi;
+  const double centre = fan->first + half_width - yaw;
+  const double cx = std::cos(centre), cy = std::sin(centre);
+  const double cos_behind = std::cos(behind);  // <= 0
+  const auto wholly_behind = [&](double x0, double x1, double y0, double y1) {
+    const auto corner_behind = [&](double x, double y) {
+      const double px = x - o.x(), py = y - o.y();
+      const double along = px * cx + py * cy;
+      return along < 0.0 && along * along > cos_behind * cos_behind * (px * px + py * py);
+    };
+    return cone_test && corner_behind(x0, y0) && corner_behind(x1, y0) && corner_behind(x0, y1) &&
+           corner_behind(x1, y1);
+  };
+  const auto wanted = [&](double x0, double x1, double y0, double y1) {
+    const double gx = std::max({0.0, x0 - o.x(), o.x() - x1});
+    const double gy = std::max({0.0, y0 - o.y(), o.y() - y1});
+    const double gap2 = gx * gx + gy * gy;
+    if (gap2 > reach2) return false;
+    if (gap2 < 1e-12) return true;
+    if (wholly_behind(x0, x1, y0, y1)) return false;
+    const double lower = std::sqrt(gap2) * (1.0 - 1e-5);
     bool any = false;
-    if (ix0 + j < width_) line(std::integral_constant<int, 0>{}, ix0 + j), any = true;
-    if (ix0 - j >= 0) line(std::integral_constant<int, 1>{}, ix0 - j), any = true;
-    if (iy0 + j < height_) line(std::integral_constant<int, 2>{}, iy0 + j), any = true;
-    if (iy0 - j >= 0) line(std::integral_constant<int, 3>{}, iy0 - j), any = true;
-    if (!any) break;
+    for_beams_towards(x0, x1, y0, y1, [&](int k) {
+      any = any || (best[k] != -kInf && lower <= std::min(best[k], t_max));
+    });
+    return any;
+  };
+  // The tiles in rings about the origin's tile (ring r: Chebyshev distance r in tiles), nearest
+  // first, so that near hits skip the tiles behind them. Every cell of ring r >= 1 is at least
+  // (r - 1) * kTile cells from the origin: past the farthest a beam can still reach, stop.
+  constexpr int T = kTile;
+  const int tx0 = ix0 / T, ty0 = iy0 / T;
+  const auto tile = [&](int tx, int ty) {
+    const std::size_t t = static_cast<std::size_t>(ty) * tile_cols_ + tx;
+    if (tile_start_[4 * t] == tile_start_[4 * t + 4]) return;
+    const double x0 = tx * T, x1 = std::min(tx * T + T, width_);
+    const double y0 = ty * T, y1 = std::min(ty * T + T, height_);
+    if (!wanted(x0, x1, y0, y1)) return;
+    tile_side(std::integral_constant<int, 0>{}, t);
+    tile_side(std::integral_constant<int, 1>{}, t);
+    tile_side(std::integral_constant<int, 2>{}, t);
+    tile_side(std::integral_constant<int, 3>{}, t);
+  };
+  for (int ring = 0;; ++ring) {
+    if (ring >= 2 && ring % 4 == 0) {
+      // Every fourth ring (the loop costs a few rings' work). A beam cast ray by ray (best =
+      // -inf) raises nothing.
+      const auto cap = [&](std::size_t k) { return best[k] < t_max ? best[k] : t_max; };
+      double f0 = -kInf, f1 = -kInf, f2 = -kInf, f3 = -kInf;
+      std::size_t k = 0;
+      for (; k + 4 <= n; k += 4) {
+        f0 = std::max(f0, cap(k));
+        f1 = std::max(f1, cap(k + 1));
+        f2 = std::max(f2, cap(k + 2));
+        f3 = std::max(f3, cap(k + 3));
+      }
+      for (; k < n; ++k) f0 = std::max(f0, cap(k));
+      const double farthest = std::max(std::max(f0, f1), std::max(f2, f3));
+      if ((ring - 1.0) * T * (1.0 - 1e-5) > farthest) break;
+    }
+    const int xa = tx0 - ring, xb = tx0 + ring, ya = ty0 - ring, yb = ty0 + ring;
+    if (xa < 0 && ya < 0 && xb >= tile_cols_ && yb >= tile_rows_) break;
+    for (int ty = std::max(ya, 0); ty <= std::min(yb, tile_rows_ - 1); ++ty) {
+      if (ty == ya || ty == yb) {
+        for (int tx = std::max(xa, 0); tx <= std::min(xb, tile_cols_ - 1); ++tx) tile(tx, ty);
+      } else {
+        if (xa >= 0) tile(xa, ty);
+        if (xb < tile_cols_ && xb != xa) tile(xb, ty);
+      }
+    }
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (best[i] == -kInf) {

@@ -101,7 +101,7 @@ class OccupancyGrid {
   /// The distance transform (nearest_, column_nearest_) and the free runs it gives.
   void compute_distance_transform();
   void compute_free_run();
-  /// The runs of occupied cells that the fan tests (runs_, run_start_).
+  /// The runs of occupied cells that the fan tests (tile_runs_, tile_start_).
   void compute_boundary();
   /// `cast_ray`; with `skip`, free space is crossed `free_run_` cells at a time.
   double cast(const Vec2& origin_world, const Vec2& dir, double max_range, bool skip) const;
@@ -130,16 +130,22 @@ class OccupancyGrid {
   /// minus 1.5. `cast_ray` jumps that far at once.
   std::vector<std::uint16_t> free_run_;
   /// Runs of occupied cells whose neighbour on one side is a free cell of the grid: side 0
-  /// (x - 1) and 1 (x + 1) as runs of rows in each column, side 2 (y - 1) and 3 (y + 1) as runs of
-  /// columns in each row. A walk enters or touches an occupied cell first only from a free
-  /// neighbour on a side facing its origin. Line l (column or row) has the runs
-  /// runs_[s][run_start_[s][l] .. run_start_[s][l + 1]) of side s, in increasing order.
+  /// (x - 1) and 1 (x + 1) as runs of rows in a column, side 2 (y - 1) and 3 (y + 1) as runs of
+  /// columns in a row. A walk enters or touches an occupied cell first only from a free
+  /// neighbour on a side facing its origin. The runs are cut at the borders of square tiles
+  /// (grid_fan.cpp's kTile cells) and kept tile by tile, so that a fan can pass over a whole tile
+  /// at once (when none of its beams can still reach it nearer than its hit so far): tile t
+  /// (row-major, tile_cols_ per row) has the runs
+  /// tile_runs_[tile_start_[4 t + s] .. tile_start_[4 t + s + 1]) of side s.
   struct Run {
-    std::int32_t first;
-    std::int32_t last;  ///< inclusive
+    std::int32_t line;   ///< the column (sides 0, 1) or row (sides 2, 3)
+    std::int32_t first;  ///< along the line
+    std::int32_t last;   ///< inclusive
   };
-  std::vector<Run> runs_[4];
-  std::vector<std::int32_t> run_start_[4];
+  int tile_cols_{0};
+  int tile_rows_{0};
+  std::vector<Run> tile_runs_;
+  std::vector<std::int32_t> tile_start_;
   std::size_t occupied_count_{0};
   double cos_yaw_{1.0};
   double sin_yaw_{0.0};

@@ -1,0 +1,163 @@
+// OccupancyGrid::cast_fan on fine grids and long ranges (issue 14): the fan visits the occupied
+// runs tile by tile and passes over whole tiles that no beam can still reach nearer than its hit.
+// Every beam must stay bit for bit the plain cell-by-cell DDA's (cast_ray_cell_by_cell, the
+// oracle), on the cave the peer benchmark uses (0.032 m cells, 180 beams, 8 m) and on real maps.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "../../bench/cave_map.hpp"
+#include "floornav/core/rng.hpp"
+#include "floornav/geometry/angle.hpp"
+#include "floornav/io/ros_map.hpp"
+#include "floornav/world/occupancy_grid.hpp"
+
+namespace floornav {
+namespace {
+
+std::uint64_t bits(double v) {
+  return std::bit_cast<std::uint64_t>(v);
+}
+
+// A lidar of n beams over `fov` (2 pi: a full turn, the last beam one step short of the first)
+// centred on `heading`, angles wrapped as sensors wrap them.
+void lidar(double heading, double fov, int n, std::vector<Vec2>& dirs,
+           std::vector<double>& angles) {
+  dirs.resize(n);
+  angles.resize(n);
+  const bool full = fov >= 2.0 * kPi;
+  const double step = full ? fov / n : fov / (n - 1);
+  for (int k = 0; k < n; ++k) {
+    const double a = wrap_angle(heading - (full ? 0.0 : 0.5 * fov) + step * k);
+    angles[k] = a;
+    dirs[k] = Vec2(std::cos(a), std::sin(a));
+  }
+}
+
+// Fans from `fans` free origins of `g` (some on cell corners and on the 32-cell tile borders),
+// half of them 180 degrees wide and half full turns, each at one of `ranges`: every beam bit for
+// bit the cell-by-cell walk. Returns the number of beams that hit something.
+long expect_fans_match_oracle(const OccupancyGrid& g, Rng& rng, int fans,
+                              const std::vector<double>& ranges, const char* what) {
+  Vec2 lo, hi;
+  g.world_extent(&lo, &hi);
+  const double res = g.resolution();
+  std::vector<Vec2> dirs;
+  std::vector<double> angles, out;
+  FanScratch scratch;
+  long hits = 0;
+  for (int f = 0; f < fans; ++f) {
+    Vec2 p(rng.uniform(lo.x(), hi.x()), rng.uniform(lo.y(), hi.y()));
+    // Grid-aligned maps only (yaw 0): snap to a cell corner or a tile border.
+    if (g.origin().theta == 0.0 && f % 4 == 1) {
+      const Vec2 cell = (p - g.origin().position) / res;
+      p = g.origin().position + Vec2(std::round(cell.x()), std::round(cell.y())) * res;
+    }
+    if (g.origin().theta == 0.0 && f % 4 == 2) {
+      const Vec2 cell = (p - g.origin().position) / res;
+      p = g.origin().position + Vec2(32.0 * std::round(cell.x() / 32.0), cell.y()) * res;
+    }
+    if (!(g.clearance(p) > 0.0)) {
+      --f;
+      continue;
+    }
+    const double range = ranges[f % ranges.size()];
+    lidar(rng.uniform(-kPi, kPi), f % 2 == 0 ? kPi : 2.0 * kPi, 180, dirs, angles);
+    out.assign(dirs.size(), -1.0);
+    g.cast_fan(p, dirs, angles, range, out, scratch);
+    for (std::size_t k = 0; k < dirs.size(); ++k) {
+      const double oracle = g.cast_ray_cell_by_cell(p, dirs[k], range);
+      if (oracle < range) ++hits;
+      EXPECT_EQ(bits(out[k]), bits(oracle))
+          << what << " fan " << f << " beam " << k << " from (" << p.x() << ", " << p.y()
+          << ") angle " << angles[k] << " range " << range << ": fan " << out[k] << ", oracle "
+          << oracle;
+      if (::testing::Test::HasFailure()) return hits;
+    }
+  }
+  return hits;
+}
+
+TEST(GridFanLongRange, MatchesTheCellByCellWalkOnTheCave) {
+  const bench::CaveMap cave = bench::make_cave_map();
+  Rng rng(14);
+  const long hits = expect_fans_match_oracle(*cave.grid, rng, 600, {8.0, 3.5, 16.0, 30.0}, "cave");
+  // The comparison means something only if most beams hit a wall (the cave is walled all round).
+  EXPECT_GT(hits, 600 * 180 / 2);
+}
+
+TEST(GridFanLongRange, MatchesTheCellByCellWalkOnRealMaps) {
+  const auto maps = std::filesystem::path(FLOORNAV_TEST_DATA_DIR) / "maps";
+  const char* files[] = {"turtlebot3/map.yaml", "nav2-bringup/depot.yaml",
+                         "ros-navigation-tutorials/lse_arena.yaml",
+                         "aws-robomaker-small-warehouse/005/map.yaml"};
+  Rng rng(15);
+  for (const char* file : files) {
+    const OccupancyGrid g = load_ros_map(maps / file);
+    const long hits = expect_fans_match_oracle(g, rng, 150, {8.0, 30.0, 3.5}, file);
+    ASSERT_FALSE(::testing::Test::HasFailure()) << file;
+    EXPECT_GT(hits, 150 * 180 / 4) << file;
+  }
+}
+
+// Turned grids (the fan works in the grid's frame: its centre line and its beams turned by the
+// map's yaw), with half-turn and full-turn fans, on random walls and noise.
+TEST(GridFanLongRange, MatchesTheCellByCellWalkOnTurnedRandomGrids) {
+  Rng rng(16);
+  for (int m = 0; m < 30; ++m) {
+    const int w = 20 + static_cast<int>(rng.uniform(0.0, 200.0));
+    const int h = 20 + static_cast<int>(rng.uniform(0.0, 200.0));
+    const double density = std::pow(10.0, rng.uniform(-3.0, -1.0));
+    std::vector<std::uint8_t> cells(static_cast<std::size_t>(w) * h);
+    for (auto& c : cells) c = rng.uniform() < density ? 1 : 0;
+    for (int k = 0; k < 6; ++k) {  // a few straight walls
+      const bool column = rng.uniform() < 0.5;
+      const int at = static_cast<int>(rng.uniform(0.0, column ? w : h));
+      for (int i = 0; i < (column ? h : w); ++i)
+        if (rng.uniform() < 0.9)
+          cells[column ? static_cast<std::size_t>(i) * w + at
+                       : static_cast<std::size_t>(at) * w + i] = 1;
+    }
+    const double yaw = m % 2 == 0 ? rng.uniform(-kPi, kPi) : 0.0;
+    const OccupancyGrid g(w, h, 0.05, Pose2{Vec2(1.5, -0.7), yaw}, cells);
+    expect_fans_match_oracle(g, rng, 40, {8.0, 2.0, 20.0}, "random grid");
+    ASSERT_FALSE(::testing::Test::HasFailure()) << "grid " << m;
+  }
+}
+
+// Worked by hand: a wall (column 40, rows 0..79) seen across a tile border, and a second wall
+// behind it (column 60) that the first hides; the origin on the tile border y = 32.
+TEST(GridFanLongRange, ANearWallHidesTheOneBehindIt) {
+  constexpr int n = 80;
+  std::vector<std::uint8_t> cells(n * n, 0);
+  for (int y = 0; y < n; ++y) {
+    cells[static_cast<std::size_t>(y) * n + 40] = 1;
+    cells[static_cast<std::size_t>(y) * n + 60] = 1;
+  }
+  const OccupancyGrid g(n, n, 0.5, Pose2{Vec2(0.0, 0.0), 0.0}, cells);
+  const Vec2 o(5.5 * 0.5, 32.0 * 0.5);  // cell units (5.5, 32)
+  std::vector<Vec2> dirs;
+  std::vector<double> angles;
+  lidar(0.0, kPi, 181, dirs, angles);  // 1 degree apart; beam 90 points along +x
+  std::vector<double> out(dirs.size());
+  g.cast_fan(o, dirs, angles, 100.0, out);
+  // Along +x the walk enters column 40 at x = 40: 34.5 cells = 17.25 m, not column 60's 27.25 m.
+  EXPECT_EQ(out[90], 17.25);
+  // At 60 degrees: x = 40 is reached at t = 34.5 / cos 60 = 69 cells, y = 32 + 69 sin 60 = 91.8,
+  // past the grid's top (80): that beam leaves the grid and reads the range.
+  EXPECT_EQ(out[150], 100.0);
+  for (std::size_t k = 0; k < dirs.size(); ++k) {
+    EXPECT_EQ(bits(out[k]), bits(g.cast_ray_cell_by_cell(o, dirs[k], 100.0))) << k;
+    // Nothing reads the hidden wall's distance: every hit is on column 40's face.
+    if (out[k] < 100.0) {
+      EXPECT_NEAR((o.x() + out[k] * dirs[k].x()) / 0.5, 40.0, 1e-9) << k;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace floornav
