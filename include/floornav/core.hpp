@@ -27,6 +27,7 @@
 #include "floornav/nav/controller.hpp"
 #include "floornav/nav/dwa_controller.hpp"
 #include "floornav/nav/dwa_params.hpp"
+#include "floornav/nav/footprint_guard.hpp"
 #include "floornav/nav/heading_tracker.hpp"
 #include "floornav/nav/navigation_automaton.hpp"
 #include "floornav/nav/navigation_controller.hpp"
