@@ -1,6 +1,7 @@
 #include "floornav/sim/fleet_simulation.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <barrier>
 #include <cmath>
 #include <exception>
@@ -31,6 +32,10 @@ double sensing_reach(const RobotSpec& robot) {
 
 // Rays a thread should have per step before a fleet is split across threads.
 constexpr std::size_t kRaysPerThread = 2000;
+// Robots a thread takes at a time when a fleet is split: small enough that the threads finish a
+// phase together (robots cost from a free-disc shortcut to a full scan, and finished robots
+// nothing), large enough that taking one costs nothing beside stepping it.
+constexpr std::size_t kRobotsPerChunk = 16;
 
 }  // namespace
 
@@ -310,10 +315,13 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     others_.emplace_back();
     others_.back().reserve(agents_.size());
   }
-  // Each thread steps a fixed slice of the robots; the barrier's completion (one thread, once
-  // per step) does the serial part. A robot's result does not depend on the slicing.
-  // Two phases per step: move, then measure the gaps between bodies; the serial parts (filing
-  // positions, applying contacts) run as the barrier's completion between them.
+  // The threads take the robots in chunks from a shared counter (fixed slices left one thread
+  // waiting for the other whenever robots of one slice had finished); the barrier's completion
+  // (one thread, once per phase) does the serial part and resets the counter. A robot's result
+  // does not depend on which thread steps it. Two phases per step: move, then measure the gaps
+  // between bodies; the serial parts (filing positions, applying contacts) run as the
+  // barrier's completion between them.
+  std::atomic<std::size_t> next{0};
   bool done = running_ == 0 || max_steps <= 0;
   bool moved = true;  // which phase the barrier is completing
   // A user's controller may throw on any thread: the first exception is kept, every thread
@@ -321,6 +329,7 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
   std::exception_ptr failure;
   std::mutex failure_mutex;
   auto completion = [&]() noexcept {
+    next.store(0, std::memory_order_relaxed);  // the barrier orders it before the next phase
     if (moved) {
       prepare_contacts();
     } else {
@@ -330,18 +339,26 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     moved = !moved;
   };
   std::barrier sync(static_cast<std::ptrdiff_t>(n_threads), completion);
+  const std::size_t n = agents_.size();
+  const auto each_chunk = [&](auto&& f) {
+    for (;;) {
+      const std::size_t begin = next.fetch_add(kRobotsPerChunk, std::memory_order_relaxed);
+      if (begin >= n) return;
+      f(begin, std::min(n, begin + kRobotsPerChunk));
+    }
+  };
   auto work = [&](std::size_t t) {
-    const std::size_t n = agents_.size();
-    const std::size_t begin = n * t / n_threads, end = n * (t + 1) / n_threads;
     while (!done) {
-      try {
-        step_robots(begin, end, t);
-      } catch (...) {
-        const std::lock_guard lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-      }
+      each_chunk([&](std::size_t begin, std::size_t end) {
+        try {
+          step_robots(begin, end, t);
+        } catch (...) {
+          const std::lock_guard lock(failure_mutex);
+          if (!failure) failure = std::current_exception();
+        }
+      });
       sync.arrive_and_wait();
-      measure_gaps(begin, end);
+      each_chunk([&](std::size_t begin, std::size_t end) { measure_gaps(begin, end); });
       sync.arrive_and_wait();
     }
   };
