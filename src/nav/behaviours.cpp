@@ -9,8 +9,11 @@ Vec2 go_to_goal_velocity(const Vec2& x, const Vec2& goal, double v0, double a) {
   const Vec2 e = goal - x;  // eq. 5.17
   const double n = e.norm();
   if (n <= 1e-12) return Vec2::Zero();
-  const double k = v0 * (1.0 - std::exp(-a * n * n)) / n;  // capped gain, eq. 5.19
-  return k * e;                                            // eq. 5.18
+  // Capped gain, eq. 5.19. Past an exponent of 40, 1 - e^-x rounds to 1 exactly (e^-40 is below
+  // half an ulp of 1): the same bits without exp's slow underflow path far from the goal.
+  const double x2 = a * n * n;
+  const double k = v0 * (x2 > 40.0 ? 1.0 : 1.0 - std::exp(-x2)) / n;
+  return k * e;  // eq. 5.18
 }
 
 Vec2 avoid_obstacle_velocity(const Vec2& x, std::span<const Vec2> points, double v0) {

@@ -132,12 +132,22 @@ void cast_fan(const World& world, std::span<const SensorBeam> beams, std::size_t
   }
 }
 
+// An angle reduced into (-pi, pi] by whole turns: within ~1e-15 rad of wrap_angle (which takes an
+// atan2, a sine and a cosine for an angle out of range), for the tolerance tests below.
+double reduce_turns(double a) {
+  return a > -kPi && a <= kPi ? a : a - 2.0 * kPi * std::nearbyint(a / (2.0 * kPi));
+}
+
 // Other robots' bodies on a fan of beams [i, end) that share an origin, lowering ranges[k] to
-// each hit. For evenly spaced beams each disc is tested only against the beams within its
-// angular extent widened by one beam spacing on each side (a beam's angle is within 1e-6 rad of
-// its place in the fan, far inside that margin), so the result is the all-pairs loop's, bit for
-// bit: the same test, and the minimum does not depend on the order. Otherwise, every pair.
-void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end,
+// each hit; every range is at most max_range on entry. For evenly spaced beams each disc is
+// tested only against the beams within its angular extent widened by one beam spacing (and
+// 1e-5 rad) on each side (a beam's angle is within 1e-6 rad of its place in the fan, the
+// extent's bearing within 2e-6 rad of atan2's, its half-width an upper bound of asin(r / d)),
+// and only where the beam's range so far is beyond the disc's distance d - r (less 1e-6
+// (1 + d), far more than the rounding of a ray-disc hit, which is never nearer than d - r), so
+// the result is the all-pairs loop's, bit for bit: the same test, and the minimum does not
+// depend on the order. Otherwise, every pair.
+void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end, double max_range,
                std::span<const Circle> others, std::span<double> ranges) {
   const std::size_t n = end - i;
   const Vec2 origin = beams[i].origin;
@@ -145,7 +155,8 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
   const double step = n > 1 ? wrap_angle(beams[i + 1].theta - theta0) : 0.0;
   bool even = step > 0.0;
   for (std::size_t k = 0; even && k < n; ++k)
-    even = std::abs(wrap_angle(beams[i + k].theta - theta0 - static_cast<double>(k) * step)) < 1e-6;
+    even =
+        std::abs(reduce_turns(beams[i + k].theta - theta0 - static_cast<double>(k) * step)) < 1e-6;
   const bool full_circle = even && static_cast<double>(n) * step > 2.0 * kPi - 0.5 * step;
   const auto test = [&](std::size_t k, const Circle& c) {
     ranges[i + k] = ray_circle_hit(origin, beams[i + k].dir, c, ranges[i + k]);
@@ -157,9 +168,17 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
       for (std::size_t k = 0; k < n; ++k) test(k, c);
       continue;
     }
-    const double half = std::asin(std::min(1.0, c.radius / d)) + step + 1e-9;
-    double rel = wrap_angle(std::atan2(v.y(), v.x()) - theta0);  // (-pi, pi]
-    if (rel < 0.0) rel += 2.0 * kPi;                             // [0, 2 pi)
+    // No beam reaches the disc before its range ends.
+    const double near = d - c.radius - 1e-6 * (1.0 + d);
+    if (near >= max_range) continue;
+    const auto test_near = [&](std::size_t k) {
+      if (ranges[i + k] > near) test(k, c);
+    };
+    // asin(x) <= x / sqrt(1 - x^2) (= tan(asin x)); x < 1 here.
+    const double x = c.radius / d;
+    const double half = std::min(kPi, x / std::sqrt(1.0 - x * x)) + step + 1e-5;
+    double rel = reduce_turns(coarse_atan2(v.y(), v.x()) - theta0);
+    if (rel < 0.0) rel += 2.0 * kPi;  // [0, 2 pi)
     // The extent as beam offsets from beam 0; for a fan that does not go all the way round, an
     // extent that crosses 0 or 2 pi also shows a turn earlier or later.
     for (const double centre : {rel, rel - 2.0 * kPi, rel + 2.0 * kPi}) {
@@ -169,10 +188,10 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
       if (full_circle) {
         if (centre != rel) break;  // the modulo below covers both sides
         for (long k = lo; k <= hi && k < lo + count; ++k)
-          test(static_cast<std::size_t>(((k % count) + count) % count), c);
+          test_near(static_cast<std::size_t>(((k % count) + count) % count));
       } else {
         for (long k = std::max(lo, 0L); k <= std::min(hi, count - 1); ++k)
-          test(static_cast<std::size_t>(k), c);
+          test_near(static_cast<std::size_t>(k));
       }
     }
   }
@@ -267,7 +286,7 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
       // Cast first (the world, then other robots' bodies), then draw the noise sensor by
       // sensor: the RNG sees the same order.
       cast_fan(world, beams, i, end, sensors[i].max_range, ranges, free, scratch);
-      if (!others.empty()) fan_discs(beams, i, end, others, ranges);
+      if (!others.empty()) fan_discs(beams, i, end, sensors[i].max_range, others, ranges);
       if (!boxes.empty()) fan_boxes(beams, i, end, sensors[i].max_range, boxes, ranges);
       for (; i < end; ++i) ranges[i] = finish_reading(ranges[i], sensors[i], noise_stddev, rng);
     } else {

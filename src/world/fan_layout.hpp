@@ -14,22 +14,6 @@ namespace floornav::fan_detail {
 
 constexpr double kTwoPi = 2.0 * kPi;
 
-// atan2(y, x) to within 2e-6 rad, for (x, y) != 0: a degree-11 odd polynomial for atan on
-// [0, 1] (Abramowitz & Stegun style minimax; measured maximum error 1.7e-6), then the octant.
-// Only the fan's angular culling uses it, with a margin of 1e-4 rad.
-inline double coarse_atan2(double y, double x) {
-  const double ax = std::abs(x), ay = std::abs(y);
-  const double a = std::min(ax, ay) / std::max(ax, ay);
-  const double s = a * a;
-  double r =
-      (((((-0.01172120 * s + 0.05265332) * s - 0.11643287) * s + 0.19354346) * s - 0.33262347) * s +
-       0.99997726) *
-      a;
-  if (ay > ax) r = 0.5 * kPi - r;
-  if (x < 0.0) r = kPi - r;
-  return y < 0.0 ? -r : r;
-}
-
 // Margin added on each side of an obstacle's angular extent: covers the coarse atan2, the
 // rounding of the directions and the tolerance on the beams' spacing by orders of magnitude.
 constexpr double kFanMargin = 1e-4;    // rad

@@ -159,8 +159,8 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     const double cw_y = ox > x1 ? y1 : (ox < x0 ? y0 : (oy < y0 ? y0 : y1));
     const double ccw_x = oy > y1 ? x1 : (oy < y0 ? x0 : (ox < x0 ? x0 : x1));
     const double ccw_y = ox < x0 ? y1 : (ox > x1 ? y0 : (oy > y1 ? y1 : y0));
-    const double a_cw = fan_detail::coarse_atan2(cw_y - oy, cw_x - ox);
-    double width = fan_detail::coarse_atan2(ccw_y - oy, ccw_x - ox) - a_cw;
+    const double a_cw = coarse_atan2(cw_y - oy, cw_x - ox);
+    double width = coarse_atan2(ccw_y - oy, ccw_x - ox) - a_cw;
     if (width < 0.0) width += fan_detail::kTwoPi;
     const double m = fan_detail::kFanMargin;
     fan_detail::for_beams_in(*fan, a_cw + yaw - m, width + 2.0 * m, f);

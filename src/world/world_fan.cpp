@@ -14,7 +14,6 @@ namespace floornav {
 
 namespace {
 
-using fan_detail::coarse_atan2;
 using fan_detail::even_fan;
 using fan_detail::FanLayout;
 using fan_detail::for_beams_in;
