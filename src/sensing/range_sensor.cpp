@@ -163,6 +163,9 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
   };
   for (const Circle& c : others) {
     const Vec2 v = c.center - origin;
+    // Beyond max_range + r + 1 m, the test against `near` below would skip the disc: no root.
+    const double far = max_range + c.radius + 1.0;
+    if (even && v.squaredNorm() > far * far) continue;
     const double d = v.norm();
     if (!even || d <= c.radius + 1e-9) {  // uneven fan, or the origin inside the body
       for (std::size_t k = 0; k < n; ++k) test(k, c);
