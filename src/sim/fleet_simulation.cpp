@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <barrier>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -11,6 +10,7 @@
 #include <utility>
 
 #include "floornav/nav/navigation_controller.hpp"
+#include "spin_barrier.hpp"
 
 namespace floornav {
 
@@ -315,13 +315,24 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     others_.emplace_back();
     others_.back().reserve(agents_.size());
   }
-  // The threads take the robots in chunks from a shared counter (fixed slices left one thread
-  // waiting for the other whenever robots of one slice had finished); the barrier's completion
-  // (one thread, once per phase) does the serial part and resets the counter. A robot's result
-  // does not depend on which thread steps it. Two phases per step: move, then measure the gaps
-  // between bodies; the serial parts (filing positions, applying contacts) run as the
-  // barrier's completion between them.
-  std::atomic<std::size_t> next{0};
+  // Each thread steps its own slice of the robots, in chunks taken from the slice's counter,
+  // then helps with what is left of the others' slices: robots stay on their thread's core from
+  // step to step (its caches hold their state; fully shared chunks measured 0.75x of this), and
+  // a slice whose robots have finished leaves no thread waiting. A robot's result does not
+  // depend on which thread steps it. Two phases per step: move, then measure the gaps between
+  // bodies; the serial parts (filing positions, applying contacts) run as the barrier's
+  // completion (one thread, once per phase) between them.
+  const std::size_t n = agents_.size();
+  const auto slice_begin = [&](std::size_t t) { return n * t / n_threads; };
+  struct alignas(64) Cursor {  // one cache line each: the threads take from them at once
+    std::atomic<std::size_t> next{0};
+  };
+  std::vector<Cursor> cursors(n_threads);
+  const auto rewind = [&] {
+    for (std::size_t t = 0; t < n_threads; ++t)
+      cursors[t].next.store(slice_begin(t), std::memory_order_relaxed);
+  };
+  rewind();
   bool done = running_ == 0 || max_steps <= 0;
   bool moved = true;  // which phase the barrier is completing
   // A user's controller may throw on any thread: the first exception is kept, every thread
@@ -329,7 +340,7 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
   std::exception_ptr failure;
   std::mutex failure_mutex;
   auto completion = [&]() noexcept {
-    next.store(0, std::memory_order_relaxed);  // the barrier orders it before the next phase
+    rewind();  // the barrier orders it before the next phase
     if (moved) {
       prepare_contacts();
     } else {
@@ -338,18 +349,23 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     }
     moved = !moved;
   };
-  std::barrier sync(static_cast<std::ptrdiff_t>(n_threads), completion);
-  const std::size_t n = agents_.size();
-  const auto each_chunk = [&](auto&& f) {
-    for (;;) {
-      const std::size_t begin = next.fetch_add(kRobotsPerChunk, std::memory_order_relaxed);
-      if (begin >= n) return;
-      f(begin, std::min(n, begin + kRobotsPerChunk));
+  const bool spare_cores = n_threads <= std::max(1u, std::thread::hardware_concurrency());
+  sim_detail::SpinBarrier sync(n_threads, completion, spare_cores ? sim_detail::kBarrierSpins : 0);
+  const auto each_chunk = [&](std::size_t t, auto&& f) {
+    for (std::size_t k = 0; k < n_threads; ++k) {
+      const std::size_t u = (t + k) % n_threads;
+      const std::size_t end = slice_begin(u + 1);
+      for (;;) {
+        const std::size_t begin =
+            cursors[u].next.fetch_add(kRobotsPerChunk, std::memory_order_relaxed);
+        if (begin >= end) break;
+        f(begin, std::min(end, begin + kRobotsPerChunk));
+      }
     }
   };
   auto work = [&](std::size_t t) {
     while (!done) {
-      each_chunk([&](std::size_t begin, std::size_t end) {
+      each_chunk(t, [&](std::size_t begin, std::size_t end) {
         try {
           step_robots(begin, end, t);
         } catch (...) {
@@ -358,7 +374,7 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
         }
       });
       sync.arrive_and_wait();
-      each_chunk([&](std::size_t begin, std::size_t end) { measure_gaps(begin, end); });
+      each_chunk(t, [&](std::size_t begin, std::size_t end) { measure_gaps(begin, end); });
       sync.arrive_and_wait();
     }
   };
