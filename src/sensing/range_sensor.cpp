@@ -185,8 +185,10 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
     // The extent as beam offsets from beam 0; for a fan that does not go all the way round, an
     // extent that crosses 0 or 2 pi also shows a turn earlier or later.
     for (const double centre : {rel, rel - 2.0 * kPi, rel + 2.0 * kPi}) {
-      const auto lo = static_cast<long>(std::floor((centre - half) / step));
-      const auto hi = static_cast<long>(std::ceil((centre + half) / step));
+      // Truncation and a beam more on each side: at most floor and at least ceil (which are
+      // calls into libm without SSE4.1).
+      const auto lo = static_cast<long>((centre - half) / step) - 1;
+      const auto hi = static_cast<long>((centre + half) / step) + 1;
       const auto count = static_cast<long>(n);
       if (full_circle) {
         if (centre != rel) break;  // the modulo below covers both sides
