@@ -47,52 +47,46 @@ const std::vector<FloorCase>& floors() {
   return cases;
 }
 
-void BM_FloorOptimum(benchmark::State& state) {
+/// `body` on the floors in turn, one floor per iteration (items_per_second: floors per second).
+template <class Body>
+void over_floors(benchmark::State& state, Body&& body) {
   const auto& cases = floors();
   std::size_t i = 0;
-  for (auto _ : state) {
-    const FloorCase& c = cases[i++ % cases.size()];
+  for (auto _ : state) body(cases[i++ % cases.size()]);
+  state.SetItemsProcessed(state.iterations());
+}
+
+void BM_FloorOptimum(benchmark::State& state) {
+  over_floors(state, [](const FloorCase& c) {
     const RobotTask& t = c.scenario.robot();
     const Optimum o = scenario_optimum(*c.world, t.robot.body_radius, t.start.position, t.goals);
     benchmark::DoNotOptimize(o.length);
-  }
-  state.SetItemsProcessed(state.iterations());
+  });
 }
 
 void BM_FloorOptimumRaster(benchmark::State& state) {
-  const auto& cases = floors();
   OptimumRaster raster;
-  std::size_t i = 0;
-  for (auto _ : state) {
-    const FloorCase& c = cases[i++ % cases.size()];
+  over_floors(state, [&](const FloorCase& c) {
     build_optimum_raster(*c.world, c.scenario.robot().robot.body_radius, {}, raster);
     benchmark::DoNotOptimize(raster.raster.free.data());
-  }
-  state.SetItemsProcessed(state.iterations());
+  });
 }
 
 void BM_FloorOptimumSearch(benchmark::State& state) {
-  const auto& cases = floors();
-  std::size_t i = 0;
-  for (auto _ : state) {
-    const FloorCase& c = cases[i++ % cases.size()];
+  over_floors(state, [](const FloorCase& c) {
     const RobotTask& t = c.scenario.robot();
     const Optimum o = scenario_optimum(c.raster, t.start.position, t.goals);
     benchmark::DoNotOptimize(o.length);
-  }
-  state.SetItemsProcessed(state.iterations());
+  });
 }
 
 /// The octile A* of the four legs alone (GridSearch, cells snapped as scenario_optimum does);
 /// `expanded` is the cells expanded per floor.
 void BM_FloorOptimumAstar(benchmark::State& state) {
-  const auto& cases = floors();
   GridSearch search;
   GridPath path;
-  std::size_t i = 0;
   double expanded = 0.0;
-  for (auto _ : state) {
-    const FloorCase& c = cases[i++ % cases.size()];
+  over_floors(state, [&](const FloorCase& c) {
     const RobotTask& t = c.scenario.robot();
     const RasterFrame frame{c.raster.origin, c.raster.cell, c.raster.raster.width,
                             c.raster.raster.height};
@@ -106,10 +100,9 @@ void BM_FloorOptimumAstar(benchmark::State& state) {
       from = to;
     }
     benchmark::DoNotOptimize(path.length);
-  }
-  state.SetItemsProcessed(state.iterations());
+  });
   state.counters["expanded"] = expanded / static_cast<double>(state.iterations());
-  state.counters["cells"] = static_cast<double>(cases[0].raster.raster.free.size());
+  state.counters["cells"] = static_cast<double>(floors()[0].raster.raster.free.size());
 }
 
 BENCHMARK(BM_FloorOptimum)->Unit(benchmark::kMillisecond);

@@ -25,14 +25,32 @@ header() {
   echo "| case | runs | success | collision | timeout | stuck | mean time (s) | path efficiency | BARN score |"
   echo "|---|---|---|---|---|---|---|---|---|"
 }
+kind_rows() {  # name label-prefix batch-arguments...: a batch and a row per controller kind
+  local name=$1 prefix=$2 k
+  shift 2
+  for k in "${kinds[@]}"; do
+    $fn batch "$@" --set controller.kind=$k --no-timing --out "$out/$name-$k" >/dev/null
+    row "$prefix$k" "$out/$name-$k/aggregate.json"
+  done
+}
+avoidance_rows() {  # name rows-function batch-arguments...: a batch and rows per robot_avoidance
+  local name=$1 rows=$2 a
+  shift 2
+  for a in none orca; do
+    $fn batch "$@" --set controller.robot_avoidance=$a --no-timing --out "$out/$name-$a" >/dev/null
+    $rows "$a" "$out/$name-$a/results.jsonl"
+  done
+}
+barn_worlds() {  # sets $worlds: BARN's worlds, unpacked on first use
+  worlds=${BARN_WORLDS:-/tmp/floornav-barn-worlds}
+  if [[ ! -f $worlds/world_299.world ]]; then
+    mkdir -p "$worlds" && tar -xJf "$maps/barn/BARN_world_files.tar.xz" -C "$worlds"
+  fi
+}
 
 if [[ $what == chapter || $what == all ]]; then
   echo "### Chapter scenarios (scenarios/*.yaml, without the templates and fleets)"; header
-  for k in "${kinds[@]}"; do
-    $fn batch $(ls scenarios/*.yaml | grep -v -e template -e fleet_) --set controller.kind=$k --no-timing \
-      --out "$out/chapter-$k" >/dev/null
-    row "$k" "$out/chapter-$k/aggregate.json"
-  done
+  kind_rows chapter "" $(ls scenarios/*.yaml | grep -v -e template -e fleet_)
 fi
 if [[ $what == fleet || $what == all ]]; then
   echo "### Fleets (scenarios/fleet_*.yaml: robots that sense each other)"
@@ -80,62 +98,37 @@ if [[ $what == avoidance || $what == all ]]; then
   echo "### Robot avoidance (hybrid; scenarios/fleet_*.yaml)"
   echo "| scenario | robot_avoidance | robots | reached | robot-robot collisions | world collisions | deliveries | time (s) | min clearance (m) |"
   echo "|---|---|---|---|---|---|---|---|---|"
-  for a in none orca; do
-    $fn batch scenarios/fleet_*.yaml --set controller.robot_avoidance=$a --no-timing \
-      --out "$out/avoid-$a" >/dev/null
-    fleet_rows "$a" "$out/avoid-$a/results.jsonl"
-  done
+  avoidance_rows avoid fleet_rows scenarios/fleet_*.yaml
   echo "### Generated warehouses (scripts/fleet_variants.py warehouse, seeds 1-10)"
   echo "| robot_avoidance | floors | all deliveries | deliveries | robot-robot collisions | world collisions |"
   echo "|---|---|---|---|---|---|"
   python3 scripts/fleet_variants.py warehouse "$out/warehouses"
-  for a in none orca; do
-    $fn batch "$out"/warehouses/*.yaml --set controller.robot_avoidance=$a --no-timing \
-      --out "$out/warehouses-$a" >/dev/null
-    variants_row "$a" "$out/warehouses-$a/results.jsonl"
-  done
+  avoidance_rows warehouses variants_row "$out"/warehouses/*.yaml
 fi
 if [[ $what == crowd || $what == all ]]; then
   echo "### People and forklifts (scenarios/crowd/*.yaml)"
   echo "| scenario | robot_avoidance | robots | reached | robot-robot collisions | world collisions | deliveries | time (s) | min clearance (m) | person contacts | forklift contacts | intrusions | min person gap (m) | robot wait (s) | people blocked (s) |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-  for a in none orca; do
-    $fn batch scenarios/crowd/*.yaml --set controller.robot_avoidance=$a --no-timing \
-      --out "$out/crowd-$a" >/dev/null
-    fleet_rows "$a" "$out/crowd-$a/results.jsonl"
-  done
+  avoidance_rows crowd fleet_rows scenarios/crowd/*.yaml
   echo "### Generated factory floors (scripts/fleet_variants.py factory, seeds 1-10)"
   echo "| robot_avoidance | floors | all deliveries | deliveries | robot-robot collisions | world collisions | person contacts | forklift contacts |"
   echo "|---|---|---|---|---|---|---|---|"
   python3 scripts/fleet_variants.py factory "$out/factories"
-  for a in none orca; do
-    $fn batch "$out"/factories/*.yaml --set controller.robot_avoidance=$a --no-timing \
-      --out "$out/factories-$a" >/dev/null
-    variants_row "$a" "$out/factories-$a/results.jsonl"
-  done
+  avoidance_rows factories variants_row "$out"/factories/*.yaml
 fi
 if [[ $what == movingai || $what == all ]]; then
   echo "### MovingAI (TurtleBot3 Burger, 1 m cells, first 100 rows of random-1)"; header
   for m in room-32-32-4 warehouse-10-20-10-2-1; do
-    for k in "${kinds[@]}"; do
-      $fn batch scenarios/movingai_template.yaml --scen "$maps/movingai-mapf/$m-random-1.scen" \
-        --cell-size 1 --limit 100 --set controller.kind=$k --no-timing --out "$out/$m-$k" >/dev/null
-      row "$m $k" "$out/$m-$k/aggregate.json"
-    done
+    kind_rows "$m" "$m " scenarios/movingai_template.yaml \
+      --scen "$maps/movingai-mapf/$m-random-1.scen" --cell-size 1 --limit 100
   done
 fi
 if [[ $what == ros || $what == all ]]; then
   echo "### ROS map_server maps (scenarios/ros/*.yaml)"; header
-  for k in "${kinds[@]}"; do
-    $fn batch scenarios/ros/*.yaml --set controller.kind=$k --no-timing --out "$out/ros-$k" >/dev/null
-    row "$k" "$out/ros-$k/aggregate.json"
-  done
+  kind_rows ros "" scenarios/ros/*.yaml
 fi
 if [[ $what == barn || $what == all ]]; then
-  worlds=${BARN_WORLDS:-/tmp/floornav-barn-worlds}
-  if [[ ! -f $worlds/world_299.world ]]; then
-    mkdir -p "$worlds" && tar -xJf "$maps/barn/BARN_world_files.tar.xz" -C "$worlds"
-  fi
+  barn_worlds
   echo "### BARN, 300 worlds (Jackal; success within 1 m, no collision, 100 s)"; header
   $fn batch scenarios/barn_template.yaml --worlds "$worlds" --barn-paths "$maps/barn/path_files" \
     --no-timing --out "$out/barn" >/dev/null
@@ -182,10 +175,7 @@ PY
   done
 fi
 if [[ $what == plan-barn || $what == plan ]]; then
-  worlds=${BARN_WORLDS:-/tmp/floornav-barn-worlds}
-  if [[ ! -f $worlds/world_299.world ]]; then
-    mkdir -p "$worlds" && tar -xJf "$maps/barn/BARN_world_files.tar.xz" -C "$worlds"
-  fi
+  barn_worlds
   echo "### BARN, 300 worlds, mapless (lidar only; the planner on its rolling grid)"; header
   # The last row adds the footprint guard (controller.planner.guard_horizon, docs/SCENARIOS.md);
   # its 0.5 s was chosen on every third world (0, 3, ..., 297): the split is printed after it.

@@ -16,6 +16,7 @@
 
 #include "floornav/geometry/vec2.hpp"
 #include "floornav/nav/controller.hpp"
+#include "floornav/runner/run_summary.hpp"
 #include "floornav/scenario/scenario.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/run_result.hpp"
@@ -40,7 +41,9 @@ struct PyRunResult {
   ScenarioPtr scenario;
   std::optional<RunResult> run;
   std::optional<FleetResult> fleet;
-  py::object summary;     ///< built on first use
+  py::object summary;  ///< built on first use
+  /// What the summary and write() add to the run (the grid optimum): computed once, on first use.
+  std::optional<RunContext> context;
   py::object trajectory;  ///< built on first use
 };
 

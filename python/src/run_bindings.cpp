@@ -34,20 +34,28 @@ std::vector<const RunResult*> runs_of(const PyRunResult& r) {
   return out;
 }
 
-// What the CLI's `run` puts in a summary besides the run: the --set values and the grid optimum.
-RunContext context_of(const PyScenario& s) {
-  RunContext context;
-  context.overrides = s.overrides;
-  context.optimum = compute_optimum(s.scenario);
-  return context;
+// What the CLI's `run` puts in a summary besides the run: the --set values and the grid optimum,
+// computed once per result (the summary and write() both use it). Called with the GIL held; the
+// optimum is computed without it.
+const RunContext& context_of(PyRunResult& r) {
+  if (!r.context) {
+    RunContext context;
+    context.overrides = r.scenario->overrides;
+    {
+      py::gil_scoped_release nogil;
+      context.optimum = compute_optimum(r.scenario->scenario);
+    }
+    if (!r.context) r.context = std::move(context);  // unless another thread set it meanwhile
+  }
+  return *r.context;
 }
 
 py::object make_summary(PyRunResult& r) {
   if (!r.summary) {
+    const RunContext& context = context_of(r);
     nlohmann::ordered_json j;
     {
       py::gil_scoped_release nogil;
-      const RunContext context = context_of(*r.scenario);
       j = r.run ? run_summary(r.scenario->scenario, *r.run, context)
                 : fleet_run_summary(r.scenario->scenario, *r.fleet, context);
     }
@@ -196,9 +204,9 @@ std::shared_ptr<PyRunResult> run(const ScenarioPtr& s, int threads) {
   return r;
 }
 
-void write_outputs(const PyRunResult& r, const std::filesystem::path& dir) {
+void write_outputs(PyRunResult& r, const std::filesystem::path& dir) {
+  const RunContext& context = context_of(r);
   py::gil_scoped_release nogil;
-  const RunContext context = context_of(*r.scenario);
   if (r.fleet)
     write_fleet_outputs(dir, r.scenario->scenario, *r.fleet, context);
   else
@@ -333,8 +341,7 @@ void bind_run(py::module_& m) {
           "The controller's modes, in index order (lone robot).")
       .def_property_readonly("is_fleet", [](const PyRunResult& r) { return r.fleet.has_value(); })
       .def(
-          "write",
-          [](const PyRunResult& r, const std::filesystem::path& dir) { write_outputs(r, dir); },
+          "write", [](PyRunResult& r, const std::filesystem::path& dir) { write_outputs(r, dir); },
           py::arg("out"),
           "Writes the CLI's files (summary.json, trajectory.csv, trajectory.svg) into `out`.")
       .def("__repr__", [](const PyRunResult& r) {

@@ -44,16 +44,16 @@ struct OptimumCache {
 /// compute_optimum (run_summary.hpp) through the worker's cache: the same optimum (a length in
 /// metres, or the reason there is none), nullopt where compute_optimum gives none.
 std::optional<Optimum> cached_optimum(const Scenario& s, OptimumCache& cache) {
-  if (!s.world || s.is_fleet() || s.robots.empty()) return std::nullopt;
-  const RobotTask& t = s.robot();
-  const double r = t.robot.body_radius;
+  const RobotTask* t = optimum_task(s);
+  if (!t) return std::nullopt;
+  const double r = t->robot.body_radius;
   if (cache.world != s.world || cache.radius != r) {
     cache.world = s.world;
     cache.radius = r;
     cache.usable = build_optimum_raster(*s.world, r, {}, cache.raster);
   }
-  if (!cache.usable) return scenario_optimum(*s.world, r, t.start.position, t.goals);
-  return scenario_optimum(cache.raster, t.start.position, t.goals);
+  if (!cache.usable) return scenario_optimum(*s.world, r, t->start.position, t->goals);
+  return scenario_optimum(cache.raster, t->start.position, t->goals);
 }
 
 /// A batch line: the case, where it came from, then the run's summary (run_summary, the keys of

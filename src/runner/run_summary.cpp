@@ -33,10 +33,15 @@ void put_tail(Json& j, const Scenario& s, const RunContext& c,
 
 }  // namespace
 
+const RobotTask* optimum_task(const Scenario& s) {
+  if (!s.world || s.is_fleet() || s.robots.empty()) return nullptr;
+  return &s.robot();
+}
+
 std::optional<Optimum> compute_optimum(const Scenario& s) {
-  if (!s.world || s.is_fleet() || s.robots.empty()) return std::nullopt;
-  const RobotTask& t = s.robot();
-  return scenario_optimum(*s.world, t.robot.body_radius, t.start.position, t.goals);
+  const RobotTask* t = optimum_task(s);
+  if (!t) return std::nullopt;
+  return scenario_optimum(*s.world, t->robot.body_radius, t->start.position, t->goals);
 }
 
 std::optional<std::string> reachability_warning(const Scenario& s, const Optimum& o) {

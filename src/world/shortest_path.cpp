@@ -501,35 +501,32 @@ struct SearchBuffers {
   }
 };
 
-/// Octile A* into `path` with the working memory `b` (speed's radix-heap open list, marks instead
-/// of clearing); `expanded` counts the cells expanded. False, with `path` empty, when there is no
-/// path.
-bool run_octile_astar(SearchBuffers& b, const FreeRaster& raster, GridCell start, GridCell goal,
-                      GridPath& path, std::size_t& expanded) {
+/// The best-first search both octile searches share (speed's radix-heap open list, marks instead of
+/// clearing) into `path` with the working memory `b`: each expanded cell u at (ux, uy), `parent`
+/// its parent's index (-1 at the start), is handed to `successors(u, ux, uy, parent, relax)`, which
+/// calls `relax(v, dx, dy, step)` for each cell v = (ux + dx, uy + dy) reached from u by a move of
+/// octile length `step()` (asked only of a cell not closed yet). `expanded` counts the cells
+/// expanded. The path is the cells from start to goal, each parent to child run filled in cell by
+/// cell (A*'s parents are neighbours: nothing to fill). False, with `path` empty, when the start or
+/// the goal is blocked or no path joins them.
+template <class Successors>
+bool run_octile_search(SearchBuffers& b, const FreeRaster& raster, GridCell start, GridCell goal,
+                       const Successors successors, GridPath& path, std::size_t& expanded) {
   path.length = 0.0;
   path.cells.clear();
   expanded = 0;
   if (!raster.is_free(start.x, start.y) || !raster.is_free(goal.x, goal.y)) return false;
-  const int width = raster.width, height = raster.height;
-  const std::size_t w = static_cast<std::size_t>(width);
-  const std::size_t n = w * static_cast<std::size_t>(height);
-  b.begin(n);
+  const std::size_t w = static_cast<std::size_t>(raster.width);
+  b.begin(w * static_cast<std::size_t>(raster.height));
   const std::uint32_t open_mark = 2 * b.search, closed_mark = open_mark + 1;
-  const std::uint8_t* free = raster.free.data();
+  CellState* cell = b.cells.data();
   auto index = [w](int x, int y) {
     return static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x);
   };
-  auto push = [&](double f, double g, std::size_t v) {
-    b.open.push({f, -g, static_cast<std::uint32_t>(v)});
-  };
   const std::size_t s = index(start.x, start.y), t = index(goal.x, goal.y);
-  CellState* cell = b.cells.data();
   cell[s] = {0.0, -1, open_mark};
-  push(octile_distance(goal.x - start.x, goal.y - start.y), 0.0, s);
-  constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
-  constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
-  const std::ptrdiff_t sw = static_cast<std::ptrdiff_t>(w);
-  const std::ptrdiff_t kStep[8] = {1, -1, sw, -sw, sw + 1, -sw + 1, sw - 1, -sw - 1};
+  b.open.push(
+      {octile_distance(goal.x - start.x, goal.y - start.y), -0.0, static_cast<std::uint32_t>(s)});
   while (!b.open.empty()) {
     const std::size_t u = b.open.pop().index;
     if (cell[u].mark == closed_mark) continue;
@@ -537,46 +534,97 @@ bool run_octile_astar(SearchBuffers& b, const FreeRaster& raster, GridCell start
     ++expanded;
     if (u == t) break;
     const int ux = static_cast<int>(u % w), uy = static_cast<int>(u / w);
+    const int hx = goal.x - ux, hy = goal.y - uy;  // the heuristic's offsets from u
     const double gu = cell[u].g;
-    // Neighbour v = u + kStep[k] (k < 4 straight, else diagonal) is reached through a free cell,
-    // not by cutting a corner; the order of the relaxations does not matter (each pair once).
-    auto relax = [&](int k) __attribute__((always_inline)) {
-      const std::size_t v = u + static_cast<std::size_t>(kStep[k]);
+    auto relax = [&](std::size_t v, int dx, int dy, auto step) __attribute__((always_inline)) {
       CellState& cv = cell[v];
       const std::uint32_t m = cv.mark;
       if (m == closed_mark) return;
-      const double gv = gu + (k >= 4 ? kSqrt2 : 1.0);
+      const double gv = gu + step();
       if (m != open_mark || gv < cv.g) {
         cv = {gv, static_cast<std::int32_t>(u), open_mark};
-        push(gv + octile_distance(goal.x - ux - kDx[k], goal.y - uy - kDy[k]), gv, v);
+        b.open.push({gv + octile_distance(hx - dx, hy - dy), -gv, static_cast<std::uint32_t>(v)});
       }
     };
-    if (ux > 0 && uy > 0 && ux + 1 < width && uy + 1 < height) {
+    successors(u, ux, uy, cell[u].parent, relax);
+  }
+  if (cell[t].mark != closed_mark) return false;
+  path.length = cell[t].g;
+  // Goal first, then every cell between each cell and its parent (a straight or a diagonal run).
+  for (std::int64_t v = static_cast<std::int64_t>(t); v >= 0;) {
+    const int vx = static_cast<int>(static_cast<std::size_t>(v) % w);
+    const int vy = static_cast<int>(static_cast<std::size_t>(v) / w);
+    path.cells.push_back({vx, vy});
+    const std::int32_t p = cell[static_cast<std::size_t>(v)].parent;
+    if (p >= 0) {
+      const int px = static_cast<int>(static_cast<std::size_t>(p) % w);
+      const int py = static_cast<int>(static_cast<std::size_t>(p) / w);
+      const int sx = (px > vx) - (px < vx), sy = (py > vy) - (py < vy);
+      for (int x = vx + sx, y = vy + sy; x != px || y != py; x += sx, y += sy)
+        path.cells.push_back({x, y});
+    }
+    v = p;
+  }
+  std::reverse(path.cells.begin(), path.cells.end());
+  return true;
+}
+
+/// Octile A*'s successors: the eight neighbours, each reached through a free cell, diagonals not
+/// cutting a corner.
+class OctileNeighbours {
+ public:
+  explicit OctileNeighbours(const FreeRaster& raster)
+      : raster_(raster), free_(raster.free.data()), width_(raster.width), height_(raster.height) {
+    const std::ptrdiff_t sw = raster.width;
+    step_ = {1, -1, sw, -sw, sw + 1, -sw + 1, sw - 1, -sw - 1};
+  }
+
+  template <class Relax>
+  __attribute__((always_inline)) void operator()(std::size_t u, int ux, int uy, std::int32_t,
+                                                 Relax& relax) const {
+    // Neighbour u + step_[k] (k < 4 straight, else diagonal) of length kLength[k] (a load, not a
+    // branch on the direction); the order of the relaxations does not matter (each pair once).
+    // Tables in the function, not static members: indexing those took two of the search loop's
+    // registers (callgrind: 3 % more instructions).
+    constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
+    constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
+    constexpr double kLength[8] = {1.0, 1.0, 1.0, 1.0, kSqrt2, kSqrt2, kSqrt2, kSqrt2};
+    auto move = [&](int k) __attribute__((always_inline)) {
+      relax(u + static_cast<std::size_t>(step_[static_cast<std::size_t>(k)]), kDx[k], kDy[k],
+            [&] { return kLength[k]; });
+    };
+    if (ux > 0 && uy > 0 && ux + 1 < width_ && uy + 1 < height_) {
       // Away from the raster's border every neighbour exists: the moves as a bit mask of the
       // 3 x 3 block, without bounds checks or a branch per neighbour.
-      const std::uint8_t* c = free + u;
+      const std::ptrdiff_t sw = width_;
+      const std::uint8_t* c = free_ + u;
       const unsigned e = c[1] != 0, west = c[-1] != 0, n = c[sw] != 0, south = c[-sw] != 0;
       unsigned moves = e | west << 1 | n << 2 | south << 3 | (e & n & (c[sw + 1] != 0)) << 4 |
                        (e & south & (c[-sw + 1] != 0)) << 5 | (west & n & (c[sw - 1] != 0)) << 6 |
                        (west & south & (c[-sw - 1] != 0)) << 7;
-      for (; moves != 0; moves &= moves - 1) relax(std::countr_zero(moves));
-      continue;
+      for (; moves != 0; moves &= moves - 1) move(std::countr_zero(moves));
+      return;
     }
     for (int k = 0; k < 8; ++k) {
-      if (!raster.is_free(ux + kDx[k], uy + kDy[k])) continue;
-      if (k >= 4 && (!raster.is_free(ux + kDx[k], uy) || !raster.is_free(ux, uy + kDy[k])))
+      if (!raster_.is_free(ux + kDx[k], uy + kDy[k])) continue;
+      if (k >= 4 && (!raster_.is_free(ux + kDx[k], uy) || !raster_.is_free(ux, uy + kDy[k])))
         continue;  // no corner cutting
-      relax(k);
+      move(k);
     }
   }
-  if (cell[t].mark != closed_mark) return false;
-  path.length = cell[t].g;
-  for (std::int64_t v = static_cast<std::int64_t>(t); v >= 0;
-       v = cell[static_cast<std::size_t>(v)].parent)
-    path.cells.push_back({static_cast<int>(static_cast<std::size_t>(v) % w),
-                          static_cast<int>(static_cast<std::size_t>(v) / w)});
-  std::reverse(path.cells.begin(), path.cells.end());
-  return true;
+
+ private:
+  const FreeRaster& raster_;
+  // Copies, so that the search's stores cannot be taken to change them.
+  const std::uint8_t* free_;
+  int width_, height_;
+  std::array<std::ptrdiff_t, 8> step_;
+};
+
+/// Octile A* (run_octile_search over every neighbour).
+bool run_octile_astar(SearchBuffers& b, const FreeRaster& raster, GridCell start, GridCell goal,
+                      GridPath& path, std::size_t& expanded) {
+  return run_octile_search(b, raster, start, goal, OctileNeighbours(raster), path, expanded);
 }
 
 /// Jump point search (Harabor and Grastien 2011) for octile moves without corner cutting (the
@@ -643,55 +691,20 @@ class JumpPoints {
     }
   }
 
- private:
-  const std::uint8_t* free_;
-  int w_, h_;
-  GridCell goal_;
-};
-
-bool run_octile_jps(SearchBuffers& b, const FreeRaster& raster, GridCell start, GridCell goal,
-                    GridPath& path, std::size_t& expanded) {
-  path.length = 0.0;
-  path.cells.clear();
-  expanded = 0;
-  if (!raster.is_free(start.x, start.y) || !raster.is_free(goal.x, goal.y)) return false;
-  const std::size_t w = static_cast<std::size_t>(raster.width);
-  b.begin(w * static_cast<std::size_t>(raster.height));
-  const std::uint32_t open_mark = 2 * b.search, closed_mark = open_mark + 1;
-  CellState* cell = b.cells.data();
-  auto index = [w](int x, int y) {
-    return static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x);
-  };
-  const JumpPoints jump(raster, goal);
-  const std::size_t s = index(start.x, start.y), t = index(goal.x, goal.y);
-  cell[s] = {0.0, -1, open_mark};
-  b.open.push(
-      {octile_distance(goal.x - start.x, goal.y - start.y), -0.0, static_cast<std::uint32_t>(s)});
-  while (!b.open.empty()) {
-    const std::size_t u = b.open.pop().index;
-    if (cell[u].mark == closed_mark) continue;
-    cell[u].mark = closed_mark;
-    ++expanded;
-    if (u == t) break;
-    const int ux = static_cast<int>(u % w), uy = static_cast<int>(u / w);
-    const double gu = cell[u].g;
-    auto relax = [&](const std::optional<GridCell>& j) {
-      if (!j) return;
-      const std::size_t v = index(j->x, j->y);
-      CellState& cv = cell[v];
-      if (cv.mark == closed_mark) return;
-      const double gv = gu + octile_distance(j->x - ux, j->y - uy);
-      if (cv.mark != open_mark || gv < cv.g) {
-        cv = {gv, static_cast<std::int32_t>(u), open_mark};
-        b.open.push({gv + octile_distance(goal.x - j->x, goal.y - j->y), -gv,
-                     static_cast<std::uint32_t>(v)});
-      }
+  /// The successors of jump point u at (ux, uy): the jump points straight and diagonal runs from
+  /// it reach, in the directions worth searching: all at the start; else those a move in direction
+  /// (dx, dy) from the parent leaves (natural and forced neighbours, pruned as JPS does).
+  template <class Relax>
+  void operator()(std::size_t, int ux, int uy, std::int32_t parent, Relax& relax) const {
+    const std::size_t w = static_cast<std::size_t>(w_);
+    auto relax_at = [&](const std::optional<GridCell>& j) {
+      if (j)
+        relax(static_cast<std::size_t>(j->y) * w + static_cast<std::size_t>(j->x), j->x - ux,
+              j->y - uy, [&] { return octile_distance(j->x - ux, j->y - uy); });
     };
-    // The directions worth searching from u: all at the start; else those a move in direction
-    // (dx, dy) from the parent leaves (natural and forced neighbours, pruned as JPS does).
     int dx = 0, dy = 0;
-    if (cell[u].parent >= 0) {
-      const std::size_t p = static_cast<std::size_t>(cell[u].parent);
+    if (parent >= 0) {
+      const std::size_t p = static_cast<std::size_t>(parent);
       dx = (ux > static_cast<int>(p % w)) - (ux < static_cast<int>(p % w));
       dy = (uy > static_cast<int>(p / w)) - (uy < static_cast<int>(p / w));
     }
@@ -708,31 +721,21 @@ bool run_octile_jps(SearchBuffers& b, const FreeRaster& raster, GridCell start, 
           if (!keep) continue;
         }
         if (ddx != 0 && ddy != 0)
-          relax(jump.diagonal(ux, uy, ddx, ddy));
+          relax_at(diagonal(ux, uy, ddx, ddy));
         else
-          relax(jump.straight(ux, uy, ddx, ddy));
+          relax_at(straight(ux, uy, ddx, ddy));
       }
   }
-  if (cell[t].mark != closed_mark) return false;
-  path.length = cell[t].g;
-  // The jump points, goal first, then every cell between each and its parent (a straight or a
-  // diagonal run).
-  for (std::int64_t v = static_cast<std::int64_t>(t); v >= 0;) {
-    const int vx = static_cast<int>(static_cast<std::size_t>(v) % w);
-    const int vy = static_cast<int>(static_cast<std::size_t>(v) / w);
-    path.cells.push_back({vx, vy});
-    const std::int32_t p = cell[static_cast<std::size_t>(v)].parent;
-    if (p >= 0) {
-      const int px = static_cast<int>(static_cast<std::size_t>(p) % w);
-      const int py = static_cast<int>(static_cast<std::size_t>(p) / w);
-      const int sx = (px > vx) - (px < vx), sy = (py > vy) - (py < vy);
-      for (int x = vx + sx, y = vy + sy; x != px || y != py; x += sx, y += sy)
-        path.cells.push_back({x, y});
-    }
-    v = p;
-  }
-  std::reverse(path.cells.begin(), path.cells.end());
-  return true;
+
+ private:
+  const std::uint8_t* free_;
+  int w_, h_;
+  GridCell goal_;
+};
+
+bool run_octile_jps(SearchBuffers& b, const FreeRaster& raster, GridCell start, GridCell goal,
+                    GridPath& path, std::size_t& expanded) {
+  return run_octile_search(b, raster, start, goal, JumpPoints(raster, goal), path, expanded);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // `stuck` on a known map.
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <string>
 
 #include "floornav/geometry/angle.hpp"
@@ -43,6 +44,26 @@ double time_in(const RunResult& r, const std::string& mode) {
     if (r.mode_names[i] == mode) return r.mode_time[i];
   return 0.0;
 }
+
+// The planner took the short way: reached, untouched, shorter than `max_length`, without backing
+// up.
+void expect_short_way(const RunResult& planned, double max_length) {
+  EXPECT_EQ(planned.status, RunStatus::Reached);
+  EXPECT_FALSE(planned.collided);
+  EXPECT_GT(planned.min_clearance, 0.0);
+  EXPECT_LT(planned.path_length, max_length);
+  EXPECT_EQ(time_in(planned, "recovery_back_up"), 0.0);
+}
+
+// Two runs of one scenario, sample by sample, bit for bit.
+void expect_same_trajectory(const RunResult& a, const RunResult& b) {
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (std::size_t i = 0; i < a.trajectory.size(); ++i) {
+    ASSERT_EQ(a.trajectory[i].x, b.trajectory[i].x) << i;
+    ASSERT_EQ(a.trajectory[i].y, b.trajectory[i].y) << i;
+    ASSERT_EQ(a.trajectory[i].theta, b.trajectory[i].theta) << i;
+  }
+}
 }  // namespace
 
 TEST(PlannerOutcomes, PlannerReachesAGoalTheChapterAloneDoesNotReachInTime) {
@@ -52,13 +73,8 @@ TEST(PlannerOutcomes, PlannerReachesAGoalTheChapterAloneDoesNotReachInTime) {
   EXPECT_FALSE(alone.collided);
 
   s.robot().controller.params.planner.kind = PlannerKind::AStar;
-  const RunResult planned = simulate(s);
-  EXPECT_EQ(planned.status, RunStatus::Reached);
-  EXPECT_FALSE(planned.collided);
-  EXPECT_GT(planned.min_clearance, 0.0);
   // East round the end of the wall: about 6.5 m; the chapter alone drove 24 m and timed out.
-  EXPECT_LT(planned.path_length, 8.0);
-  EXPECT_EQ(time_in(planned, "recovery_back_up"), 0.0);
+  expect_short_way(simulate(s), 8.0);
 
   // Mapless, from its own lidar only: it finds the way too.
   s.robot().controller.params.planner.map = PlannerMap::Sensed;
@@ -73,12 +89,7 @@ TEST(PlannerOutcomes, SameScenarioSameTrajectoryBitForBit) {
   s.robot().controller.params.planner.kind = PlannerKind::AStar;
   s.robot().controller.params.planner.map = PlannerMap::Sensed;
   const RunResult a = simulate(s), b = simulate(s);
-  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
-  for (std::size_t i = 0; i < a.trajectory.size(); ++i) {
-    ASSERT_EQ(a.trajectory[i].x, b.trajectory[i].x) << i;
-    ASSERT_EQ(a.trajectory[i].y, b.trajectory[i].y) << i;
-    ASSERT_EQ(a.trajectory[i].theta, b.trajectory[i].theta) << i;
-  }
+  expect_same_trajectory(a, b);
 }
 
 TEST(PlannerOutcomes, DwaReachesASimpleGoal) {
@@ -108,15 +119,44 @@ WorldDesc walled_off() {
   return d;
 }
 
-TEST(PlannerOutcomes, WalledOffGoalIsStuckAtOnceOnAKnownMap) {
+// Either planner on the known map: no path (astar: none exists; rrt_connect: none within its
+// budget of samples), so the run stops at once, before a step.
+struct WalledOffCase {
+  const char* name;
+  PlannerKind kind;
+  int max_samples;  ///< 0: the default
+  const char* why;
+};
+void PrintTo(const WalledOffCase& c, std::ostream* os) {
+  *os << c.name;
+}
+
+class WalledOffKnownMap : public ::testing::TestWithParam<WalledOffCase> {};
+
+TEST_P(WalledOffKnownMap, GoalIsStuckAtOnce) {
   Scenario s =
       make("turtlebot3_burger", walled_off(), {Vec2(1.0, 2.0), 0.0}, Vec2(4.5, 2.0), 120.0);
-  s.robot().controller.params.planner.kind = PlannerKind::AStar;
+  PlannerParams& planner = s.robot().controller.params.planner;
+  planner.kind = GetParam().kind;
+  if (GetParam().max_samples > 0) planner.max_samples = GetParam().max_samples;
   const RunResult r = simulate(s);
   EXPECT_EQ(r.status, RunStatus::Stuck);
   EXPECT_FALSE(r.collided);
-  EXPECT_EQ(r.steps, 0) << "no path on the known map: nothing to try";
-  // The chapter alone circles the room until the simulator's own stuck or time limit.
+  EXPECT_EQ(r.steps, 0) << GetParam().why;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    PlannerOutcomes, WalledOffKnownMap,
+    ::testing::Values(WalledOffCase{"astar", PlannerKind::AStar, 0,
+                                    "no path on the known map: nothing to try"},
+                      WalledOffCase{"rrt_connect", PlannerKind::RrtConnect, 3000,
+                                    "no path within the budget: the same as astar finding none"}),
+    [](const ::testing::TestParamInfo<WalledOffCase>& info) { return info.param.name; });
+
+// The chapter alone circles the room until the simulator's own stuck or time limit.
+TEST(PlannerOutcomes, WalledOffGoalTheChapterAloneCircles) {
+  Scenario s =
+      make("turtlebot3_burger", walled_off(), {Vec2(1.0, 2.0), 0.0}, Vec2(4.5, 2.0), 120.0);
   s.robot().controller.params.planner.kind = PlannerKind::None;
   const RunResult alone = simulate(s);
   EXPECT_NE(alone.status, RunStatus::Reached);
@@ -227,14 +267,9 @@ TEST(PlannerOutcomes, RrtConnectQuickBotTakesTheShortWayTheChapterAloneMisses) {
   EXPECT_NE(alone.status, RunStatus::Reached) << "the chapter alone goes the long way";
 
   s.robot().controller.params.planner.kind = PlannerKind::RrtConnect;
-  const RunResult planned = simulate(s);
-  EXPECT_EQ(planned.status, RunStatus::Reached);
-  EXPECT_FALSE(planned.collided);
-  EXPECT_GT(planned.min_clearance, 0.0);
   // East round the end of the wall (about 6.5 m, as astar's); string pulling straightens the
   // sampled path, so it is not much longer.
-  EXPECT_LT(planned.path_length, 9.0);
-  EXPECT_EQ(time_in(planned, "recovery_back_up"), 0.0);
+  expect_short_way(simulate(s), 9.0);
 }
 
 TEST(PlannerOutcomes, RrtConnectSameSeedSameTrajectoryBitForBit) {
@@ -247,21 +282,5 @@ TEST(PlannerOutcomes, RrtConnectSameSeedSameTrajectoryBitForBit) {
   // It gets there, the long way: 17.2 m where astar drives 6.8 m (docs/SCENARIOS.md says why).
   EXPECT_EQ(a.status, RunStatus::Reached);
   EXPECT_FALSE(a.collided);
-  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
-  for (std::size_t i = 0; i < a.trajectory.size(); ++i) {
-    ASSERT_EQ(a.trajectory[i].x, b.trajectory[i].x) << i;
-    ASSERT_EQ(a.trajectory[i].y, b.trajectory[i].y) << i;
-    ASSERT_EQ(a.trajectory[i].theta, b.trajectory[i].theta) << i;
-  }
-}
-
-TEST(PlannerOutcomes, RrtConnectWalledOffGoalIsStuckAtOnceOnAKnownMap) {
-  Scenario s =
-      make("turtlebot3_burger", walled_off(), {Vec2(1.0, 2.0), 0.0}, Vec2(4.5, 2.0), 120.0);
-  s.robot().controller.params.planner.kind = PlannerKind::RrtConnect;
-  s.robot().controller.params.planner.max_samples = 3000;
-  const RunResult r = simulate(s);
-  EXPECT_EQ(r.status, RunStatus::Stuck);
-  EXPECT_FALSE(r.collided);
-  EXPECT_EQ(r.steps, 0) << "no path within the budget: the same as astar finding none";
+  expect_same_trajectory(a, b);
 }

@@ -28,8 +28,13 @@ struct RunContext {
   std::vector<std::string> swept;        ///< a sweep's "key=value" settings for this case
 };
 
+/// The robot whose grid optimum a summary gives: a lone robot's task in a scenario with a world;
+/// nullptr for a fleet, or a scenario without a world or robots (no optimum). The one guard of
+/// compute_optimum and the batch's cached optimum.
+const RobotTask* optimum_task(const Scenario& scenario);
+
 /// The grid optimum of a lone-robot scenario (scenario_optimum for its robot's body, start and
-/// goals); nullopt for a fleet or a scenario without a world.
+/// goals); nullopt where optimum_task gives no robot.
 std::optional<Optimum> compute_optimum(const Scenario& scenario);
 
 /// One line saying that the goal cannot be reached on the known map, when `optimum` says so
