@@ -35,6 +35,20 @@ FreeRaster raster(int width, int height, std::initializer_list<std::array<int, 2
   return r;
 }
 
+/// Blocks `count` random rectangles of `min_side` to `min_side + side_range` cells (clipped to the
+/// raster) out of r, drawing from rng corner x, corner y, width, height, block by block.
+void block_out(FreeRaster& r, Rng& rng, int count, int min_side, double side_range) {
+  for (int k = 0; k < count; ++k) {
+    const int x0 = static_cast<int>(rng.uniform(0.0, r.width - 1e-9));
+    const int y0 = static_cast<int>(rng.uniform(0.0, r.height - 1e-9));
+    const int bw = min_side + static_cast<int>(rng.uniform(0.0, side_range));
+    const int bh = min_side + static_cast<int>(rng.uniform(0.0, side_range));
+    for (int y = y0; y < std::min(r.height, y0 + bh); ++y)
+      for (int x = x0; x < std::min(r.width, x0 + bw); ++x)
+        r.free[static_cast<std::size_t>(y * r.width + x)] = 0;
+  }
+}
+
 /// Each step of a path goes to one of the 8 neighbours, through free cells, cutting no corner.
 void expect_valid_path(const FreeRaster& r, const GridPath& p) {
   double length = 0.0;
@@ -284,16 +298,7 @@ TEST(OctileAstar, OpenRastersWithBlocksGiveThePlainSearchsPathCellForCell) {
     r.width = 120 + static_cast<int>(rng.uniform(0.0, 130.0));
     r.height = 100 + static_cast<int>(rng.uniform(0.0, 120.0));
     r.free.assign(static_cast<std::size_t>(r.width * r.height), 1);
-    const int blocks = 3 + static_cast<int>(rng.uniform(0.0, 25.0));
-    for (int k = 0; k < blocks; ++k) {
-      const int x0 = static_cast<int>(rng.uniform(0.0, r.width - 1e-9));
-      const int y0 = static_cast<int>(rng.uniform(0.0, r.height - 1e-9));
-      const int bw = 2 + static_cast<int>(rng.uniform(0.0, 40.0));
-      const int bh = 2 + static_cast<int>(rng.uniform(0.0, 40.0));
-      for (int y = y0; y < std::min(r.height, y0 + bh); ++y)
-        for (int x = x0; x < std::min(r.width, x0 + bw); ++x)
-          r.free[static_cast<std::size_t>(y * r.width + x)] = 0;
-    }
+    block_out(r, rng, 3 + static_cast<int>(rng.uniform(0.0, 25.0)), 2, 40.0);
     auto free_cell = [&] {
       for (;;) {
         const GridCell c{static_cast<int>(rng.uniform(0.0, r.width - 1e-9)),
@@ -356,15 +361,7 @@ TEST(OctileJumpPointSearch, AsShortAsThePlainSearchOnRandomRasters) {
                     : 1 + static_cast<int>(rng.uniform(0.0, 70.0));
     r.free.assign(static_cast<std::size_t>(r.width * r.height), 1);
     if (open) {
-      for (int k = 0, n = 2 + static_cast<int>(rng.uniform(0.0, 25.0)); k < n; ++k) {
-        const int x0 = static_cast<int>(rng.uniform(0.0, r.width - 1e-9));
-        const int y0 = static_cast<int>(rng.uniform(0.0, r.height - 1e-9));
-        const int bw = 1 + static_cast<int>(rng.uniform(0.0, 30.0));
-        const int bh = 1 + static_cast<int>(rng.uniform(0.0, 30.0));
-        for (int y = y0; y < std::min(r.height, y0 + bh); ++y)
-          for (int x = x0; x < std::min(r.width, x0 + bw); ++x)
-            r.free[static_cast<std::size_t>(y * r.width + x)] = 0;
-      }
+      block_out(r, rng, 2 + static_cast<int>(rng.uniform(0.0, 25.0)), 1, 30.0);
     } else {
       const double blocked = rng.uniform(0.0, 0.45);
       for (auto& c : r.free) c = rng.uniform() >= blocked;
