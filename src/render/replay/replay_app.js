@@ -632,14 +632,18 @@
       ctx.strokeStyle = '#263238';
       ctx.lineWidth = 1.2 * px;
       ctx.stroke();
-      const front = 0.5 * c.size[0];
-      ctx.beginPath();
-      ctx.moveTo(p.x, p.y);
-      ctx.lineTo(p.x + front * Math.cos(p.theta), p.y + front * Math.sin(p.theta));
-      ctx.strokeStyle = '#ffffff';
-      ctx.lineWidth = 1.6 * px;
-      ctx.stroke();
+      drawHeading(p, 0.5 * c.size[0], 1.6 * px);
     }
+  }
+
+  // A white tick from pose p's centre, `length` along its heading.
+  function drawHeading(p, length, width) {
+    ctx.beginPath();
+    ctx.moveTo(p.x, p.y);
+    ctx.lineTo(p.x + length * Math.cos(p.theta), p.y + length * Math.sin(p.theta));
+    ctx.strokeStyle = '#ffffff';
+    ctx.lineWidth = width;
+    ctx.stroke();
   }
 
   function drawBody(robot, s, px) {
@@ -672,13 +676,7 @@
       ctx.stroke();
     }
     // Heading: from the centre to the front of the body.
-    const front = robot.footprint ? robot.front : robot.radius + grow;
-    ctx.beginPath();
-    ctx.moveTo(p.x, p.y);
-    ctx.lineTo(p.x + front * Math.cos(p.theta), p.y + front * Math.sin(p.theta));
-    ctx.strokeStyle = '#ffffff';
-    ctx.lineWidth = 2.2 * px;
-    ctx.stroke();
+    drawHeading(p, robot.footprint ? robot.front : robot.radius + grow, 2.2 * px);
     ctx.globalAlpha = 1;
   }
 
