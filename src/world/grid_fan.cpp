@@ -5,6 +5,7 @@
 
 #include "cell_index.hpp"
 #include "fan_layout.hpp"
+#include "floornav/geometry/ray.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "grid_walk.hpp"
 
@@ -22,8 +23,10 @@ using grid_detail::kInf;
 constexpr int kTile = 32;
 
 void OccupancyGrid::compute_boundary() {
+  // Outside the grid counts as free: a walk from an origin outside enters the border cells from
+  // there (only fans from such origins take those runs).
   const auto free_at = [&](int x, int y) {
-    return x >= 0 && y >= 0 && x < width_ && y < height_ &&
+    return x < 0 || y < 0 || x >= width_ || y >= height_ ||
            occupied_[static_cast<std::size_t>(y) * width_ + x] == 0;
   };
   const auto occupied_at = [&](int x, int y) {
@@ -83,15 +86,34 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   if (n < 2 || !is_finite(o) || !(max_range >= 0.0) || !std::isfinite(max_range)) {
     return ray_by_ray();
   }
-  // The fan handles an origin inside the grid, in a free cell (then `cast` starts its walk at
-  // t0 = 0 in cell (ix0, iy0)).
-  if (!(o.x() >= 0.0 && o.x() < width_ && o.y() >= 0.0 && o.y() < height_)) return ray_by_ray();
-  const int ix0 = clamp_cell(o.x(), width_);
-  const int iy0 = clamp_cell(o.y(), height_);
-  if (occupied_[static_cast<std::size_t>(iy0) * width_ + ix0] != 0) return ray_by_ray();
+  const double t_max = max_range / resolution_;
+  // The fan handles an origin in a free cell of the grid (then `cast` starts its walk at t0 = 0
+  // in cell (ix0, iy0)), and one outside the grid, more than kOutside cells from it, that the
+  // grid is within reach of. From outside, `cast` clips each ray to the grid and starts its walk
+  // where the ray enters, at t0 in the cell there; everything below takes the walk as if it
+  // started at t = 0 in the origin's cell (ix0, iy0) of the grid extended by free cells. Both
+  // give a cell of the grid the same entry time where the ray enters the grid through the
+  // inside of a border cell's face: that face's quotient is the clipping's t0 (the same division
+  // by the same numbers), the entry cell's other line was entered before t0, and the walks take
+  // the same events after it. Rays that enter within kCorner of a cell corner go ray by ray.
+  constexpr double kOutside = 1e-5;        // cells
+  constexpr double kMaxOutside = 1 << 24;  // cells: the cell indices below stay exact ints
+  const bool inside = o.x() >= 0.0 && o.x() < width_ && o.y() >= 0.0 && o.y() < height_;
+  int ix0 = 0, iy0 = 0;
+  if (inside) {
+    ix0 = clamp_cell(o.x(), width_);
+    iy0 = clamp_cell(o.y(), height_);
+    if (occupied_[static_cast<std::size_t>(iy0) * width_ + ix0] != 0) return ray_by_ray();
+  } else {
+    const double gx = std::max(-o.x(), o.x() - width_), gy = std::max(-o.y(), o.y() - height_);
+    if (!(std::max(gx, gy) > kOutside) || !(std::abs(o.x()) < kMaxOutside) ||
+        !(std::abs(o.y()) < kMaxOutside))
+      return ray_by_ray();
+    ix0 = static_cast<int>(std::floor(o.x()));
+    iy0 = static_cast<int>(std::floor(o.y()));
+  }
   const std::optional<fan_detail::FanLayout> fan = fan_detail::even_fan(angles);
   if (!fan) return ray_by_ray();
-  const double t_max = max_range / resolution_;
 
   if (scratch.dx.size() < n) {
     scratch.dx.resize(n);
@@ -109,6 +131,21 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     // by ray, marked by best = -inf (no test takes them: every lower bound is above).
     const double len2 = dx[i] * dx[i] + dy[i] * dy[i];
     best[i] = std::abs(len2 - 1.0) <= 1e-6 ? kInf : -kInf;
+  }
+  if (!inside) {
+    // Where each ray enters the grid (`cast`'s clipping): near a cell corner, ray by ray.
+    constexpr double kCorner = 1e-9;  // cells, relative
+    const Box2 cells{Vec2(0.0, 0.0), Vec2(width_, height_)};
+    const auto near_line = [&](double v) {
+      const double f = v - static_cast<double>(static_cast<long long>(v + 0.5));  // v > -0.5
+      return std::abs(f) <= kCorner * (1.0 + std::abs(v));
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+      double t0 = 0.0, t1 = t_max;
+      if (best[i] == -kInf || !clip_ray_to_box(o, Vec2(dx[i], dy[i]), cells, t0, t1)) continue;
+      const double px = o.x() + t0 * dx[i], py = o.y() + t0 * dy[i];
+      if (!(px > -0.5 && py > -0.5) || (near_line(px) && near_line(py))) best[i] = -kInf;
+    }
   }
 
   // The walk from (ix0, iy0) enters or touches (through a corner) cell (x, y) exactly when the
@@ -287,7 +324,9 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   // first, so that near hits skip the tiles behind them. Every cell of ring r >= 1 is at least
   // (r - 1) * kTile cells from the origin: past the farthest a beam can still reach, stop.
   constexpr int T = kTile;
-  const int tx0 = ix0 / T, ty0 = iy0 / T;
+  // Floor division: an origin outside the grid may have negative cells.
+  const auto tile_of = [](int c) { return c >= 0 ? c / T : -((-c + T - 1) / T); };
+  const int tx0 = tile_of(ix0), ty0 = tile_of(iy0);
   const auto tile = [&](int tx, int ty) {
     const std::size_t t = static_cast<std::size_t>(ty) * tile_cols_ + tx;
     if (tile_start_[4 * t] == tile_start_[4 * t + 4]) return;
@@ -322,8 +361,9 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
       if (ty == ya || ty == yb) {
         for (int tx = std::max(xa, 0); tx <= std::min(xb, tile_cols_ - 1); ++tx) tile(tx, ty);
       } else {
-        if (xa >= 0) tile(xa, ty);
-        if (xb < tile_cols_ && xb != xa) tile(xb, ty);
+        // (A ring about an origin outside the grid may have a side left or right of it.)
+        if (xa >= 0 && xa < tile_cols_) tile(xa, ty);
+        if (xb >= 0 && xb < tile_cols_ && xb != xa) tile(xb, ty);
       }
     }
   }

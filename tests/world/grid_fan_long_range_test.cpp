@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <utility>
 #include <vector>
 
 #include "../../bench/cave_map.hpp"
@@ -157,6 +158,96 @@ TEST(GridFanLongRange, ANearWallHidesTheOneBehindIt) {
       EXPECT_NEAR((o.x() + out[k] * dirs[k].x()) / 0.5, 40.0, 1e-9) << k;
     }
   }
+}
+
+// From outside the grid (a robot that has driven off the map): `cast` clips each ray to the grid
+// and starts its walk where the ray enters. Origins just outside a side, outside a corner, on the
+// extension of a border line and on cell corners, at up to the beams' reach; 180-beam half-turn
+// and full-turn fans and fans of axis-parallel beams; the cave walled all round (the border
+// cells are hit from outside) and random grids whose border cells are partly occupied.
+TEST(GridFanLongRange, MatchesTheCellByCellWalkFromOutsideTheGrid) {
+  const bench::CaveMap cave = bench::make_cave_map();
+  std::vector<std::pair<const OccupancyGrid*, const char*>> grids{{cave.grid.get(), "cave"}};
+  std::vector<OccupancyGrid> random;
+  Rng rng(17);
+  for (int m = 0; m < 12; ++m) {
+    const int w = 20 + static_cast<int>(rng.uniform(0.0, 150.0));
+    const int h = 20 + static_cast<int>(rng.uniform(0.0, 150.0));
+    std::vector<std::uint8_t> cells(static_cast<std::size_t>(w) * h);
+    for (auto& c : cells) c = rng.uniform() < 0.02 ? 1 : 0;
+    for (int x = 0; x < w; ++x) {  // border rows and columns, with gaps
+      if (rng.uniform() < 0.5) cells[x] = 1;
+      if (rng.uniform() < 0.5) cells[static_cast<std::size_t>(h - 1) * w + x] = 1;
+    }
+    for (int y = 0; y < h; ++y) {
+      if (rng.uniform() < 0.5) cells[static_cast<std::size_t>(y) * w] = 1;
+      if (rng.uniform() < 0.5) cells[static_cast<std::size_t>(y) * w + w - 1] = 1;
+    }
+    random.emplace_back(w, h, 0.05, Pose2{Vec2(-0.3, 0.8), m % 3 == 0 ? 0.7 : 0.0}, cells);
+  }
+  for (const OccupancyGrid& g : random) grids.emplace_back(&g, "random grid");
+
+  std::vector<Vec2> dirs;
+  std::vector<double> angles, out;
+  FanScratch scratch;
+  long hits = 0;
+  for (const auto& [g, what] : grids) {
+    const double res = g->resolution();
+    const Pose2& go = g->origin();
+    const double c = std::cos(go.theta), s = std::sin(go.theta);
+    const auto to_world = [&](const Vec2& cell) {
+      const Vec2 q = cell * res;
+      return Vec2(go.position.x() + c * q.x() - s * q.y(), go.position.y() + s * q.x() + c * q.y());
+    };
+    const double w = g->width(), h = g->height();
+    for (int f = 0; f < 200; ++f) {
+      // How far outside (cells): just outside, a few cells, up to the reach of the range.
+      const double range = f % 3 == 0 ? 3.5 : 8.0;
+      const double far = f % 4 == 0 ? 1e-4 : rng.uniform(0.0, 1.2 * range / res);
+      Vec2 cell;
+      switch (f % 5) {
+        case 0:
+          cell = Vec2(-far, rng.uniform(0.0, h));
+          break;  // left
+        case 1:
+          cell = Vec2(rng.uniform(0.0, w), h + far);
+          break;  // above
+        case 2:
+          cell = Vec2(w + far, -far);
+          break;  // a corner
+        case 3:
+          cell = Vec2(std::round(rng.uniform(0.0, w)), -far);
+          break;  // a column line
+        default:
+          cell = Vec2(std::round(-far), std::round(rng.uniform(0.0, h)));  // a cell corner
+      }
+      const Vec2 p = to_world(cell);
+      if (f % 6 == 5) {
+        // Eight beams along the grid's axes and diagonals.
+        dirs.clear();
+        angles.clear();
+        for (int k = 0; k < 8; ++k) {
+          const double a = wrap_angle(go.theta + k * 0.25 * kPi);
+          angles.push_back(a);
+          dirs.emplace_back(std::cos(a), std::sin(a));
+        }
+      } else {
+        lidar(rng.uniform(-kPi, kPi), f % 2 == 0 ? kPi : 2.0 * kPi, 180, dirs, angles);
+      }
+      out.assign(dirs.size(), -1.0);
+      g->cast_fan(p, dirs, angles, range, out, scratch);
+      for (std::size_t k = 0; k < dirs.size(); ++k) {
+        const double oracle = g->cast_ray_cell_by_cell(p, dirs[k], range);
+        if (oracle < range) ++hits;
+        ASSERT_EQ(bits(out[k]), bits(oracle))
+            << what << " fan " << f << " beam " << k << " from cell (" << cell.x() << ", "
+            << cell.y() << ") angle " << angles[k] << " range " << range << ": fan " << out[k]
+            << ", oracle " << oracle;
+      }
+    }
+  }
+  // Most fans reach the grid: the comparison is about hits, not only misses.
+  EXPECT_GT(hits, 13 * 200 * 180 / 8);
 }
 
 }  // namespace
