@@ -158,6 +158,16 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
     even =
         std::abs(reduce_turns(beams[i + k].theta - theta0 - static_cast<double>(k) * step)) < 1e-6;
   const bool full_circle = even && static_cast<double>(n) * step > 2.0 * kPi - 0.5 * step;
+  const double inv_step = even ? 1.0 / step : 0.0;
+  // A fan no wider than a half turn (a 180-degree lidar): every beam is within pi / 2 + 1e-6 of
+  // its centre line c, so along the whole ray (p - o) . c >= -1e-6 t, and a disc more than its
+  // radius behind the origin along c (with a margin far above that and the rounding of the
+  // ray-disc test, at any distance within reach) meets no beam: skipped without an atan2.
+  const double half_width = 0.5 * static_cast<double>(n - 1) * step;
+  const bool half_plane = even && half_width <= 0.5 * kPi + 1e-9;
+  const double centre_angle = theta0 + half_width;
+  const Vec2 centre_dir =
+      half_plane ? Vec2(std::cos(centre_angle), std::sin(centre_angle)) : Vec2::Zero();
   const auto test = [&](std::size_t k, const Circle& c) {
     ranges[i + k] = ray_circle_hit(origin, beams[i + k].dir, c, ranges[i + k]);
   };
@@ -166,6 +176,7 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
     // Beyond max_range + r + 1 m, the test against `near` below would skip the disc: no root.
     const double far = max_range + c.radius + 1.0;
     if (even && v.squaredNorm() > far * far) continue;
+    if (half_plane && v.dot(centre_dir) < -(c.radius + 1e-5 * (1.0 + far))) continue;
     const double d = v.norm();
     if (!even || d <= c.radius + 1e-9) {  // uneven fan, or the origin inside the body
       for (std::size_t k = 0; k < n; ++k) test(k, c);
@@ -183,21 +194,27 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
     double rel = reduce_turns(coarse_atan2(v.y(), v.x()) - theta0);
     if (rel < 0.0) rel += 2.0 * kPi;  // [0, 2 pi)
     // The extent as beam offsets from beam 0; for a fan that does not go all the way round, an
-    // extent that crosses 0 or 2 pi also shows a turn earlier or later.
-    for (const double centre : {rel, rel - 2.0 * kPi, rel + 2.0 * kPi}) {
+    // extent that crosses 0 or 2 pi also shows a turn earlier or later (beam 0 is at offset 0
+    // and every beam below 2 pi: a turn later only matters when the extent reaches below 0, a
+    // turn earlier when it reaches 2 pi).
+    const auto count = static_cast<long>(n);
+    const auto beams_about = [&](double centre) {
       // Truncation and a beam more on each side: at most floor and at least ceil (which are
-      // calls into libm without SSE4.1).
-      const auto lo = static_cast<long>((centre - half) / step) - 1;
-      const auto hi = static_cast<long>((centre + half) / step) + 1;
-      const auto count = static_cast<long>(n);
+      // calls into libm without SSE4.1); the product by 1 / step is within ulps of the quotient.
+      const auto lo = static_cast<long>((centre - half) * inv_step) - 1;
+      const auto hi = static_cast<long>((centre + half) * inv_step) + 1;
       if (full_circle) {
-        if (centre != rel) break;  // the modulo below covers both sides
         for (long k = lo; k <= hi && k < lo + count; ++k)
           test_near(static_cast<std::size_t>(((k % count) + count) % count));
       } else {
         for (long k = std::max(lo, 0L); k <= std::min(hi, count - 1); ++k)
           test_near(static_cast<std::size_t>(k));
       }
+    };
+    beams_about(rel);
+    if (!full_circle) {  // the modulo above covers both sides of a full circle
+      if (rel + half >= 2.0 * kPi) beams_about(rel - 2.0 * kPi);
+      if (rel - half <= 0.0) beams_about(rel + 2.0 * kPi);
     }
   }
 }

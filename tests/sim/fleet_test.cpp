@@ -103,6 +103,49 @@ TEST(FleetSensing, FanAgainstOtherBodiesEqualsEveryBeamAgainstEveryBody) {
   }
 }
 
+// A lidar of at most a half turn passes over bodies behind its centre line without testing its
+// beams: bodies just behind the line through the origin (less than a radius beyond it, so the
+// fan's edge beams graze or cut them, and just more), near and far, for 180-degree lidars whose
+// edge beams lie along that line: the ranges are the all-pairs ones, bit for bit.
+TEST(FleetSensing, BodiesBehindAHalfTurnLidarAreSkippedOnlyWhenNoBeamMeetsThem) {
+  Rng rng(12);
+  WorldDesc desc;
+  desc.bounds = Box2{Vec2(-20, -20), Vec2(20, 20)};
+  const World world(desc);
+  int seen = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int beams = trial % 2 == 0 ? 181 : 180;
+    const double fov = trial % 3 == 2 ? rng.uniform(0.5, kPi) : kPi;
+    const Pose2 robot{Vec2(rng.uniform(-2, 2), rng.uniform(-2, 2)), rng.uniform(-kPi, kPi)};
+    const double range = 8.0;
+    const auto sensors = make_lidar(beams, fov, 0.0, range, {Vec2(0.1, 0), 0});
+    std::vector<SensorBeam> b(sensors.size());
+    compute_sensor_beams(robot, sensors, b);
+    const Vec2 o = b[0].origin;
+    const Vec2 c(std::cos(robot.theta), std::sin(robot.theta)), side(-c.y(), c.x());
+    std::vector<Circle> others;
+    for (int k = 0; k < 30; ++k) {
+      const double r = rng.uniform(0.05, 0.4);
+      // Behind the line by r less up to half a radius, or by r plus a little (1e-12 to 1e-2 m).
+      const double behind =
+          k % 2 == 0 ? r * rng.uniform(0.5, 1.0) : r + std::pow(10.0, rng.uniform(-12.0, -2.0));
+      others.push_back({o - behind * c + rng.uniform(-range, range) * side, r});
+    }
+    std::vector<double> fan(sensors.size()), each(sensors.size());
+    Rng unused(1);
+    sense_ranges(world, b, sensors, 0.0, unused, fan, {}, others);
+    for (std::size_t k = 0; k < sensors.size(); ++k)
+      sense_ranges(world, std::span(b).subspan(k, 1), std::span(sensors).subspan(k, 1), 0.0, unused,
+                   std::span(each).subspan(k, 1), {}, others);
+    for (std::size_t k = 0; k < sensors.size(); ++k) {
+      ASSERT_EQ(fan[k], each[k]) << "trial " << trial << " beam " << k;
+      if (each[k] < range) ++seen;
+    }
+  }
+  // The edge beams of the 180-degree fans do meet the bodies less than a radius behind.
+  EXPECT_GT(seen, 100);
+}
+
 // A lidar's beams are turned one from the next rather than computed with a sine and cosine each:
 // within 1e-13 of the exact beams, for full and partial fans and any robot heading.
 TEST(FleetSensing, LidarBeamsTurnedFromTheFirstStayOnTheExactDirections) {

@@ -43,12 +43,12 @@ class OccupancyGrid {
   /// Casts a fan of rays from one origin: `out[i]` is bit for bit
   /// `cast_ray(origin_world, dirs[i], max_range)`. `angles[i]` is the world angle of `dirs[i]` to
   /// within 1e-9 rad. When the angles are evenly spaced (a lidar) and the origin is in a free cell
-  /// of the grid, the runs of occupied cells that a walk can enter first (those with a free side
-  /// facing the origin) within `max_range` are gathered once and each is tested only against the
-  /// beams its angular extent covers: for each, the few cells of the run near the beam's crossing
-  /// are tested with the walk's own boundary quotients. Anything else is cast ray by ray. The three
-  /// spans have the same size. Works in `scratch` (see FanScratch): no allocation once it has
-  /// grown to the fan.
+  /// of the grid or outside it, the runs of occupied cells that a walk can enter first (those with
+  /// a free side facing the origin) within `max_range` are gathered once and each is tested only
+  /// against the beams its angular extent covers: for each, the few cells of the run near the
+  /// beam's crossing are tested with the walk's own boundary quotients. Anything else is cast ray
+  /// by ray. The three spans have the same size. Works in `scratch` (see FanScratch): no allocation
+  /// once it has grown to the fan.
   void cast_fan(const Vec2& origin_world, std::span<const Vec2> dirs,
                 std::span<const double> angles, double max_range, std::span<double> out,
                 FanScratch& scratch) const;
@@ -129,7 +129,8 @@ class OccupancyGrid {
   /// before it can touch an occupied square: the centre distance to the nearest occupied centre
   /// minus 1.5. `cast_ray` jumps that far at once.
   std::vector<std::uint16_t> free_run_;
-  /// Runs of occupied cells whose neighbour on one side is a free cell of the grid: side 0
+  /// Runs of occupied cells whose neighbour on one side is free (a free cell of the grid or
+  /// outside it): side 0
   /// (x - 1) and 1 (x + 1) as runs of rows in a column, side 2 (y - 1) and 3 (y + 1) as runs of
   /// columns in a row. A walk enters or touches an occupied cell first only from a free
   /// neighbour on a side facing its origin. The runs are cut at the borders of square tiles
