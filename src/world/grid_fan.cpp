@@ -254,7 +254,7 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
         for (int c = r.first; c <= r.last; ++c) cell_test(k, c);
         return;
       }
-      const double fb = std::floor(b);
+      const double fb = fan_detail::floor_by_truncation(b);
       const int c0 = static_cast<int>(std::clamp(fb - 1.0, lo, hi));
       const int c1 = static_cast<int>(std::clamp(fb + 1.0, lo, hi));
       for (int c = c0; c <= c1; ++c) cell_test(k, c);

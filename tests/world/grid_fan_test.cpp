@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "../../src/world/fan_layout.hpp"
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/ros_map.hpp"
@@ -108,6 +109,44 @@ void expect_grid_fans_match(const OccupancyGrid& g, Rng& rng, int fans, bool nea
         ASSERT_EQ(bits(out[k]), bits(world.cast_ray(p, dirs[k], range))) << what << " world fan";
     }
   }
+}
+
+// The fans' floor and ceil without libm: std::floor's and std::ceil's values (a zero may differ
+// in sign, which compares equal), at integers, halves, just beside integers, past 2^52, at
+// infinities and NaN, and on random values of every magnitude.
+TEST(FanLayout, FloorAndCeilByTruncationAreLibms) {
+  using fan_detail::ceil_by_truncation;
+  using fan_detail::floor_by_truncation;
+  std::vector<double> xs{0.0,
+                         -0.0,
+                         0.5,
+                         -0.5,
+                         1.0,
+                         -1.0,
+                         2.5,
+                         -2.5,
+                         1e-300,
+                         -1e-300,
+                         0x1p52,
+                         -0x1p52,
+                         0x1p52 + 1,
+                         0x1p60,
+                         1e300,
+                         -1e300,
+                         kInf,
+                         -kInf,
+                         std::nextafter(3.0, 0.0),
+                         std::nextafter(-3.0, 0.0),
+                         std::nextafter(0x1p52, 0.0),
+                         -std::nextafter(0x1p52, 0.0)};
+  Rng rng(3);
+  for (int i = 0; i < 100000; ++i) xs.push_back(std::ldexp(rng.uniform(-1.0, 1.0), i % 70 - 10));
+  for (const double x : xs) {
+    EXPECT_EQ(floor_by_truncation(x), std::floor(x)) << x;
+    EXPECT_EQ(ceil_by_truncation(x), std::ceil(x)) << x;
+  }
+  EXPECT_TRUE(std::isnan(floor_by_truncation(std::nan(""))));
+  EXPECT_TRUE(std::isnan(ceil_by_truncation(std::nan(""))));
 }
 
 TEST(GridFan, MatchesCastRayOnRandomGrids) {
