@@ -140,9 +140,10 @@ double reduce_turns(double a) {
 
 // Other robots' bodies on a fan of beams [i, end) that share an origin, lowering ranges[k] to
 // each hit; every range is at most max_range on entry. For evenly spaced beams each disc is
-// tested only against the beams within its angular extent widened by one beam spacing (and
-// 1e-5 rad) on each side (a beam's angle is within 1e-6 rad of its place in the fan, the
-// extent's bearing within 2e-6 rad of atan2's, its half-width an upper bound of asin(r / d)),
+// tested only against the beams within its angular extent widened by 1e-5 rad on each side (a
+// beam's angle is within 1e-6 rad of its place in the fan, the extent's bearing within 2e-6 rad
+// of atan2's, its half-width an upper bound of asin(r / d), a grazing ray-disc test's rounding
+// orders of magnitude below the rest),
 // and only where the beam's range so far is beyond the disc's distance d - r (less 1e-6
 // (1 + d), far more than the rounding of a ray-disc hit, which is never nearer than d - r), so
 // the result is the all-pairs loop's, bit for bit: the same test, and the minimum does not
@@ -190,7 +191,7 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
     };
     // asin(x) <= x / sqrt(1 - x^2) (= tan(asin x)); x < 1 here.
     const double x = c.radius / d;
-    const double half = std::min(kPi, x / std::sqrt(1.0 - x * x)) + step + 1e-5;
+    const double half = std::min(kPi, x / std::sqrt(1.0 - x * x)) + 1e-5;
     double rel = reduce_turns(coarse_atan2(v.y(), v.x()) - theta0);
     if (rel < 0.0) rel += 2.0 * kPi;  // [0, 2 pi)
     // The extent as beam offsets from beam 0; for a fan that does not go all the way round, an
@@ -199,10 +200,13 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
     // turn earlier when it reaches 2 pi).
     const auto count = static_cast<long>(n);
     const auto beams_about = [&](double centre) {
-      // Truncation and a beam more on each side: at most floor and at least ceil (which are
-      // calls into libm without SSE4.1); the product by 1 / step is within ulps of the quotient.
-      const auto lo = static_cast<long>((centre - half) * inv_step) - 1;
-      const auto hi = static_cast<long>((centre + half) * inv_step) + 1;
+      // Beams ceil(from) to floor(to), by truncation (std::ceil and std::floor are a dozen
+      // instructions each without SSE4.1); the product by 1 / step is within ulps of the
+      // quotient, far inside the margin.
+      const double from = (centre - half) * inv_step, to = (centre + half) * inv_step;
+      auto lo = static_cast<long>(from), hi = static_cast<long>(to);
+      if (static_cast<double>(lo) < from) ++lo;
+      if (static_cast<double>(hi) > to) --hi;
       if (full_circle) {
         for (long k = lo; k <= hi && k < lo + count; ++k)
           test_near(static_cast<std::size_t>(((k % count) + count) % count));
