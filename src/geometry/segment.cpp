@@ -8,18 +8,6 @@
 
 namespace floornav {
 
-Vec2 nearest_point(const Segment& s, const Vec2& p) {
-  const Vec2 d = s.b - s.a;
-  const double len2 = d.squaredNorm();
-  if (len2 <= 0.0) return s.a;
-  const double t = std::clamp((p - s.a).dot(d) / len2, 0.0, 1.0);
-  return s.a + t * d;
-}
-
-double distance(const Segment& s, const Vec2& p) {
-  return (p - nearest_point(s, p)).norm();
-}
-
 double ray_collinear_segment_hit(const Vec2& origin, const Vec2& dir, const Vec2& a, const Vec2& b,
                                  double best) {
   const Vec2 w = a - origin;

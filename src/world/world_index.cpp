@@ -216,11 +216,14 @@ double World::clearance(const Vec2& p) const {
     // Distance from p to the index box (p may lie outside it).
     const Vec2 lo = ix.origin, hi = ix.origin + Vec2(ix.nx * ix.cell, ix.ny * ix.cell);
     const double outside = (p.cwiseMax(lo).cwiseMin(hi) - p).norm();
-    double unsigned_best = kInf;
+    // Segments by squared distance (one square root at the end, the same bits: the root is
+    // correctly rounded and monotonic), circles by distance.
+    double best_segment2 = kInf, best_circle = kInf;
+    const auto unsigned_best = [&] { return std::min(std::sqrt(best_segment2), best_circle); };
     const int max_ring = std::max(ix.nx, ix.ny);
     for (int k = 0; k <= max_ring; ++k) {
       const double ring_lower_bound = outside + (k - 1) * ix.cell;
-      if (ring_lower_bound > unsigned_best) break;
+      if (ring_lower_bound > unsigned_best()) break;
       for (int y = cy - k; y <= cy + k; ++y) {
         if (y < 0 || y >= ix.ny) continue;
         const bool edge_row = (y == cy - k || y == cy + k);
@@ -228,16 +231,18 @@ double World::clearance(const Vec2& p) const {
           if (x >= 0 && x < ix.nx) {
             const auto c = static_cast<std::size_t>(y) * ix.nx + x;
             for (auto j = ix.segment_offsets[c]; j < ix.segment_offsets[c + 1]; ++j)
-              unsigned_best = std::min(unsigned_best, distance(segments_[ix.segment_items[j]], p));
+              best_segment2 =
+                  std::min(best_segment2, squared_distance(segments_[ix.segment_items[j]], p));
             for (auto j = ix.circle_offsets[c]; j < ix.circle_offsets[c + 1]; ++j)
-              unsigned_best = std::min(unsigned_best,
-                                       std::abs(signed_distance(circles_[ix.circle_items[j]], p)));
+              best_circle =
+                  std::min(best_circle, std::abs(signed_distance(circles_[ix.circle_items[j]], p)));
           }
           if (k == 0) break;
         }
       }
     }
-    const double signed_best = inside_solid_shape(p) ? -unsigned_best : unsigned_best;
+    const double found = unsigned_best();
+    const double signed_best = inside_solid_shape(p) ? -found : found;
     best = std::min(best, signed_best);
   }
   return best;

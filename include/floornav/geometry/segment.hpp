@@ -2,6 +2,7 @@
 /// @file
 /// Line segments: nearest point, distance, and ray intersection.
 
+#include <algorithm>
 #include <optional>
 
 #include "floornav/geometry/vec2.hpp"
@@ -17,10 +18,24 @@ struct Segment {
 };
 
 /// The point of `s` nearest to `p`; `s.a` for a degenerate segment.
-Vec2 nearest_point(const Segment& s, const Vec2& p);
+inline Vec2 nearest_point(const Segment& s, const Vec2& p) {
+  const Vec2 d = s.b - s.a;
+  const double len2 = d.squaredNorm();
+  if (len2 <= 0.0) return s.a;
+  const double t = std::clamp((p - s.a).dot(d) / len2, 0.0, 1.0);
+  return s.a + t * d;
+}
+
+/// Squared distance from `p` to segment `s` (distance() is its square root, to the bit): nearest
+/// searches compare these and take one root at the end.
+inline double squared_distance(const Segment& s, const Vec2& p) {
+  return (p - nearest_point(s, p)).squaredNorm();
+}
 
 /// Euclidean distance from `p` to segment `s`.
-double distance(const Segment& s, const Vec2& p);
+inline double distance(const Segment& s, const Vec2& p) {
+  return (p - nearest_point(s, p)).norm();
+}
 
 /// Distance along the ray `origin + t dir` (`dir` a unit vector) to where it first meets `s`,
 /// if it does with `t >= 0`. A ray lying along the segment meets it at its nearer end.
