@@ -178,6 +178,40 @@ TEST(SensorLayout, RangesAndNoiseMatchThePlainFunction) {
   }
 }
 
+TEST(SensorLayout, MountPointsThatMeetByRoundingMakeOneFanAsInThePlainFunction) {
+  // A lidar and a ring of singles on mount points one ulp apart: far from the origin their
+  // origins round to the same point and fan_end runs on into the ring, so the layout's fan end
+  // (the lidar's mount point) is extended at run time, up to the ring's end and no further.
+  // (Fans give the ranges of casting ray by ray, so the grouping does not show in the ranges;
+  // an extension past the ring, onto the cone after it, would.)
+  const double a = 0.1, b = std::nextafter(0.1, 1.0);
+  auto sensors = make_lidar(20, 1.0, 0.0, 3.0, {Vec2(a, 0.0), 0.0});
+  for (int k = 0; k < 20; ++k) sensors.push_back(single(Vec2(b, 0.0), 2.0 + 0.05 * k, 3.0));
+  sensors.push_back(cone(Vec2(b, 0.0), 0.0));
+  const SensorLayout layout(sensors);
+  ASSERT_EQ(layout.fan_end(0), 20u);
+  Rng rng(2);
+  std::shared_ptr<const OccupancyGrid> grid;
+  const std::unique_ptr<World> world = floor_world(rng, grid);
+  std::vector<SensorBeam> beams(sensors.size());
+  std::vector<double> plain(sensors.size()), laid(sensors.size());
+  FanScratch scratch;
+  for (const Pose2& robot : {Pose2{Vec2(1000.0, 0.0), 0.0}, Pose2{Vec2(0.0, 1.0), 0.0}}) {
+    compute_sensor_beams(robot, sensors, layout, beams);
+    Rng r1(3), r2(3);
+    sense_ranges(*world, beams, sensors, 0.01, r1, plain, scratch);
+    sense_ranges(*world, beams, sensors, layout, 0.01, r2, laid, scratch);
+    for (std::size_t k = 0; k < sensors.size(); ++k) ASSERT_EQ(bits(plain[k]), bits(laid[k])) << k;
+    EXPECT_EQ(r1.normal(), r2.normal());
+  }
+  // The premise: at x = 1000 the two mount points give one origin, near the origin two.
+  std::vector<SensorBeam> far(sensors.size()), near(sensors.size());
+  compute_sensor_beams(Pose2{Vec2(1000.0, 0.0), 0.0}, sensors, layout, far);
+  compute_sensor_beams(Pose2{Vec2(0.0, 1.0), 0.0}, sensors, layout, near);
+  EXPECT_EQ(far[0].origin, far[20].origin);
+  EXPECT_NE(near[0].origin, near[20].origin);
+}
+
 TEST(SensorLayout, NoiselessFanIsClampedToEachSensorsRange) {
   // A lidar whose beams have a min_range of their own: every reading within [min, max], those
   // against the near wall at the min, and a beam that sees nothing reads exactly max_range.
