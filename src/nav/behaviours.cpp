@@ -17,13 +17,12 @@ Vec2 go_to_goal_velocity(const Vec2& x, const Vec2& goal, double v0, double a) {
 }
 
 Vec2 avoid_obstacle_velocity(const Vec2& x, std::span<const Vec2> points, double v0) {
-  constexpr double kEps = 1e-3;  // m^2: keeps the weight finite on contact
   Vec2 sum = Vec2::Zero();
   for (const Vec2& p : points) {
     const Vec2 away = x - p;  // -e, eq. 5.20
     const double d2 = away.squaredNorm();
     if (d2 <= 1e-24) continue;
-    sum += away / (std::sqrt(d2) * (d2 + kEps));
+    sum += avoid_obstacle_term(away, std::sqrt(d2), d2);
   }
   return v0 * normalized_or_zero(sum);
 }

@@ -14,10 +14,14 @@ namespace {
 
 // Pose2::compose and Pose2::heading spelled out, with cos/sin of the robot's heading passed in:
 // the same operations in the same order as rotate(), so the same bits.
-SensorBeam beam_of(const Pose2& robot, double c, double s, const RangeSensorSpec& spec) {
+Vec2 origin_of(const Pose2& robot, double c, double s, const RangeSensorSpec& spec) {
   const Vec2& m = spec.mount.position;
+  return robot.position + Vec2(c * m.x() - s * m.y(), s * m.x() + c * m.y());
+}
+
+SensorBeam beam_of(const Pose2& robot, double c, double s, const RangeSensorSpec& spec) {
   SensorBeam b;
-  b.origin = robot.position + Vec2(c * m.x() - s * m.y(), s * m.x() + c * m.y());
+  b.origin = origin_of(robot, c, s, spec);
   b.theta = wrap_angle(robot.theta + spec.mount.theta);
   b.dir = Vec2(std::cos(b.theta), std::sin(b.theta));
   return b;
@@ -251,7 +255,123 @@ std::size_t lidar_end(std::span<const RangeSensorSpec> sensors, std::size_t i) {
   return j;
 }
 
+// The turn between neighbouring beams of the lidar [i, end) (see lidar_end): by the mean
+// spacing, since two neighbours' difference would carry their rounding into every turn.
+Vec2 lidar_turn(std::span<const RangeSensorSpec> sensors, std::size_t i, std::size_t end) {
+  const double spacing =
+      (sensors[end - 1].mount.theta - sensors[i].mount.theta) / static_cast<double>(end - 1 - i);
+  return {std::cos(spacing), std::sin(spacing)};
+}
+
+// The beams of the lidar [i, end): its first beam's origin for all, the exact sum of headings
+// wrapped by whole turns (not wrap_angle's atan2: this is per beam), and each direction turned
+// from the previous one by `turn` (a rotation, not a sine and a cosine per beam), re-anchored
+// exactly every kAnchorEvery beams, so directions stay within ~1e-15 of the exact ones.
+void lidar_beams(const Pose2& robot, double c, double s, std::span<const RangeSensorSpec> sensors,
+                 std::size_t i, std::size_t end, const Vec2& turn, std::span<SensorBeam> beams) {
+  // Copies, not references: the stores to `beams` must not make the compiler reload them.
+  const Vec2 origin = origin_of(robot, c, s, sensors[i]);
+  const double ox = origin.x(), oy = origin.y();
+  const double robot_theta = robot.theta, tx = turn.x(), ty = turn.y();
+  const auto put = [&](std::size_t k, double x, double y, double theta) {
+    SensorBeam& b = beams[k];
+    b.origin.x() = ox;
+    b.origin.y() = oy;
+    b.dir.x() = x;
+    b.dir.y() = y;
+    b.theta = theta;
+  };
+  const auto heading = [&](std::size_t k) {
+    double theta = robot_theta + sensors[k].mount.theta;
+    while (theta > kPi) theta -= 2.0 * kPi;
+    while (theta <= -kPi) theta += 2.0 * kPi;
+    return theta;
+  };
+  for (std::size_t anchor = i; anchor < end; anchor += kAnchorEvery) {
+    const std::size_t stop = std::min(end, anchor + kAnchorEvery);
+    const double theta0 = heading(anchor);
+    double x = std::cos(theta0), y = std::sin(theta0);
+    put(anchor, x, y, theta0);
+    for (std::size_t k = anchor + 1; k < stop; ++k) {
+      const double px = x;
+      x = px * tx - y * ty;
+      y = px * ty + y * tx;
+      put(k, x, y, heading(k));
+    }
+  }
+}
+
+// sense_ranges over runs: `run_end(i)` is fan_end(beams, sensors, i); `layout` (may be null)
+// gives the ranges contiguous for the noiseless clamp.
+template <class RunEnd>
+void sense_runs(const World& world, std::span<const SensorBeam> beams,
+                std::span<const RangeSensorSpec> sensors, const SensorLayout* layout,
+                double noise_stddev, Rng& rng, std::span<double> ranges, FanScratch& scratch,
+                const FreeDisc& free, std::span<const Circle> others,
+                std::span<const OrientedBox> boxes, const RunEnd& run_end) {
+  // Fewer sensors than a fan needs: each is cast on its own, as below.
+  if (sensors.size() < kMinFanBeams) {
+    for (std::size_t i = 0; i < sensors.size(); ++i)
+      ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free, others, boxes);
+    return;
+  }
+  for (std::size_t i = 0; i < sensors.size();) {
+    const std::size_t end = run_end(i);
+    if (end - i >= kMinFanBeams) {
+      // Cast first (the world, then other robots' bodies), then draw the noise sensor by
+      // sensor: the RNG sees the same order.
+      cast_fan(world, beams, i, end, sensors[i].max_range, ranges, free, scratch);
+      if (!others.empty()) fan_discs(beams, i, end, sensors[i].max_range, others, ranges);
+      if (!boxes.empty()) fan_boxes(beams, i, end, sensors[i].max_range, boxes, ranges);
+      if (layout && !(noise_stddev > 0.0)) {
+        // finish_reading without noise: the clamp alone, over contiguous bounds.
+        const std::span<const double> lo = layout->min_ranges(), hi = layout->max_ranges();
+        for (; i < end; ++i) ranges[i] = std::clamp(ranges[i], lo[i], hi[i]);
+      } else {
+        for (; i < end; ++i) ranges[i] = finish_reading(ranges[i], sensors[i], noise_stddev, rng);
+      }
+    } else {
+      const std::size_t stop = std::max(end, i + 1);  // at least one (a cone sensor)
+      for (; i < stop; ++i)
+        ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free, others, boxes);
+    }
+  }
+}
+
 }  // namespace
+
+SensorLayout::SensorLayout(std::span<const RangeSensorSpec> sensors)
+    : fan_end_(sensors.size()), max_range_(sensors.size()), min_range_(sensors.size()) {
+  const std::size_t n = sensors.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    min_range_[i] = sensors[i].min_range;
+    max_range_[i] = sensors[i].max_range;
+  }
+  // compute_sensor_beams' walk (none with fewer sensors than a lidar).
+  for (std::size_t i = 0; n >= kMinFanBeams && i < n;) {
+    const std::size_t end = lidar_end(sensors, i);
+    if (end - i < kMinFanBeams) {
+      ++i;
+      continue;
+    }
+    lidars_.push_back({i, end, lidar_turn(sensors, i, end)});
+    i = end;
+  }
+  // fan_end from the back: when i + 1 is on i's run, i's run ends where i + 1's does (== is
+  // transitive among the numbers that compare equal to themselves).
+  const auto same = [&](std::size_t j, std::size_t i) {
+    return single_beam(sensors[j]) && sensors[j].mount.position == sensors[i].mount.position &&
+           sensors[j].max_range == sensors[i].max_range;
+  };
+  for (std::size_t i = n; i-- > 0;) {
+    if (!same(i, i))
+      fan_end_[i] = i;
+    else if (i + 1 < n && same(i + 1, i))
+      fan_end_[i] = fan_end_[i + 1];
+    else
+      fan_end_[i] = i + 1;
+  }
+}
 
 void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
                           std::span<SensorBeam> beams) {
@@ -268,59 +388,49 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
       ++i;
       continue;
     }
-    // A lidar: its first beam as above, then each next one turned by the fixed spacing (a
-    // rotation, not a sine and a cosine per beam; re-anchored exactly every kAnchorEvery beams,
-    // so directions stay within ~1e-15 of the exact ones).
-    // The mean spacing: two neighbours' difference would carry their rounding into every turn.
-    const double spacing =
-        (sensors[end - 1].mount.theta - sensors[i].mount.theta) / static_cast<double>(end - 1 - i);
-    const Vec2 turn(std::cos(spacing), std::sin(spacing));
-    const SensorBeam first = beam_of(robot, c, s, sensors[i]);
-    for (std::size_t k = i; k < end; ++k) {
-      SensorBeam& b = beams[k];
-      b.origin = first.origin;
-      // The exact sum, wrapped by whole turns (not wrap_angle's atan2: this is per beam).
-      double theta = robot.theta + sensors[k].mount.theta;
-      while (theta > kPi) theta -= 2.0 * kPi;
-      while (theta <= -kPi) theta += 2.0 * kPi;
-      b.theta = theta;
-      if ((k - i) % kAnchorEvery == 0) {
-        b.dir = Vec2(std::cos(theta), std::sin(theta));
-      } else {
-        const Vec2& prev = beams[k - 1].dir;
-        b.dir = Vec2(prev.x() * turn.x() - prev.y() * turn.y(),
-                     prev.x() * turn.y() + prev.y() * turn.x());
-      }
-    }
+    lidar_beams(robot, c, s, sensors, i, end, lidar_turn(sensors, i, end), beams);
     i = end;
   }
+}
+
+void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
+                          const SensorLayout& layout, std::span<SensorBeam> beams) {
+  const double c = std::cos(robot.theta), s = std::sin(robot.theta);
+  std::size_t i = 0;
+  for (const SensorLayout::Lidar& lidar : layout.lidars()) {
+    for (; i < lidar.begin; ++i) beams[i] = beam_of(robot, c, s, sensors[i]);
+    lidar_beams(robot, c, s, sensors, lidar.begin, lidar.end, lidar.turn, beams);
+    i = lidar.end;
+  }
+  for (; i < sensors.size(); ++i) beams[i] = beam_of(robot, c, s, sensors[i]);
 }
 
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
                   std::span<double> ranges, FanScratch& scratch, const FreeDisc& free,
                   std::span<const Circle> others, std::span<const OrientedBox> boxes) {
-  // Fewer sensors than a fan needs: each is cast on its own, as below.
-  if (sensors.size() < kMinFanBeams) {
-    for (std::size_t i = 0; i < sensors.size(); ++i)
-      ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free, others, boxes);
-    return;
-  }
-  for (std::size_t i = 0; i < sensors.size();) {
-    const std::size_t end = fan_end(beams, sensors, i);
-    if (end - i >= kMinFanBeams) {
-      // Cast first (the world, then other robots' bodies), then draw the noise sensor by
-      // sensor: the RNG sees the same order.
-      cast_fan(world, beams, i, end, sensors[i].max_range, ranges, free, scratch);
-      if (!others.empty()) fan_discs(beams, i, end, sensors[i].max_range, others, ranges);
-      if (!boxes.empty()) fan_boxes(beams, i, end, sensors[i].max_range, boxes, ranges);
-      for (; i < end; ++i) ranges[i] = finish_reading(ranges[i], sensors[i], noise_stddev, rng);
-    } else {
-      const std::size_t stop = std::max(end, i + 1);  // at least one (a cone sensor)
-      for (; i < stop; ++i)
-        ranges[i] = sense_one(world, beams[i], sensors[i], noise_stddev, rng, free, others, boxes);
-    }
-  }
+  sense_runs(world, beams, sensors, nullptr, noise_stddev, rng, ranges, scratch, free, others,
+             boxes, [&](std::size_t i) { return fan_end(beams, sensors, i); });
+}
+
+void sense_ranges(const World& world, std::span<const SensorBeam> beams,
+                  std::span<const RangeSensorSpec> sensors, const SensorLayout& layout,
+                  double noise_stddev, Rng& rng, std::span<double> ranges, FanScratch& scratch,
+                  const FreeDisc& free, std::span<const Circle> others,
+                  std::span<const OrientedBox> boxes) {
+  const auto run_end = [&](std::size_t i) {
+    const Vec2& origin = beams[i].origin;
+    if (!(origin == origin)) return fan_end(beams, sensors, i);  // NaN: no run
+    // The sensors on i's mount point share its origin (the same arithmetic on the same
+    // numbers); others may meet it by rounding: the run goes on as fan_end's would.
+    std::size_t j = layout.fan_end(i);
+    while (j < sensors.size() && single_beam(sensors[j]) && beams[j].origin == origin &&
+           sensors[j].max_range == sensors[i].max_range)
+      ++j;
+    return j;
+  };
+  sense_runs(world, beams, sensors, &layout, noise_stddev, rng, ranges, scratch, free, others,
+             boxes, run_end);
 }
 
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,

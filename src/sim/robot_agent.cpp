@@ -41,6 +41,7 @@ void SensingScratch::fit(std::size_t sensors) {
 RobotAgent::RobotAgent(AgentSetup setup)
     : world_(setup.world),
       robot_(&setup.task->robot),
+      sensor_layout_(robot_->sensors),
       goals_(setup.task->goals),
       nav_(&setup.task->controller.params),
       sim_(setup.sim),
@@ -179,10 +180,10 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others,
   const std::size_t n_sensors = robot.sensors.size();
   const std::span<SensorBeam> beams(scratch.beams.data(), n_sensors);
   const std::span<double> ranges(scratch.ranges.data(), n_sensors);
-  compute_sensor_beams(pose_, robot.sensors, beams);
+  compute_sensor_beams(pose_, robot.sensors, sensor_layout_, beams);
   const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
-  sense_ranges(*world_, beams, robot.sensors, robot.sensor_noise, rng_, ranges, scratch.fan, free,
-               others, boxes);
+  sense_ranges(*world_, beams, robot.sensors, sensor_layout_, robot.sensor_noise, rng_, ranges,
+               scratch.fan, free, others, boxes);
   if (sim_->record_ranges_every > 0 && result_.steps % sim_->record_ranges_every == 0) {
     // A step that only switched goals senses again at the same pose: that frame is replaced.
     if (!result_.range_steps.empty() && result_.range_steps.back() == result_.steps) {

@@ -19,6 +19,14 @@ Vec2 go_to_goal_velocity(const Vec2& x, const Vec2& goal, double v0, double a);
 /// speed v0. Zero when there are no points.
 Vec2 avoid_obstacle_velocity(const Vec2& x, std::span<const Vec2> points, double v0);
 
+/// One point's term of avoid_obstacle_velocity's sum (eq. 5.20), from `away` = x - x_o, its
+/// squared length `d2` and length `d` = sqrt(d2). A point with d2 <= 1e-24 (on x) adds nothing:
+/// callers skip it.
+inline Vec2 avoid_obstacle_term(const Vec2& away, double d, double d2) {
+  constexpr double kEps = 1e-3;  // m^2: keeps the weight finite on contact
+  return away / (d * (d2 + kEps));
+}
+
 /// Blending (eq. 5.21): u = (1 - sigma) u_gtg + sigma u_ao, with sigma rising from 0 at
 /// clearance `d_far` to 1 at clearance `d_near` (smoothstep).
 double blend_weight(double clearance, double d_near, double d_far);

@@ -3,6 +3,7 @@
 /// Range sensors (IR, sonar, lidar beams) and the obstacle points they report, in the world frame.
 
 #include <span>
+#include <vector>
 
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/circle.hpp"
@@ -46,6 +47,45 @@ struct FreeDisc {
 void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
                           std::span<SensorBeam> beams);
 
+/// What compute_sensor_beams and sense_ranges would look for in a sensor list at every step,
+/// found once for a list that does not change (a robot's): its lidars (runs of at least 16
+/// evenly turned single-beam sensors on one mount point, with the turn between beams) and, per
+/// sensor, the end of its fan (single-beam sensors from it on the same mount point with the same
+/// max_range). Valid only with the list it was built from.
+class SensorLayout {
+ public:
+  SensorLayout() = default;
+  explicit SensorLayout(std::span<const RangeSensorSpec> sensors);
+
+  /// A lidar: sensors [begin, end), each beam turned from the previous by `turn` (cos, sin).
+  struct Lidar {
+    std::size_t begin{0};
+    std::size_t end{0};
+    Vec2 turn{1.0, 0.0};
+  };
+  /// The sensors it was built from.
+  std::size_t size() const { return min_range_.size(); }
+  /// In order, not overlapping.
+  std::span<const Lidar> lidars() const { return lidars_; }
+  /// The end of the run of single-beam sensors from `i` on `i`'s mount point with `i`'s
+  /// max_range (i itself when `i` is a cone).
+  std::size_t fan_end(std::size_t i) const { return fan_end_[i]; }
+  /// Each sensor's min_range and max_range, contiguous (the noiseless clamp of a fan).
+  std::span<const double> min_ranges() const { return min_range_; }
+  std::span<const double> max_ranges() const { return max_range_; }
+
+ private:
+  std::vector<Lidar> lidars_;
+  std::vector<std::size_t> fan_end_;
+  std::vector<double> max_range_;
+  std::vector<double> min_range_;
+};
+
+/// compute_sensor_beams above with the lidars of `layout` (built from `sensors`) rather than
+/// looked for: the same beams, bit for bit.
+void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
+                          const SensorLayout& layout, std::span<SensorBeam> beams);
+
 /// `sense_ranges` below, from beams already computed (`beams[i]` belongs to `sensors[i]`).
 /// Beams starting inside `free` skip the inside-obstacle test, and a beam whose whole reach lies
 /// inside it does not walk the world's cells at all (only the occupancy grid is cast); the ranges
@@ -59,6 +99,13 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,
                   std::span<double> ranges, FanScratch& scratch, const FreeDisc& free = {},
                   std::span<const Circle> others = {}, std::span<const OrientedBox> boxes = {});
+/// The same with the fans of `layout` (built from `sensors`; `beams` computed from `sensors`)
+/// rather than looked for beam by beam: the same ranges and noise draws, bit for bit.
+void sense_ranges(const World& world, std::span<const SensorBeam> beams,
+                  std::span<const RangeSensorSpec> sensors, const SensorLayout& layout,
+                  double noise_stddev, Rng& rng, std::span<double> ranges, FanScratch& scratch,
+                  const FreeDisc& free = {}, std::span<const Circle> others = {},
+                  std::span<const OrientedBox> boxes = {});
 /// The same with fan scratch of its own (allocated per call when a lidar is cast).
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, double noise_stddev, Rng& rng,

@@ -128,6 +128,7 @@ class RobotAgent {
 
   const World* world_;
   const RobotSpec* robot_;
+  SensorLayout sensor_layout_;  ///< robot_->sensors' lidars and fans, found once
   std::span<const Vec2> goals_;
   const NavigationParams* nav_;
   const SimConfig* sim_;
