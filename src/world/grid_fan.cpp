@@ -357,15 +357,25 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     }
     const int xa = tx0 - ring, xb = tx0 + ring, ya = ty0 - ring, yb = ty0 + ring;
     if (xa < 0 && ya < 0 && xb >= tile_cols_ && yb >= tile_rows_) break;
-    for (int ty = std::max(ya, 0); ty <= std::min(yb, tile_rows_ - 1); ++ty) {
-      if (ty == ya || ty == yb) {
-        for (int tx = std::max(xa, 0); tx <= std::min(xb, tile_cols_ - 1); ++tx) tile(tx, ty);
-      } else {
-        // (A ring about an origin outside the grid may have a side left or right of it.)
-        if (xa >= 0 && xa < tile_cols_) tile(xa, ty);
-        if (xb >= 0 && xb < tile_cols_ && xb != xa) tile(xb, ty);
-      }
-    }
+    // The ring's four sides, each a row or column of tiles clipped to the grid (a ring about an
+    // origin outside the grid may have a side beyond it), passed over at once when the whole
+    // side lies beyond reach or behind the fan (a box whose corners are behind is behind).
+    const auto side = [&](int x0, int x1, int y0, int y1) {
+      x0 = std::max(x0, 0), x1 = std::min(x1, tile_cols_ - 1);
+      y0 = std::max(y0, 0), y1 = std::min(y1, tile_rows_ - 1);
+      if (x0 > x1 || y0 > y1) return;
+      const double bx0 = x0 * T, bx1 = std::min(x1 * T + T, width_);
+      const double by0 = y0 * T, by1 = std::min(y1 * T + T, height_);
+      const double gx = std::max({0.0, bx0 - o.x(), o.x() - bx1});
+      const double gy = std::max({0.0, by0 - o.y(), o.y() - by1});
+      if (gx * gx + gy * gy > reach2 || wholly_behind(bx0, bx1, by0, by1)) return;
+      for (int ty = y0; ty <= y1; ++ty)
+        for (int tx = x0; tx <= x1; ++tx) tile(tx, ty);
+    };
+    side(xa, xb, ya, ya);
+    if (yb != ya) side(xa, xb, yb, yb);
+    side(xa, xa, ya + 1, yb - 1);
+    if (xb != xa) side(xb, xb, ya + 1, yb - 1);
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (best[i] == -kInf) {
