@@ -99,10 +99,11 @@ bool single_beam(const RangeSensorSpec& s) {
   return s.cone_rays <= 1 || s.cone_angle <= 0.0;
 }
 
-// The end of the run of single-beam sensors from `i` with `i`'s origin and max_range.
+// The end of the run of single-beam sensors from `i` with `i`'s origin and max_range, looked for
+// from `from` (i, or a run end known to be on the way: a SensorLayout's).
 std::size_t fan_end(std::span<const SensorBeam> beams, std::span<const RangeSensorSpec> sensors,
-                    std::size_t i) {
-  std::size_t j = i;
+                    std::size_t i, std::size_t from) {
+  std::size_t j = from;
   while (j < sensors.size() && single_beam(sensors[j]) && beams[j].origin == beams[i].origin &&
          sensors[j].max_range == sensors[i].max_range)
     ++j;
@@ -147,11 +148,10 @@ double reduce_turns(double a) {
 // tested only against the beams within its angular extent widened by 1e-5 rad on each side (a
 // beam's angle is within 1e-6 rad of its place in the fan, the extent's bearing within 2e-6 rad
 // of atan2's, its half-width an upper bound of asin(r / d), a grazing ray-disc test's rounding
-// orders of magnitude below the rest),
-// and only where the beam's range so far is beyond the disc's distance d - r (less 1e-6
-// (1 + d), far more than the rounding of a ray-disc hit, which is never nearer than d - r), so
-// the result is the all-pairs loop's, bit for bit: the same test, and the minimum does not
-// depend on the order. Otherwise, every pair.
+// orders of magnitude below the rest), and only where the beam's range so far is beyond the
+// disc's distance d - r (less 1e-6 (1 + d), far more than the rounding of a ray-disc hit, which
+// is never nearer than d - r), so the result is the all-pairs loop's, bit for bit: the same
+// test, and the minimum does not depend on the order. Otherwise, every pair.
 void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end, double max_range,
                std::span<const Circle> others, std::span<double> ranges) {
   const std::size_t n = end - i;
@@ -301,7 +301,7 @@ void lidar_beams(const Pose2& robot, double c, double s, std::span<const RangeSe
   }
 }
 
-// sense_ranges over runs: `run_end(i)` is fan_end(beams, sensors, i); `layout` (may be null)
+// sense_ranges over runs: `run_end(i)` is fan_end(beams, sensors, i, i); `layout` (may be null)
 // gives the ranges contiguous for the noiseless clamp.
 template <class RunEnd>
 void sense_runs(const World& world, std::span<const SensorBeam> beams,
@@ -410,7 +410,7 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<double> ranges, FanScratch& scratch, const FreeDisc& free,
                   std::span<const Circle> others, std::span<const OrientedBox> boxes) {
   sense_runs(world, beams, sensors, nullptr, noise_stddev, rng, ranges, scratch, free, others,
-             boxes, [&](std::size_t i) { return fan_end(beams, sensors, i); });
+             boxes, [&](std::size_t i) { return fan_end(beams, sensors, i, i); });
 }
 
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
@@ -420,14 +420,10 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const OrientedBox> boxes) {
   const auto run_end = [&](std::size_t i) {
     const Vec2& origin = beams[i].origin;
-    if (!(origin == origin)) return fan_end(beams, sensors, i);  // NaN: no run
+    if (!(origin == origin)) return fan_end(beams, sensors, i, i);  // NaN: no run
     // The sensors on i's mount point share its origin (the same arithmetic on the same
     // numbers); others may meet it by rounding: the run goes on as fan_end's would.
-    std::size_t j = layout.fan_end(i);
-    while (j < sensors.size() && single_beam(sensors[j]) && beams[j].origin == origin &&
-           sensors[j].max_range == sensors[i].max_range)
-      ++j;
-    return j;
+    return fan_end(beams, sensors, i, layout.fan_end(i));
   };
   sense_runs(world, beams, sensors, &layout, noise_stddev, rng, ranges, scratch, free, others,
              boxes, run_end);
