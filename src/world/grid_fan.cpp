@@ -137,8 +137,8 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     constexpr double kCorner = 1e-9;  // cells, relative
     const Box2 cells{Vec2(0.0, 0.0), Vec2(width_, height_)};
     const auto near_line = [&](double v) {
-      const double f = v - static_cast<double>(static_cast<long long>(v + 0.5));  // v > -0.5
-      return std::abs(f) <= kCorner * (1.0 + std::abs(v));
+      return std::abs(v - fan_detail::floor_by_truncation(v + 0.5)) <=
+             kCorner * (1.0 + std::abs(v));
     };
     for (std::size_t i = 0; i < n; ++i) {
       double t0 = 0.0, t1 = t_max;
