@@ -36,13 +36,12 @@ NavigationInput finish_footprint_input(NavigationInput in, const Vec2& x,
 NavigationInput finish_disc_input(NavigationInput in, const Vec2& x, std::span<const Vec2> points,
                                   bool near_only, double limit, double body_radius, double v0) {
   const double limit2 = limit * limit;
-  const bool all = !near_only;
   Vec2 sum = Vec2::Zero();
   std::size_t n = 0;
   for (const Vec2& q : points) {
     const Vec2 away = x - q;  // -e, eq. 5.20
     const double d2 = away.squaredNorm();
-    if (!all && !(d2 <= limit2 && n < kMaxNearPoints)) continue;
+    if (near_only && !(d2 <= limit2 && n < kMaxNearPoints)) continue;
     ++n;
     const double d = std::sqrt(d2);
     if (!(d2 <= 1e-24)) sum += avoid_obstacle_term(away, d, d2);
