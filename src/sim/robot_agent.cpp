@@ -73,7 +73,7 @@ RobotAgent::RobotAgent(AgentSetup setup)
     r.transition_x.reserve(kReservedTransitions);
     r.transition_y.reserve(kReservedTransitions);
   }
-  r.min_clearance = body_clearance(*world_, *robot_, pose_);
+  r.min_clearance = body_clearance(*world_, *robot_, pose_, clearance_hint_);
   disc_body_ = robot_->footprint.empty();
   clearance_bound_ = r.min_clearance;
   r.final_x = pose_.position.x();
@@ -315,7 +315,7 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
   // nor the collision test (min_clearance >= 0 while running): it is computed only when it might.
   clearance_bound_ -= moved + kClearanceBoundSlack;
   if (!disc_body_ || clearance_bound_ <= r.min_clearance) {
-    const double clearance = body_clearance(*world_, robot, pose_);
+    const double clearance = body_clearance(*world_, robot, pose_, clearance_hint_);
     clearance_bound_ = clearance;
     r.min_clearance = std::min(r.min_clearance, clearance);
     if (clearance <= 0.0) {

@@ -1,11 +1,15 @@
 // The indexed obstacle world against its brute-force oracle, bounds, insides, big overlaps.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <memory>
 #include <random>
 
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
+#include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
 
 using namespace floornav;
@@ -82,5 +86,77 @@ TEST(World, ManyLargeOverlappingObstaclesStayExact) {
     EXPECT_DOUBLE_EQ(w.clearance(p), w.clearance_brute_force(p));
     EXPECT_DOUBLE_EQ(w.cast_ray(p, Vec2(1, 0), 2000.0),
                      w.cast_ray_brute_force(p, Vec2(1, 0), 2000.0));
+  }
+}
+
+namespace {
+// Walks `steps` steps of random length up to `stride` (every 50th a jump of up to 2 m) from
+// `start`, querying with and without the hint: they must agree bit for bit. Returns how many
+// queries searched the index (the hint's point moved).
+int walk_with_hint(const World& w, Vec2 p, int steps, double stride, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0), a(-kPi, kPi);
+  ClearanceHint hint;
+  int searches = 0;
+  for (int i = 0; i < steps; ++i) {
+    const double len = (i % 50 == 49 ? 2.0 : stride) * u(rng), th = a(rng);
+    const Vec2 step = len * Vec2(std::cos(th), std::sin(th));
+    p += w.extent().contains(p + step) ? step : -step;  // stays about the world
+    const Vec2 before = hint.at;
+    const double hinted = w.clearance(p, hint);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(hinted), std::bit_cast<std::uint64_t>(w.clearance(p)))
+        << "step " << i << " at " << p.transpose();
+    searches += i == 0 || hint.at != before;
+  }
+  return searches;
+}
+}  // namespace
+
+// A hint answers most queries of a short-stepping walker alone, and always with the full
+// search's bits: through obstacles (negative), outside the bounds, past circles.
+TEST(World, ClearanceHintGivesTheSearchBitsAndSkipsMostSearches) {
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    // Dense: the walk spends much of its time inside obstacles, where every query searches.
+    const World dense(sample_world(seed, 40, 15));
+    EXPECT_GT(walk_with_hint(dense, Vec2(0.0, 0.0), 4000, 0.01, seed), 4000 / 50)
+        << "seed " << seed << ": jumps and contacts must search";
+    const World sparse(sample_world(seed, 8, 4));
+    const int searches = walk_with_hint(sparse, Vec2(0.0, 0.0), 4000, 0.01, seed);
+    EXPECT_LT(searches, 4000 / 4) << "seed " << seed << ": the hint was hardly used";
+    EXPECT_GT(searches, 4000 / 100) << "seed " << seed << ": jumps must search";
+  }
+}
+
+// Stepping into a polygon: the step that ends inside is negative, exactly as without the hint
+// (the hint proves a point outside only while nothing could have been crossed).
+TEST(World, ClearanceHintSeesTheStepIntoAnObstacle) {
+  WorldDesc d;
+  d.polygons.push_back({{0, 0}, {2, 0}, {2, 2}, {0, 2}});
+  d.circles.push_back({Vec2(5, 1), 0.5});
+  const World w(d);
+  ClearanceHint hint;
+  double last = 0.0;
+  for (double x = -1.0; x < 1.0; x += 0.0137) {
+    last = w.clearance(Vec2(x, 1.0), hint);
+    EXPECT_EQ(last, w.clearance(Vec2(x, 1.0))) << x;
+  }
+  EXPECT_LT(last, 0.0);
+  for (double x = 2.5; x < 6.0; x += 0.0137)  // into the circle
+    EXPECT_EQ(w.clearance(Vec2(x, 1.0), hint), w.clearance(Vec2(x, 1.0))) << x;
+}
+
+// An occupancy grid is searched in full every time: the hint is left unused.
+TEST(World, ClearanceHintIsUnusedWithAGrid) {
+  std::vector<std::uint8_t> cells(20 * 20, 0);
+  cells[5 * 20 + 5] = 1;
+  auto grid = std::make_shared<const OccupancyGrid>(20, 20, 0.1, Pose2{}, std::move(cells));
+  WorldDesc d;
+  d.grid = grid;
+  d.polygons.push_back({{1.5, 1.5}, {1.8, 1.5}, {1.8, 1.8}});
+  const World w(d);
+  ClearanceHint hint;
+  for (double x = 0.0; x < 1.5; x += 0.01) {
+    EXPECT_EQ(w.clearance(Vec2(x, 0.3), hint), w.clearance(Vec2(x, 0.3))) << x;
+    EXPECT_FALSE(hint.valid);
   }
 }

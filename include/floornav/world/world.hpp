@@ -20,6 +20,21 @@ namespace floornav {
 
 class OccupancyGrid;
 
+/// What World::clearance learnt at a point, kept by a caller that queries again nearby (a robot
+/// checking its body every step): the two nearest items (two, since a polygon's corner is the
+/// nearest point of both its edges) and a lower bound on every other item's distance. Distances
+/// change by at most the distance moved, so while the two stay nearer than that bound allows any
+/// other to come, they alone give the answer, bit for bit the full search's. Worlds with an
+/// occupancy grid are always searched in full.
+struct ClearanceHint {
+  static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  Vec2 at{Vec2::Zero()};  ///< where the last full search was made
+  /// The nearest items there: segment index, or circle index + segment count; kNone: no item.
+  std::array<std::uint32_t, 2> nearest{kNone, kNone};
+  double runner_up{0.0};  ///< m, lower bound at `at` on the distance of every other item
+  bool valid{false};      ///< false: no search yet, or none that can be reused
+};
+
 /// What a world is made of, as a user describes it. Polygons may wind either way.
 struct WorldDesc {
   std::optional<Box2> bounds;                 ///< walls on all four sides; outside is solid
@@ -65,6 +80,8 @@ class World {
   /// Signed distance from `p` to the nearest obstacle surface: negative inside an obstacle or
   /// outside the bounds. +infinity in an empty, unbounded world.
   double clearance(const Vec2& p) const;
+  /// `clearance(p)`, bit for bit, reusing and then updating `hint` (see ClearanceHint).
+  double clearance(const Vec2& p, ClearanceHint& hint) const;
 
   /// Signed distance between the solid polygon `poly` (world frame, e.g. a robot footprint) and
   /// the obstacles: <= 0 when they touch or overlap. Exact up to `reach` metres; beyond it the
@@ -112,6 +129,8 @@ class World {
   };
 
   void build_index();
+  /// clearance() of the segments and circles alone (the grid left out); fills `hint` if given.
+  double shape_clearance(const Vec2& p, ClearanceHint* hint) const;
   bool inside_solid_shape(const Vec2& p) const;
   int cell_x(double x) const;
   int cell_y(double y) const;
