@@ -5,6 +5,11 @@
 namespace floornav {
 
 Pose2 integrate_unicycle(const Pose2& pose, const UnicycleCommand& u, double dt) {
+  return integrate_unicycle(pose, u, dt, Vec2(std::cos(pose.theta), std::sin(pose.theta)));
+}
+
+Pose2 integrate_unicycle(const Pose2& pose, const UnicycleCommand& u, double dt,
+                         const Vec2& heading) {
   const double dtheta = u.omega * dt;
   double fx, fy;  // displacement along and across the initial heading
   if (std::abs(dtheta) < 1e-9) {
@@ -17,7 +22,7 @@ Pose2 integrate_unicycle(const Pose2& pose, const UnicycleCommand& u, double dt)
     fx = r * std::sin(dtheta);
     fy = r * (1.0 - std::cos(dtheta));
   }
-  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  const double c = heading.x(), s = heading.y();
   return {pose.position + Vec2(c * fx - s * fy, s * fx + c * fy), wrap_angle(pose.theta + dtheta)};
 }
 

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/ray.hpp"
@@ -23,7 +25,12 @@ SensorBeam beam_of(const Pose2& robot, double c, double s, const RangeSensorSpec
   SensorBeam b;
   b.origin = origin_of(robot, c, s, spec);
   b.theta = wrap_angle(robot.theta + spec.mount.theta);
-  b.dir = Vec2(std::cos(b.theta), std::sin(b.theta));
+  // A sensor facing straight ahead has the robot's own heading, whose cosine and sine are c, s
+  // (compared as bits: -0 + 0 is +0, whose sine differs in sign).
+  if (std::bit_cast<std::uint64_t>(b.theta) == std::bit_cast<std::uint64_t>(robot.theta))
+    b.dir = Vec2(c, s);
+  else
+    b.dir = Vec2(std::cos(b.theta), std::sin(b.theta));
   return b;
 }
 
@@ -395,7 +402,14 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
 
 void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
                           const SensorLayout& layout, std::span<SensorBeam> beams) {
-  const double c = std::cos(robot.theta), s = std::sin(robot.theta);
+  compute_sensor_beams(robot, Vec2(std::cos(robot.theta), std::sin(robot.theta)), sensors, layout,
+                       beams);
+}
+
+void compute_sensor_beams(const Pose2& robot, const Vec2& heading,
+                          std::span<const RangeSensorSpec> sensors, const SensorLayout& layout,
+                          std::span<SensorBeam> beams) {
+  const double c = heading.x(), s = heading.y();
   std::size_t i = 0;
   for (const SensorLayout::Lidar& lidar : layout.lidars()) {
     for (; i < lidar.begin; ++i) beams[i] = beam_of(robot, c, s, sensors[i]);

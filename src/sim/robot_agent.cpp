@@ -1,7 +1,9 @@
 #include "floornav/sim/robot_agent.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -180,7 +182,9 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others,
   const std::size_t n_sensors = robot.sensors.size();
   const std::span<SensorBeam> beams(scratch.beams.data(), n_sensors);
   const std::span<double> ranges(scratch.ranges.data(), n_sensors);
-  compute_sensor_beams(pose_, robot.sensors, sensor_layout_, beams);
+  heading_ = Vec2(std::cos(pose_.theta), std::sin(pose_.theta));
+  heading_theta_ = pose_.theta;
+  compute_sensor_beams(pose_, heading_, robot.sensors, sensor_layout_, beams);
   const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
   sense_ranges(*world_, beams, robot.sensors, sensor_layout_, robot.sensor_noise, rng_, ranges,
                scratch.fan, free, others, boxes);
@@ -292,7 +296,12 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
   const UnicycleCommand driven = wheels_to_unicycle(robot.drive, wheels);
 
   // 5. integrate
-  const Pose2 next = integrate_unicycle(pose_, driven, dt);
+  // The sensors' cosine and sine of the heading, if they were taken at this heading.
+  const bool sensed_here =
+      std::bit_cast<std::uint64_t>(heading_theta_) == std::bit_cast<std::uint64_t>(pose_.theta);
+  const Pose2 next = integrate_unicycle(
+      pose_, driven, dt,
+      sensed_here ? heading_ : Vec2(std::cos(pose_.theta), std::sin(pose_.theta)));
   const double moved = (next.position - pose_.position).norm();
   velocity_ = (next.position - pose_.position) / dt;
   r.path_length += moved;

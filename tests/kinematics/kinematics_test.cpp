@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "floornav/geometry/angle.hpp"
@@ -106,6 +108,22 @@ TEST(Unicycle, SmallStepsAgreeWithOneBigArc) {
   EXPECT_NEAR(q.position.x(), big.position.x(), 1e-9);
   EXPECT_NEAR(q.position.y(), big.position.y(), 1e-9);
   EXPECT_NEAR(wrap_angle(q.theta - big.theta), 0.0, 1e-9);
+}
+
+// The caller's cosine and sine of the heading give the same pose, bit for bit.
+TEST(Unicycle, AGivenHeadingGivesTheSamePoseBits) {
+  for (double theta : {0.0, -0.0, 0.4, -3.0, kPi}) {
+    const Pose2 p{Vec2(0.3, -0.2), theta};
+    for (const UnicycleCommand u : {UnicycleCommand{0.3, -0.8}, UnicycleCommand{0.2, 0.0}}) {
+      const Pose2 a = integrate_unicycle(p, u, 0.05);
+      const Pose2 b = integrate_unicycle(p, u, 0.05, Vec2(std::cos(theta), std::sin(theta)));
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(a.position.x()),
+                std::bit_cast<std::uint64_t>(b.position.x()));
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(a.position.y()),
+                std::bit_cast<std::uint64_t>(b.position.y()));
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(a.theta), std::bit_cast<std::uint64_t>(b.theta));
+    }
+  }
 }
 
 TEST(Unicycle, TurnOnTheSpot) {

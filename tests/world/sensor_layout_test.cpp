@@ -128,6 +128,35 @@ TEST(SensorLayout, BeamsMatchThePlainFunction) {
   }
 }
 
+// A single-beam sensor's direction is (cos, sin) of its wrapped heading, bit for bit; one facing
+// straight ahead reuses the robot's own cosine and sine, given or taken (and a robot heading of
+// -0, whose sensor heading -0 + 0 is +0, takes the sine of +0).
+TEST(SensorLayout, SingleBeamDirectionsAreTheCosineAndSineOfTheirHeadings) {
+  std::vector<RangeSensorSpec> sensors(4);
+  const double mounts[] = {0.0, -0.0, kPi / 2, -2.5};
+  for (std::size_t k = 0; k < sensors.size(); ++k) {
+    sensors[k].mount = {Vec2(0.1, 0.0), mounts[k]};
+    sensors[k].max_range = 0.3;
+  }
+  const SensorLayout layout(sensors);
+  std::vector<SensorBeam> beams(sensors.size()), given(sensors.size());
+  Rng rng(5);
+  for (int i = 0; i < 300; ++i) {
+    const double theta = i == 0 ? -0.0 : i == 1 ? 0.0 : rng.uniform(-kPi, kPi);
+    const Pose2 robot{Vec2(rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0)), theta};
+    compute_sensor_beams(robot, sensors, layout, beams);
+    compute_sensor_beams(robot, Vec2(std::cos(theta), std::sin(theta)), sensors, layout, given);
+    for (std::size_t k = 0; k < sensors.size(); ++k) {
+      const double heading = wrap_angle(theta + mounts[k]);
+      ASSERT_EQ(bits(beams[k].theta), bits(heading)) << i << " " << k;
+      ASSERT_EQ(bits(beams[k].dir.x()), bits(std::cos(heading))) << i << " " << k;
+      ASSERT_EQ(bits(beams[k].dir.y()), bits(std::sin(heading))) << i << " " << k;
+      ASSERT_EQ(bits(given[k].dir.x()), bits(beams[k].dir.x())) << i << " " << k;
+      ASSERT_EQ(bits(given[k].dir.y()), bits(beams[k].dir.y())) << i << " " << k;
+    }
+  }
+}
+
 // A walled floor of boxes over a sparse occupancy grid.
 std::unique_ptr<World> floor_world(Rng& rng, std::shared_ptr<const OccupancyGrid>& grid) {
   WorldDesc d;

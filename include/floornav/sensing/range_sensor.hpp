@@ -85,6 +85,11 @@ class SensorLayout {
 /// looked for: the same beams, bit for bit.
 void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
                           const SensorLayout& layout, std::span<SensorBeam> beams);
+/// The same, with `heading` = (cos, sin) of `robot.theta` taken by the caller, who may use them
+/// again at this pose (integrate_unicycle).
+void compute_sensor_beams(const Pose2& robot, const Vec2& heading,
+                          std::span<const RangeSensorSpec> sensors, const SensorLayout& layout,
+                          std::span<SensorBeam> beams);
 
 /// `sense_ranges` below, from beams already computed (`beams[i]` belongs to `sensors[i]`).
 /// Beams starting inside `free` skip the inside-obstacle test, and a beam whose whole reach lies
