@@ -129,8 +129,23 @@ def main():
               f"{'':>1} {r['peer'] + ' ' + fmt(statistics.median(p)):>13} "
               f"({fmt(min(p))}-{fmt(max(p))}) {r['ratio_of_medians']:>5.2f}x "
               f"{min(pr):.2f}-{max(pr):.2f}")
+    # Issue 14 also reads the fleet target as "a second thread that pays": floornav on two
+    # threads against the peer on one, both medians from this run.
+    cross = []
+    for r in results:
+        if " 2 threads: " in r["case"]:
+            one = next((q for q in results
+                        if q["case"] == r["case"].replace(" 2 threads: ", " 1 thread: ")), None)
+            if one:
+                cross.append({"case": r["case"], "floornav": statistics.median(r["floornav"]),
+                              "peer_one_thread": statistics.median(one["peer_rates"])})
+    for c in cross:
+        print(f"{c['case'] + ', against the peer on 1 thread':58} {fmt(c['floornav']):>9} "
+              f"{'':>14} {fmt(c['peer_one_thread']):>13} {'':>13} "
+              f"{c['floornav'] / c['peer_one_thread']:>5.2f}x")
     if a.json:
-        json.dump({"load": [load, load_after], "results": results}, open(a.json, "w"), indent=1)
+        json.dump({"load": [load, load_after], "results": results, "cross": cross},
+                  open(a.json, "w"), indent=1)
 
 
 if __name__ == "__main__":

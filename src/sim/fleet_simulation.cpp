@@ -90,6 +90,7 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
       rays_per_step_ += static_cast<std::size_t>(std::max(sensor.cone_rays, 1));
   }
   scratch_.emplace_back(max_sensors);
+  events_.resize(1);
   if (!tell_range_.empty()) scratch_.back().robots.resize(n);
   if (!tell_range_.empty() || (crowd && !crowd->empty())) velocities_.assign(n, Vec2::Zero());
   others_.emplace_back();
@@ -167,6 +168,7 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
     // What the serial part needs of the robot, written while its state is in this core's cache.
     moved_to_[i] = agents_[i].pose().position;
     note_status(i);
+    if (status_[i] != 0) events_[thread].any = true;
   }
 }
 
@@ -211,7 +213,7 @@ double FleetSimulation::nearest_gap(std::size_t i) const {
   return nearest;
 }
 
-void FleetSimulation::measure_gaps(std::size_t begin, std::size_t end) {
+void FleetSimulation::measure_gaps(std::size_t begin, std::size_t end, std::size_t thread) {
   // A gap that is not a contact only lowers the robot's own min_clearance: taken here, on the
   // robot's thread, rather than in the serial part (a touching pair is left to apply_gaps).
   for (std::size_t i = begin; i < end; ++i) {
@@ -219,10 +221,23 @@ void FleetSimulation::measure_gaps(std::size_t begin, std::size_t end) {
     const double gap = nearest_gap(i);
     gap_[i] = gap;
     if (gap > 0.0 && gap < std::numeric_limits<double>::infinity()) agents_[i].note_robot_gap(gap);
+    if (!(gap > 0.0)) events_[thread].any = true;
   }
 }
 
+bool FleetSimulation::take_events() {
+  bool any = false;
+  for (StepEvents& e : events_) {
+    any = any || e.any;
+    e.any = false;
+  }
+  return any;
+}
+
 void FleetSimulation::apply_gaps() {
+  // Nothing ended, collided or touched: the loops below would find nothing, and the snapshot
+  // stays as it is (with people and forklifts, their contacts are checked every step).
+  if (!take_events() && !crowd_) return;
   // World collisions of this step (robot contacts are not applied yet).
   for (std::size_t i = 0; i < agents_.size(); ++i)
     if (moving_[i] && (status_[i] & kCollided) != 0)
@@ -272,7 +287,7 @@ void FleetSimulation::apply_crowd_contacts() {
 
 void FleetSimulation::after_step() {
   prepare_contacts();
-  measure_gaps(0, agents_.size());
+  measure_gaps(0, agents_.size(), 0);
   apply_gaps();
 }
 
@@ -315,6 +330,7 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     others_.emplace_back();
     others_.back().reserve(agents_.size());
   }
+  events_.resize(std::max(events_.size(), n_threads));
   // Each thread steps its own slice of the robots, in chunks taken from the slice's counter,
   // then helps with what is left of the others' slices: robots stay on their thread's core from
   // step to step (its caches hold their state; fully shared chunks measured 0.75x of this), and
@@ -374,7 +390,7 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
         }
       });
       sync.arrive_and_wait();
-      each_chunk(t, [&](std::size_t begin, std::size_t end) { measure_gaps(begin, end); });
+      each_chunk(t, [&](std::size_t begin, std::size_t end) { measure_gaps(begin, end, t); });
       sync.arrive_and_wait();
     }
   };

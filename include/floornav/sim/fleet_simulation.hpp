@@ -95,7 +95,7 @@ class FleetSimulation {
   // measure each robot's gap to the nearest other body (parallel), apply contacts and gaps.
   void prepare_contacts();
   double nearest_gap(std::size_t i) const;
-  void measure_gaps(std::size_t begin, std::size_t end);
+  void measure_gaps(std::size_t begin, std::size_t end, std::size_t thread);
   void apply_gaps();
   void after_step();
   void update_snapshot();
@@ -121,6 +121,13 @@ class FleetSimulation {
   static constexpr std::uint8_t kEnded = 1, kCollided = 2;
   std::vector<std::uint8_t> status_;  ///< kEnded | kCollided, as of the last note_status(i)
   void note_status(std::size_t i);
+  // Per thread (a cache line each): whether a robot it stepped this step ended, collided or
+  // touched another. A step without any leaves the serial part nothing to apply.
+  struct alignas(64) StepEvents {
+    bool any{true};  // the first check, before any step, looks at every robot
+  };
+  std::vector<StepEvents> events_;
+  bool take_events();
   std::vector<double> reach_;  ///< m from the centre: the farthest a sensor of robot i sees
   // Robot avoidance (nav/robot_avoidance.hpp): who is told of the others, how far, and the
   // velocities they are told (start of the step). Empty when no robot uses it.
