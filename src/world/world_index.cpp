@@ -207,12 +207,6 @@ double World::cast_ray_from_free(const Vec2& origin, const Vec2& dir, double max
   return best;
 }
 
-double World::clearance(const Vec2& p) const {
-  double best = grid_ ? grid_->clearance(p) : kInf;
-  if (!segments_.empty() || !circles_.empty()) best = std::min(best, shape_clearance(p, nullptr));
-  return best;
-}
-
 namespace {
 
 // The three nearest distinct items offered (an item is listed in every cell it crosses, and
@@ -233,6 +227,82 @@ struct NearestThree {
 };
 
 }  // namespace
+
+template <bool kHint>
+double World::shape_clearance(const Vec2& p, ClearanceHint* hint) const {
+  const Index& ix = index_;
+  // Search rings of cells around p's cell; items in ring k are at least (k - 1) cells away
+  // from p, so stop once that bound exceeds the best distance found.
+  const int cx = cell_x(p.x()), cy = cell_y(p.y());
+  // Distance from p to the index box (p may lie outside it).
+  const Vec2 lo = ix.origin, hi = ix.origin + Vec2(ix.nx * ix.cell, ix.ny * ix.cell);
+  const double outside = (p.cwiseMax(lo).cwiseMin(hi) - p).norm();
+  // Segments by squared distance (one square root at the end, the same bits: the root is
+  // correctly rounded and monotonic), circles by distance; with a hint, the three nearest of
+  // each kind.
+  double best_segment2 = kInf, best_circle = kInf;
+  NearestThree segments2, circles;
+  double unsearched = kInf;  // lower bound on the distance of the items not looked at
+  const auto unsigned_best = [&] { return std::min(std::sqrt(best_segment2), best_circle); };
+  const auto search = [&] {
+    const int max_ring = std::max(ix.nx, ix.ny);
+    for (int k = 0; k <= max_ring; ++k) {
+      const double ring_lower_bound = outside + (k - 1) * ix.cell;
+      if (ring_lower_bound > unsigned_best()) {
+        unsearched = ring_lower_bound;
+        break;
+      }
+      for (int y = cy - k; y <= cy + k; ++y) {
+        if (y < 0 || y >= ix.ny) continue;
+        const bool edge_row = (y == cy - k || y == cy + k);
+        for (int x = cx - k; x <= cx + k; x += (edge_row ? 1 : 2 * k)) {
+          if (x >= 0 && x < ix.nx) {
+            const auto c = static_cast<std::size_t>(y) * ix.nx + x;
+            for (auto j = ix.segment_offsets[c]; j < ix.segment_offsets[c + 1]; ++j) {
+              const std::uint32_t item = ix.segment_items[j];
+              const double d2 = squared_distance(segments_[item], p);
+              best_segment2 = std::min(best_segment2, d2);
+              if constexpr (kHint) segments2.offer(d2, item);
+            }
+            for (auto j = ix.circle_offsets[c]; j < ix.circle_offsets[c + 1]; ++j) {
+              const std::uint32_t item = ix.circle_items[j];
+              const double d = std::abs(signed_distance(circles_[item], p));
+              best_circle = std::min(best_circle, d);
+              if constexpr (kHint) circles.offer(d, item);
+            }
+          }
+          if (k == 0) break;
+        }
+      }
+    }
+  };
+  search();
+  const double found = unsigned_best();
+  const bool inside = inside_solid_shape(p);
+  if constexpr (kHint) {
+    // The two nearest of both kinds; the third nearest bounds all the others. (A tie with the
+    // third leaves no margin: the hint then never answers alone.)
+    NearestThree all;
+    const auto segment_count = static_cast<std::uint32_t>(segments_.size());
+    for (int k = 0; k < 3; ++k) {
+      all.offer(std::sqrt(segments2.d[k]), segments2.id[k]);
+      if (circles.id[k] != ClearanceHint::kNone)
+        all.offer(circles.d[k], circles.id[k] + segment_count);
+    }
+    hint->at = p;
+    hint->nearest = {all.id[0], all.id[1]};
+    hint->runner_up = std::min(unsearched, all.d[2]);
+    hint->valid = !inside && found > 0.0 && found < kInf;
+  }
+  return inside ? -found : found;
+}
+
+double World::clearance(const Vec2& p) const {
+  double best = grid_ ? grid_->clearance(p) : kInf;
+  if (!segments_.empty() || !circles_.empty())
+    best = std::min(best, shape_clearance<false>(p, nullptr));
+  return best;
+}
 
 double World::clearance(const Vec2& p, ClearanceHint& hint) const {
   if (grid_ || (segments_.empty() && circles_.empty())) {
@@ -257,78 +327,7 @@ double World::clearance(const Vec2& p, ClearanceHint& hint) const {
     // within `moved` of p.
     if (d > moved + kMargin && d < hint.runner_up - moved - kMargin) return d;
   }
-  return shape_clearance(p, &hint);
-}
-
-double World::shape_clearance(const Vec2& p, ClearanceHint* hint) const {
-  const Index& ix = index_;
-  // Search rings of cells around p's cell; items in ring k are at least (k - 1) cells away
-  // from p, so stop once that bound exceeds the best distance found.
-  const int cx = cell_x(p.x()), cy = cell_y(p.y());
-  // Distance from p to the index box (p may lie outside it).
-  const Vec2 lo = ix.origin, hi = ix.origin + Vec2(ix.nx * ix.cell, ix.ny * ix.cell);
-  const double outside = (p.cwiseMax(lo).cwiseMin(hi) - p).norm();
-  // Segments by squared distance (one square root at the end, the same bits: the root is
-  // correctly rounded and monotonic), circles by distance; with a hint, the three nearest of
-  // each kind.
-  double best_segment2 = kInf, best_circle = kInf;
-  NearestThree segments2, circles;
-  double unsearched = kInf;  // lower bound on the distance of the items not looked at
-  const auto unsigned_best = [&] { return std::min(std::sqrt(best_segment2), best_circle); };
-  const auto search = [&](auto track) {
-    const int max_ring = std::max(ix.nx, ix.ny);
-    for (int k = 0; k <= max_ring; ++k) {
-      const double ring_lower_bound = outside + (k - 1) * ix.cell;
-      if (ring_lower_bound > unsigned_best()) {
-        unsearched = ring_lower_bound;
-        break;
-      }
-      for (int y = cy - k; y <= cy + k; ++y) {
-        if (y < 0 || y >= ix.ny) continue;
-        const bool edge_row = (y == cy - k || y == cy + k);
-        for (int x = cx - k; x <= cx + k; x += (edge_row ? 1 : 2 * k)) {
-          if (x >= 0 && x < ix.nx) {
-            const auto c = static_cast<std::size_t>(y) * ix.nx + x;
-            for (auto j = ix.segment_offsets[c]; j < ix.segment_offsets[c + 1]; ++j) {
-              const std::uint32_t item = ix.segment_items[j];
-              const double d2 = squared_distance(segments_[item], p);
-              best_segment2 = std::min(best_segment2, d2);
-              if constexpr (decltype(track)::value) segments2.offer(d2, item);
-            }
-            for (auto j = ix.circle_offsets[c]; j < ix.circle_offsets[c + 1]; ++j) {
-              const std::uint32_t item = ix.circle_items[j];
-              const double d = std::abs(signed_distance(circles_[item], p));
-              best_circle = std::min(best_circle, d);
-              if constexpr (decltype(track)::value) circles.offer(d, item);
-            }
-          }
-          if (k == 0) break;
-        }
-      }
-    }
-  };
-  if (hint != nullptr)
-    search(std::true_type{});
-  else
-    search(std::false_type{});
-  const double found = unsigned_best();
-  const bool inside = inside_solid_shape(p);
-  if (hint != nullptr) {
-    // The two nearest of both kinds; the third nearest bounds all the others. (A tie with the
-    // third leaves no margin: the hint then never answers alone.)
-    NearestThree all;
-    const auto segment_count = static_cast<std::uint32_t>(segments_.size());
-    for (int k = 0; k < 3; ++k) {
-      all.offer(std::sqrt(segments2.d[k]), segments2.id[k]);
-      if (circles.id[k] != ClearanceHint::kNone)
-        all.offer(circles.d[k], circles.id[k] + segment_count);
-    }
-    hint->at = p;
-    hint->nearest = {all.id[0], all.id[1]};
-    hint->runner_up = std::min(unsearched, all.d[2]);
-    hint->valid = !inside && found > 0.0 && found < kInf;
-  }
-  return inside ? -found : found;
+  return shape_clearance<true>(p, &hint);
 }
 
 namespace {

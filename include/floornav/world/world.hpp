@@ -129,7 +129,9 @@ class World {
   };
 
   void build_index();
-  /// clearance() of the segments and circles alone (the grid left out); fills `hint` if given.
+  /// clearance() of the segments and circles alone (the grid left out); with kHint, also fills
+  /// `hint` (a template so that the plain query keeps its lean loop).
+  template <bool kHint>
   double shape_clearance(const Vec2& p, ClearanceHint* hint) const;
   bool inside_solid_shape(const Vec2& p) const;
   int cell_x(double x) const;
