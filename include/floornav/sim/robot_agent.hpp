@@ -154,13 +154,11 @@ class RobotAgent {
   /// m: a lower bound on the body's clearance to the world at pose_ (exact right after it is
   /// computed). Disc bodies only; it lets a step skip the clearance query and the inside test.
   double clearance_bound_{0.0};
-  ClearanceHint clearance_hint_;
+  ClearanceHint clearance_hint_;  ///< the last exact query's nearest obstacles (see World)
   /// (cos, sin) of heading_theta_, the heading the sensors last saw: the step's integration
   /// reuses them.
   Vec2 heading_{1.0, 0.0};
-  double heading_theta_{
-      std::numeric_limits<double>::quiet_NaN()};  ///< the last exact query's nearest obstacle (see
-                                                  ///< World)
+  double heading_theta_{std::numeric_limits<double>::quiet_NaN()};
   std::vector<long long> mode_steps_;  ///< steps spent in each mode: mode_time = steps * dt
   bool record_extras_{false};  ///< SimConfig::record asks for extra columns (and rows are kept)
   /// The last step's command, for record_extras: u (NaN unless a velocity), (V, omega) asked.
