@@ -244,39 +244,36 @@ double World::shape_clearance(const Vec2& p, ClearanceHint* hint) const {
   NearestThree segments2, circles;
   double unsearched = kInf;  // lower bound on the distance of the items not looked at
   const auto unsigned_best = [&] { return std::min(std::sqrt(best_segment2), best_circle); };
-  const auto search = [&] {
-    const int max_ring = std::max(ix.nx, ix.ny);
-    for (int k = 0; k <= max_ring; ++k) {
-      const double ring_lower_bound = outside + (k - 1) * ix.cell;
-      if (ring_lower_bound > unsigned_best()) {
-        unsearched = ring_lower_bound;
-        break;
-      }
-      for (int y = cy - k; y <= cy + k; ++y) {
-        if (y < 0 || y >= ix.ny) continue;
-        const bool edge_row = (y == cy - k || y == cy + k);
-        for (int x = cx - k; x <= cx + k; x += (edge_row ? 1 : 2 * k)) {
-          if (x >= 0 && x < ix.nx) {
-            const auto c = static_cast<std::size_t>(y) * ix.nx + x;
-            for (auto j = ix.segment_offsets[c]; j < ix.segment_offsets[c + 1]; ++j) {
-              const std::uint32_t item = ix.segment_items[j];
-              const double d2 = squared_distance(segments_[item], p);
-              best_segment2 = std::min(best_segment2, d2);
-              if constexpr (kHint) segments2.offer(d2, item);
-            }
-            for (auto j = ix.circle_offsets[c]; j < ix.circle_offsets[c + 1]; ++j) {
-              const std::uint32_t item = ix.circle_items[j];
-              const double d = std::abs(signed_distance(circles_[item], p));
-              best_circle = std::min(best_circle, d);
-              if constexpr (kHint) circles.offer(d, item);
-            }
+  const int max_ring = std::max(ix.nx, ix.ny);
+  for (int k = 0; k <= max_ring; ++k) {
+    const double ring_lower_bound = outside + (k - 1) * ix.cell;
+    if (ring_lower_bound > unsigned_best()) {
+      unsearched = ring_lower_bound;
+      break;
+    }
+    for (int y = cy - k; y <= cy + k; ++y) {
+      if (y < 0 || y >= ix.ny) continue;
+      const bool edge_row = (y == cy - k || y == cy + k);
+      for (int x = cx - k; x <= cx + k; x += (edge_row ? 1 : 2 * k)) {
+        if (x >= 0 && x < ix.nx) {
+          const auto c = static_cast<std::size_t>(y) * ix.nx + x;
+          for (auto j = ix.segment_offsets[c]; j < ix.segment_offsets[c + 1]; ++j) {
+            const std::uint32_t item = ix.segment_items[j];
+            const double d2 = squared_distance(segments_[item], p);
+            best_segment2 = std::min(best_segment2, d2);
+            if constexpr (kHint) segments2.offer(d2, item);
           }
-          if (k == 0) break;
+          for (auto j = ix.circle_offsets[c]; j < ix.circle_offsets[c + 1]; ++j) {
+            const std::uint32_t item = ix.circle_items[j];
+            const double d = std::abs(signed_distance(circles_[item], p));
+            best_circle = std::min(best_circle, d);
+            if constexpr (kHint) circles.offer(d, item);
+          }
         }
+        if (k == 0) break;
       }
     }
-  };
-  search();
+  }
   const double found = unsigned_best();
   const bool inside = inside_solid_shape(p);
   if constexpr (kHint) {
