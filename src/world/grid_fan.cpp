@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "cell_index.hpp"
+#include "fan_cone.hpp"
 #include "fan_layout.hpp"
 #include "floornav/geometry/ray.hpp"
 #include "floornav/world/occupancy_grid.hpp"
@@ -22,12 +23,58 @@ using grid_detail::kInf;
 // 1.12x; 32 also keeps the tiles fine for 3.5 m lidars.
 constexpr int kTile = 32;
 
+namespace {
+
+// Labels the free cells by their 4-connected components: label[c] for free cell c, -1 for an
+// occupied one. Outside the grid counts as free and is component 0 with every free cell it
+// touches (possibly none); the others are numbered from 1.
+std::vector<std::int32_t> free_components(const std::vector<std::uint8_t>& occupied, int width,
+                                          int height) {
+  const std::size_t w = static_cast<std::size_t>(width);
+  std::vector<std::int32_t> label(occupied.size(), -1);
+  std::vector<std::size_t> stack;
+  const auto flood = [&](std::size_t seed, std::int32_t id) {
+    if (occupied[seed] != 0 || label[seed] >= 0) return;
+    label[seed] = id;
+    stack.push_back(seed);
+    while (!stack.empty()) {
+      const std::size_t c = stack.back();
+      stack.pop_back();
+      const std::size_t x = c % w, y = c / w;
+      const auto visit = [&](std::size_t n) {
+        if (occupied[n] == 0 && label[n] < 0) {
+          label[n] = id;
+          stack.push_back(n);
+        }
+      };
+      if (x > 0) visit(c - 1);
+      if (x + 1 < w) visit(c + 1);
+      if (y > 0) visit(c - w);
+      if (y + 1 < static_cast<std::size_t>(height)) visit(c + w);
+    }
+  };
+  for (int x = 0; x < width; ++x) {
+    flood(static_cast<std::size_t>(x), 0);
+    flood(static_cast<std::size_t>(height - 1) * w + x, 0);
+  }
+  for (int y = 0; y < height; ++y) {
+    flood(static_cast<std::size_t>(y) * w, 0);
+    flood(static_cast<std::size_t>(y) * w + w - 1, 0);
+  }
+  std::int32_t next = 1;
+  for (std::size_t c = 0; c < label.size(); ++c)
+    if (occupied[c] == 0 && label[c] < 0) flood(c, next++);
+  return label;
+}
+
+}  // namespace
+
 void OccupancyGrid::compute_boundary() {
-  // Outside the grid counts as free: a walk from an origin outside enters the border cells from
-  // there (only fans from such origins take those runs).
-  const auto free_at = [&](int x, int y) {
-    return x < 0 || y < 0 || x >= width_ || y >= height_ ||
-           occupied_[static_cast<std::size_t>(y) * width_ + x] == 0;
+  free_component_ = free_components(occupied_, width_, height_);
+  // The component of a cell, outside the grid included; -1 for an occupied cell.
+  const auto component = [&](int x, int y) -> std::int32_t {
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) return 0;
+    return free_component_[static_cast<std::size_t>(y) * width_ + x];
   };
   const auto occupied_at = [&](int x, int y) {
     return occupied_[static_cast<std::size_t>(y) * width_ + x] != 0;
@@ -36,8 +83,13 @@ void OccupancyGrid::compute_boundary() {
   tile_cols_ = (width_ + T - 1) / T;
   tile_rows_ = (height_ + T - 1) / T;
   const std::size_t tiles = static_cast<std::size_t>(tile_cols_) * tile_rows_;
-  // Each side's runs, line by line, cut at the tile borders along the line; then counted and
-  // placed tile by tile (tile-major, side-minor).
+  // A run is taken by the fans from origins in the component of free cells its cells face (the
+  // side's neighbours: one component per run). The least distance of a fan's beam is that of
+  // such a run. The walk is in a free cell W of the origin's component until that distance; then
+  // it steps into a neighbour of W (whose neighbour facing the walk is W) or passes a corner,
+  // touching the two cells beside it: an occupied one faces W, and when both are free (then in
+  // W's component) the diagonal cell faces one of them. Either cell is on a side the walk comes
+  // from. So the far side of a hollow outline (facing its inside) is left out from outside.
   std::vector<Run> runs[4];
   const auto tile_of = [&](int s, const Run& r) {
     const bool rows = s >= 2;
@@ -52,13 +104,19 @@ void OccupancyGrid::compute_boundary() {
     const int dy = s == 2 ? -1 : (s == 3 ? 1 : 0);
     for (int l = 0; l < lines; ++l) {
       int open = -1;
+      std::int32_t open_component = -1;
       for (int i = 0; i <= along; ++i) {
         const int x = rows ? i : l, y = rows ? l : i;
-        const bool in = i < along && occupied_at(x, y) && free_at(x + dx, y + dy);
-        if (in && open < 0) open = i;
-        // A run ends where the cells stop, and at a tile border.
-        if (open >= 0 && (!in || i % T == T - 1)) {
-          runs[s].push_back({l, open, in ? i : i - 1});
+        // The component this cell's run faces, -1 for a cell in no run.
+        const std::int32_t c = i < along && occupied_at(x, y) ? component(x + dx, y + dy) : -1;
+        if (open >= 0 && c != open_component) {
+          runs[s].push_back({l, open, i - 1, open_component});
+          open = -1;
+        }
+        if (c >= 0 && open < 0) open = i, open_component = c;
+        // A run ends at a tile border too.
+        if (open >= 0 && i % T == T - 1) {
+          runs[s].push_back({l, open, i, open_component});
           open = -1;
         }
       }
@@ -112,6 +170,9 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     ix0 = static_cast<int>(std::floor(o.x()));
     iy0 = static_cast<int>(std::floor(o.y()));
   }
+  // Only runs that walks from the origin's component of free cells can touch first.
+  const std::int32_t component =
+      inside ? free_component_[static_cast<std::size_t>(iy0) * width_ + ix0] : 0;
   const std::optional<fan_detail::FanLayout> fan = fan_detail::even_fan(angles);
   if (!fan) return ray_by_ray();
 
@@ -186,6 +247,7 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   const double reach = t_max * (1.0 + 1e-5) + 1e-6;
   const double reach2 = reach * reach;
   const double yaw = origin_.theta;
+  const fan_detail::FanCone cone(*fan, yaw);
   // Calls f(k) for the beams within the angular extent of box [x0, x1] x [y0, y1] (cells), at
   // gap2 (> 1e-12) from the origin, and possibly a few more: those whose angle lies between the
   // box's silhouette corners as seen from the origin (outside the box), the clockwise-most one
@@ -196,20 +258,23 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     const double cw_y = ox > x1 ? y1 : (ox < x0 ? y0 : (oy < y0 ? y0 : y1));
     const double ccw_x = oy > y1 ? x1 : (oy < y0 ? x0 : (ox < x0 ? x0 : x1));
     const double ccw_y = ox < x0 ? y1 : (ox > x1 ? y0 : (oy > y1 ? y1 : y0));
-    const double a_cw = coarse_atan2(cw_y - oy, cw_x - ox);
-    double width = coarse_atan2(ccw_y - oy, ccw_x - ox) - a_cw;
-    if (width < 0.0) width += fan_detail::kTwoPi;
-    const double m = fan_detail::kFanMargin;
-    fan_detail::for_beams_in(*fan, a_cw + yaw - m, width + 2.0 * m, f);
+    return cone.for_beams(cw_x - ox, cw_y - oy, ccw_x - ox, ccw_y - oy, f);
   };
+  // How far inside a face its crossing b must be for the face's own quotient to be the run's
+  // distance: far more than b's rounding, 1e-16 (|q| + |o|), for every q <= reach. A crossing
+  // farther than t_max (> q) gives no hit either way: every cell of the run is entered after it.
+  const double face_eps = 1e-10 * (1.0 + reach + std::max(std::abs(o.x()), std::abs(o.y())));
   // Run `r` of side `s` on line `l`: the box [x0, x1] x [y0, y1] of its cells.
   const auto run = [&](auto side, int l, const Run& r) {
     constexpr int s = decltype(side)::value;
     constexpr bool rows = s >= 2;
     const double x0 = rows ? r.first : l, x1 = rows ? r.last + 1.0 : l + 1.0;
     const double y0 = rows ? l : r.first, y1 = rows ? l + 1.0 : r.last + 1.0;
-    const double gx = std::max({0.0, x0 - o.x(), o.x() - x1});
-    const double gy = std::max({0.0, y0 - o.y(), o.y() - y1});
+    const double ox = o.x(), oy = o.y();
+    // The origin is beyond the run's side: left of x0 for side 0 (its column is left of the
+    // run's), right of x1 (or on it) for side 1, below y0 for 2, above y1 (or on it) for 3.
+    const double gx = s == 0 ? x0 - ox : (s == 1 ? ox - x1 : std::max({0.0, x0 - ox, ox - x1}));
+    const double gy = s == 2 ? y0 - oy : (s == 3 ? oy - y1 : std::max({0.0, y0 - oy, oy - y1}));
     const double gap2 = gx * gx + gy * gy;
     if (gap2 > reach2) return;
     // A walk enters the box no earlier than its distance (|dir| <= 1 + 1e-6); a beam that
@@ -217,7 +282,7 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     const double lower = std::sqrt(gap2) * (1.0 - 1e-5);
     // The face of the run that facing walks cross: the line a = face of axis a (0: x = face,
     // 1: y = face). A walk crosses it with the event q = (face - o_a) / d_a, the very quotient it
-    // computes, at b = o_b + q d_b on the other axis (to within far less than eps). When b is
+    // computes, at b = o_b + q d_b on the other axis (to within far less than face_eps). When b is
     // inside the face, away from its ends, the walk enters the run's line there, in a cell of
     // the run (or touches one through a corner at that event), and it has touched none of the
     // line before: the run's first distance is max(0, q) exactly (max(t0, ...) as the walk
@@ -244,8 +309,7 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
       }
       const double q = (face - oa) / da;
       const double b = ob + q * db;
-      const double eps = 1e-10 * (1.0 + std::abs(q) + std::abs(ob));
-      if (b >= lo + eps && b <= hi + 1.0 - eps) {
+      if (b >= lo + face_eps && b <= hi + 1.0 - face_eps) {
         const double h = std::max(0.0, q);
         if (h <= t_max && h < best[k]) best[k] = h;
         return;
@@ -263,7 +327,18 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
       for (int k = 0; k < fan->n; ++k) each(k);
       return;
     }
-    for_beams_towards(x0, x1, y0, y1, each);
+    // The box's silhouette corners (as in for_beams_towards) for an origin on the run's side.
+    double cw_x, cw_y, ccw_x, ccw_y;
+    if constexpr (s == 0) {
+      cw_x = oy < y0 ? x1 : x0, cw_y = y0, ccw_x = oy > y1 ? x1 : x0, ccw_y = y1;
+    } else if constexpr (s == 1) {
+      cw_x = oy > y1 ? x0 : x1, cw_y = y1, ccw_x = oy < y0 ? x0 : x1, ccw_y = y0;
+    } else if constexpr (s == 2) {
+      cw_x = x1, cw_y = ox > x1 ? y1 : y0, ccw_x = x0, ccw_y = ox < x0 ? y1 : y0;
+    } else {
+      cw_x = x0, cw_y = ox < x0 ? y0 : y1, ccw_x = x1, ccw_y = ox > x1 ? y0 : y1;
+    }
+    cone.for_beams(cw_x - ox, cw_y - oy, ccw_x - ox, ccw_y - oy, each);
   };
   // Only runs whose side faces the origin: side 0 on columns right of the origin's column, 1 on
   // those left of it, 2 on rows above, 3 on rows below.
@@ -272,6 +347,7 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     const Run* r = tile_runs_.data() + tile_start_[4 * t + s];
     const Run* end = tile_runs_.data() + tile_start_[4 * t + s + 1];
     for (; r != end; ++r) {
+      if (r->component != component) continue;
       const bool faces = s == 0   ? r->line > ix0
                          : s == 1 ? r->line < ix0
                          : s == 2 ? r->line > iy0
@@ -314,11 +390,9 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     if (gap2 < 1e-12) return true;
     if (wholly_behind(x0, x1, y0, y1)) return false;
     const double lower = std::sqrt(gap2) * (1.0 - 1e-5);
-    bool any = false;
-    for_beams_towards(x0, x1, y0, y1, [&](int k) {
-      any = any || (best[k] != -kInf && lower <= std::min(best[k], t_max));
+    return for_beams_towards(x0, x1, y0, y1, [&](int k) {
+      return best[k] != -kInf && lower <= std::min(best[k], t_max);
     });
-    return any;
   };
   // The tiles in rings about the origin's tile (ring r: Chebyshev distance r in tiles), nearest
   // first, so that near hits skip the tiles behind them. Every cell of ring r >= 1 is at least

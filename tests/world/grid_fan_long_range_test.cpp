@@ -160,6 +160,90 @@ TEST(GridFanLongRange, ANearWallHidesTheOneBehindIt) {
   }
 }
 
+// Hollow outlines (the cave's blobs): the fan takes only the runs that walks from the origin's
+// component of free cells can touch first, so the far side of an outline is left out from
+// outside and everything outside it from inside. One-cell outlines: rectangles (4-connected),
+// diamonds and circles (8-connected staircases, which walks cross only through their corners and
+// there touch both cells), nested and touching ones; origins inside each pocket, on its cell
+// corners and outside; turned grids too.
+TEST(GridFanLongRange, MatchesTheCellByCellWalkInAndAroundHollowOutlines) {
+  constexpr int n = 240;
+  std::vector<std::uint8_t> cells(static_cast<std::size_t>(n) * n, 0);
+  const auto set = [&](int x, int y) {
+    if (x >= 0 && y >= 0 && x < n && y < n) cells[static_cast<std::size_t>(y) * n + x] = 1;
+  };
+  struct Pocket {
+    int cx, cy;
+  };
+  std::vector<Pocket> pockets;
+  const auto rectangle = [&](int x0, int y0, int x1, int y1) {
+    for (int x = x0; x <= x1; ++x) set(x, y0), set(x, y1);
+    for (int y = y0; y <= y1; ++y) set(x0, y), set(x1, y);
+    pockets.push_back({(x0 + x1) / 2, (y0 + y1) / 2});
+  };
+  const auto diamond = [&](int cx, int cy, int r) {
+    for (int d = -r; d <= r; ++d) {
+      set(cx + d, cy + (r - std::abs(d)));
+      set(cx + d, cy - (r - std::abs(d)));
+    }
+    pockets.push_back({cx, cy});
+  };
+  const auto circle = [&](int cx, int cy, double r) {
+    for (int y = cy - r - 2; y <= cy + r + 2; ++y)
+      for (int x = cx - r - 2; x <= cx + r + 2; ++x)
+        if (std::abs(std::hypot(x - cx, y - cy) - r) < 0.5) set(x, y);
+    pockets.push_back({cx, cy});
+  };
+  rectangle(10, 10, 60, 50);
+  rectangle(20, 20, 40, 40);  // nested
+  rectangle(61, 10, 90, 50);  // sharing no cell, touching the first one's wall
+  diamond(150, 60, 40);
+  diamond(150, 60, 12);  // nested
+  diamond(60, 150, 25);
+  diamond(86, 150, 1);  // a pocket of one cell: its walls touch the diamond above at a corner
+  circle(170, 170, 45.3);
+  circle(110, 200, 20.0);
+  circle(200, 100, 10.7);
+  Rng rng(18);
+  std::vector<Vec2> dirs;
+  std::vector<double> angles, out;
+  FanScratch scratch;
+  long hits = 0, fans = 0;
+  for (const double yaw : {0.0, 0.6}) {
+    const OccupancyGrid g(n, n, 0.05, Pose2{Vec2(-2.0, 1.0), yaw}, cells);
+    const double c = std::cos(yaw), s = std::sin(yaw);
+    const auto to_world = [&](double x, double y) {
+      return Vec2(-2.0 + 0.05 * (c * x - s * y), 1.0 + 0.05 * (s * x + c * y));
+    };
+    for (int f = 0; f < 400; ++f) {
+      double x = 0.0, y = 0.0;
+      if (f % 4 == 3) {  // anywhere: mostly outside the outlines
+        x = rng.uniform(0.0, n), y = rng.uniform(0.0, n);
+      } else {
+        const Pocket& p = pockets[static_cast<std::size_t>(f) % pockets.size()];
+        x = p.cx + rng.uniform(-0.5, 1.5), y = p.cy + rng.uniform(-0.5, 1.5);
+        if (f % 4 == 1) x = std::round(x), y = std::round(y);  // a cell corner
+      }
+      const Vec2 o = to_world(x, y);
+      if (!(g.clearance(o) > 0.0)) continue;
+      const double range = f % 3 == 0 ? 30.0 : (f % 3 == 1 ? 8.0 : 1.0);
+      lidar(rng.uniform(-kPi, kPi), f % 2 == 0 ? kPi : 2.0 * kPi, 180, dirs, angles);
+      out.assign(dirs.size(), -1.0);
+      g.cast_fan(o, dirs, angles, range, out, scratch);
+      ++fans;
+      for (std::size_t k = 0; k < dirs.size(); ++k) {
+        const double oracle = g.cast_ray_cell_by_cell(o, dirs[k], range);
+        if (oracle < range) ++hits;
+        ASSERT_EQ(bits(out[k]), bits(oracle))
+            << "yaw " << yaw << " fan " << f << " beam " << k << " from cell (" << x << ", " << y
+            << ") range " << range << ": fan " << out[k] << ", oracle " << oracle;
+      }
+    }
+  }
+  EXPECT_GT(fans, 700);
+  EXPECT_GT(hits, fans * 180 / 2);
+}
+
 // From outside the grid (a robot that has driven off the map): `cast` clips each ray to the grid
 // and starts its walk where the ray enters. Origins just outside a side, outside a corner, on the
 // extension of a border line and on cell corners, at up to the beams' reach; 180-beam half-turn

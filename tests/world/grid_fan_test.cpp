@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "../../src/world/fan_cone.hpp"
 #include "../../src/world/fan_layout.hpp"
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
@@ -147,6 +148,84 @@ TEST(FanLayout, FloorAndCeilByTruncationAreLibms) {
   }
   EXPECT_TRUE(std::isnan(floor_by_truncation(std::nan(""))));
   EXPECT_TRUE(std::isnan(ceil_by_truncation(std::nan(""))));
+}
+
+// The diamond angle grows with the angle: worked at the axes and diagonals, and in order over a
+// fine sweep of directions of every length.
+TEST(FanCone, DiamondAngleGrowsWithTheAngle) {
+  using fan_detail::diamond_angle;
+  EXPECT_EQ(diamond_angle(1.0, 0.0), 0.0);
+  EXPECT_EQ(diamond_angle(2.0, 2.0), 0.5);
+  EXPECT_EQ(diamond_angle(0.0, 3.0), 1.0);
+  EXPECT_EQ(diamond_angle(-1.0, 1.0), 1.5);
+  EXPECT_EQ(diamond_angle(-1.0, 0.0), 2.0);
+  EXPECT_EQ(diamond_angle(-1.0, -1.0), 2.5);
+  EXPECT_EQ(diamond_angle(0.0, -1.0), 3.0);
+  EXPECT_EQ(diamond_angle(1.0, -1.0), 3.5);
+  EXPECT_EQ(diamond_angle(-0.0, 1.0), 1.0);  // a negative zero x is not left of the origin
+  double last = -1.0;
+  for (int i = 0; i < 100000; ++i) {
+    const double a = 2.0 * kPi * i / 100000, len = std::ldexp(1.0, i % 40 - 20);
+    const double p = diamond_angle(len * std::cos(a), len * std::sin(a));
+    EXPECT_GE(p, last) << a;
+    EXPECT_LT(p, 4.0) << a;
+    last = p;
+  }
+  // Each bin's bounds hold the angles of its diamond angles.
+  const auto& bounds = fan_detail::diamond_bounds();
+  EXPECT_EQ(bounds.front(), 0.0f);
+  EXPECT_NEAR(bounds[fan_detail::kDiamondBins / 4], 0.5 * kPi, 1e-6);
+  EXPECT_NEAR(bounds.back(), 2.0 * kPi, 1e-6);
+}
+
+// FanCone::for_beams against atan2: every beam whose angle lies in the cone (widened by the
+// margin) is called, for fans of every width and start, frames turned every way and cones across
+// angle 0 of either frame; and not many more (a bin's width beyond each edge).
+TEST(FanCone, CallsEveryBeamInTheConeAndFewOthers) {
+  Rng rng(31);
+  long extra = 0, inside = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int n = 2 + static_cast<int>(rng.uniform(0.0, 400.0));
+    const double width =
+        trial % 3 == 0 ? 2.0 * kPi * (n - 1) / n : rng.uniform(0.01, 2.0 * kPi - 0.1);
+    fan_detail::FanLayout fan;
+    fan.first = rng.uniform(-10.0, 10.0);
+    fan.step = width / (n - 1);
+    fan.inv_step = 1.0 / fan.step;
+    fan.n = n;
+    const double yaw = trial % 5 == 0 ? 0.0 : rng.uniform(-7.0, 7.0);
+    const fan_detail::FanCone cone(fan, yaw);
+    const double a0 = rng.uniform(-kPi, kPi), span = rng.uniform(0.0, kPi - 1e-3);
+    const double l0 = rng.uniform(0.1, 100.0), l1 = rng.uniform(0.1, 100.0);
+    std::vector<int> calls(static_cast<std::size_t>(n), 0);
+    cone.for_beams(l0 * std::cos(a0), l0 * std::sin(a0), l1 * std::cos(a0 + span),
+                   l1 * std::sin(a0 + span), [&](int k) {
+                     ASSERT_GE(k, 0);
+                     ASSERT_LT(k, n);
+                     ++calls[static_cast<std::size_t>(k)];
+                   });
+    for (int k = 0; k < n; ++k) {
+      // Beam k's angle in the vectors' frame, from the cone's first edge, in [0, 2 pi).
+      const double a = std::remainder(fan.first + k * fan.step - yaw - a0, 2.0 * kPi);
+      const double from = a < 0.0 ? a + 2.0 * kPi : a;
+      const bool in = from <= span + fan_detail::kFanMargin * 0.99 ||
+                      from >= 2.0 * kPi - fan_detail::kFanMargin * 0.99;
+      const bool near = from <= span + 0.005 || from >= 2.0 * kPi - 0.005;
+      if (in) {
+        ++inside;
+        EXPECT_EQ(calls[static_cast<std::size_t>(k)], 1) << "trial " << trial << " beam " << k;
+      } else {
+        EXPECT_LE(calls[static_cast<std::size_t>(k)], 1) << "trial " << trial << " beam " << k;
+        if (calls[static_cast<std::size_t>(k)] != 0) {
+          ++extra;
+          EXPECT_TRUE(near) << "trial " << trial << " beam " << k << " at " << from;
+        }
+      }
+    }
+    if (::testing::Test::HasFailure()) return;
+  }
+  EXPECT_GT(inside, 100000);
+  EXPECT_LT(extra, inside / 20);
 }
 
 TEST(GridFan, MatchesCastRayOnRandomGrids) {

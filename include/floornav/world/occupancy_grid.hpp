@@ -142,7 +142,13 @@ class OccupancyGrid {
     std::int32_t line;   ///< the column (sides 0, 1) or row (sides 2, 3)
     std::int32_t first;  ///< along the line
     std::int32_t last;   ///< inclusive
+    /// The free component (free_component_) whose walks can touch the run's cells first.
+    std::int32_t component;
   };
+  /// For each free cell, its 4-connected component of free cells (0: the one outside the grid,
+  /// which counts as free, and those touching it); -1 for an occupied cell. A fan from a
+  /// component takes only the runs its walks can touch first.
+  std::vector<std::int32_t> free_component_;
   int tile_cols_{0};
   int tile_rows_{0};
   std::vector<Run> tile_runs_;
