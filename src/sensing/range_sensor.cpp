@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "floornav/geometry/angle.hpp"
+#include "floornav/geometry/fan_cone.hpp"
 #include "floornav/geometry/ray.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 
@@ -169,12 +170,18 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
   for (std::size_t k = 0; even && k < n; ++k)
     even =
         std::abs(reduce_turns(beams[i + k].theta - theta0 - static_cast<double>(k) * step)) < 1e-6;
-  const bool full_circle = even && static_cast<double>(n) * step > 2.0 * kPi - 0.5 * step;
-  const double inv_step = even ? 1.0 / step : 0.0;
+  // Beams that overlap after a full turn are all tested (as are uneven ones).
+  even = even && static_cast<double>(n - 1) * step <= 2.0 * kPi - 0.5 * step;
+  fan_detail::FanLayout layout;
+  layout.first = theta0;
+  layout.step = step;
+  layout.inv_step = even ? 1.0 / step : 0.0;
+  layout.n = static_cast<int>(n);
+  const fan_detail::FanCone cone(layout, 0.0);
   // A fan no wider than a half turn (a 180-degree lidar): every beam is within pi / 2 + 1e-6 of
   // its centre line c, so along the whole ray (p - o) . c >= -1e-6 t, and a disc more than its
   // radius behind the origin along c (with a margin far above that and the rounding of the
-  // ray-disc test, at any distance within reach) meets no beam: skipped without an atan2.
+  // ray-disc test, at any distance within reach) meets no beam: skipped before its extent.
   const double half_width = 0.5 * static_cast<double>(n - 1) * step;
   const bool half_plane = even && half_width <= 0.5 * kPi + 1e-9;
   const double centre_angle = theta0 + half_width;
@@ -203,34 +210,8 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
     // asin(x) <= x / sqrt(1 - x^2) (= tan(asin x)); x < 1 here.
     const double x = c.radius / d;
     const double half = std::min(kPi, x / std::sqrt(1.0 - x * x)) + 1e-5;
-    double rel = reduce_turns(coarse_atan2(v.y(), v.x()) - theta0);
-    if (rel < 0.0) rel += 2.0 * kPi;  // [0, 2 pi)
-    // The extent as beam offsets from beam 0; for a fan that does not go all the way round, an
-    // extent that crosses 0 or 2 pi also shows a turn earlier or later (beam 0 is at offset 0
-    // and every beam below 2 pi: a turn later only matters when the extent reaches below 0, a
-    // turn earlier when it reaches 2 pi).
-    const auto count = static_cast<long>(n);
-    const auto beams_about = [&](double centre) {
-      // Beams ceil(from) to floor(to), by truncation (std::ceil and std::floor are a dozen
-      // instructions each without SSE4.1); the product by 1 / step is within ulps of the
-      // quotient, far inside the margin.
-      const double from = (centre - half) * inv_step, to = (centre + half) * inv_step;
-      auto lo = static_cast<long>(from), hi = static_cast<long>(to);
-      if (static_cast<double>(lo) < from) ++lo;
-      if (static_cast<double>(hi) > to) --hi;
-      if (full_circle) {
-        for (long k = lo; k <= hi && k < lo + count; ++k)
-          test_near(static_cast<std::size_t>(((k % count) + count) % count));
-      } else {
-        for (long k = std::max(lo, 0L); k <= std::min(hi, count - 1); ++k)
-          test_near(static_cast<std::size_t>(k));
-      }
-    };
-    beams_about(rel);
-    if (!full_circle) {  // the modulo above covers both sides of a full circle
-      if (rel + half >= 2.0 * kPi) beams_about(rel - 2.0 * kPi);
-      if (rel - half <= 0.0) beams_about(rel + 2.0 * kPi);
-    }
+    cone.for_beams_about(v.x(), v.y(), half,
+                         [&](int k) { test_near(static_cast<std::size_t>(k)); });
   }
 }
 

@@ -4,8 +4,8 @@
 #include <type_traits>
 
 #include "cell_index.hpp"
-#include "fan_cone.hpp"
-#include "fan_layout.hpp"
+#include "floornav/geometry/fan_cone.hpp"
+#include "floornav/geometry/fan_layout.hpp"
 #include "floornav/geometry/ray.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "grid_walk.hpp"

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <optional>
 
-#include "fan_layout.hpp"
+#include "floornav/geometry/fan_layout.hpp"
 #include "floornav/geometry/ray.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"

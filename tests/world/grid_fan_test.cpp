@@ -10,10 +10,10 @@
 #include <utility>
 #include <vector>
 
-#include "../../src/world/fan_cone.hpp"
-#include "../../src/world/fan_layout.hpp"
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
+#include "floornav/geometry/fan_cone.hpp"
+#include "floornav/geometry/fan_layout.hpp"
 #include "floornav/io/ros_map.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"

@@ -1,6 +1,8 @@
 #pragma once
-// Even fans of rays (a lidar's beams): the layout check and the angular culling shared by
-// World::cast_fan and OccupancyGrid::cast_fan. Internal to the library.
+/// @file
+/// Even fans of rays (a lidar's beams): the layout check and the angular culling shared by
+/// World::cast_fan, OccupancyGrid::cast_fan and the sensors' fans over other robots. An
+/// implementation detail (namespace fan_detail), public only because two layers share it.
 
 #include <algorithm>
 #include <cmath>

@@ -1,13 +1,15 @@
 #pragma once
-// The beams of an even fan that point into a cone of directions, found with one division per
-// direction and a table instead of an atan2 per direction. Internal to the library.
+/// @file
+/// The beams of an even fan that point into a cone of directions, found with one division per
+/// direction and a table instead of an atan2 per direction. An implementation detail (namespace
+/// fan_detail), public only because two layers share it.
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <type_traits>
 
-#include "fan_layout.hpp"
+#include "floornav/geometry/fan_layout.hpp"
 
 namespace floornav::fan_detail {
 
@@ -68,10 +70,26 @@ class FanCone {
   template <class F>
   bool for_beams(double cw_x, double cw_y, double ccw_x, double ccw_y, F&& f) const {
     const int b0 = bin(cw_x, cw_y), b1 = bin(ccw_x, ccw_y);
-    // The cone's angles from beam 0, lo in [0, 2 pi), lo <= hi < lo + 2 pi.
-    double lo = static_cast<double>(bounds_[b0]) - first_ - kFanMargin;
+    // The cone's angles from beam 0.
+    const double lo = static_cast<double>(bounds_[b0]) - first_ - kFanMargin;
     double hi = static_cast<double>(bounds_[b1 + 1]) - first_ + kFanMargin;
     if (b1 < b0) hi += kTwoPi;  // through angle 0 of the vectors' frame
+    return for_angles(lo, hi, f);
+  }
+
+  // The same for the beams within `half` (in [0, pi]) of the direction of (x, y) (not zero).
+  template <class F>
+  bool for_beams_about(double x, double y, double half, F&& f) const {
+    const int b = bin(x, y);
+    const double lo = static_cast<double>(bounds_[b]) - first_ - half - kFanMargin;
+    const double hi = static_cast<double>(bounds_[b + 1]) - first_ + half + kFanMargin;
+    return for_angles(lo, hi, f);
+  }
+
+ private:
+  // The beams at angles [lo, hi] from beam 0, modulo 2 pi: lo >= -4 pi, hi >= lo.
+  template <class F>
+  bool for_angles(double lo, double hi, F&& f) const {
     while (lo < 0.0) lo += kTwoPi, hi += kTwoPi;
     // Beam k (k >= 0) is at k * step; lo >= 0, so truncation is floor.
     const double a = lo * fan_.inv_step, z = hi * fan_.inv_step;
@@ -88,7 +106,7 @@ class FanCone {
     };
     for (int k = k0; k <= k1; ++k)
       if (call(k)) return true;
-    if (hi >= kTwoPi) {  // the cone wraps past beam 0
+    if (hi >= kTwoPi) {  // past beam 0 again (a turn later)
       const int k2 = static_cast<int>(std::min((hi - kTwoPi) * fan_.inv_step, fan_.n - 1.0));
       for (int k = 0; k <= k2 && k < k0; ++k)
         if (call(k)) return true;
@@ -96,7 +114,6 @@ class FanCone {
     return false;
   }
 
- private:
   static int bin(double x, double y) {
     const int b = static_cast<int>(diamond_angle(x, y) * (kDiamondBins / 4.0));
     return std::min(b, kDiamondBins - 1);
