@@ -1,5 +1,7 @@
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <type_traits>
 
@@ -184,14 +186,19 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   double* dx = scratch.dx.data();
   double* dy = scratch.dy.data();
   double* best = scratch.best.data();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2& dir = dirs[i];
-    dx[i] = cos_yaw_ * dir.x() + sin_yaw_ * dir.y();
-    dy[i] = -sin_yaw_ * dir.x() + cos_yaw_ * dir.y();
-    // The culling below assumes a unit direction at the given angle; other beams are cast ray
-    // by ray, marked by best = -inf (no test takes them: every lower bound is above).
-    const double len2 = dx[i] * dx[i] + dy[i] * dy[i];
-    best[i] = std::abs(len2 - 1.0) <= 1e-6 ? kInf : -kInf;
+  {
+    // Locals, so that the stores below need not reload them (and the loop vectorises).
+    const double c = cos_yaw_, s = sin_yaw_;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = dirs[i].x(), y = dirs[i].y();
+      const double gx = c * x + s * y, gy = -s * x + c * y;
+      dx[i] = gx;
+      dy[i] = gy;
+      // The culling below assumes a unit direction at the given angle; other beams are cast ray
+      // by ray, marked by best = -inf (no test takes them: every lower bound is above).
+      const double len2 = gx * gx + gy * gy;
+      best[i] = std::abs(len2 - 1.0) <= 1e-6 ? kInf : -kInf;
+    }
   }
   if (!inside) {
     // Where each ray enters the grid (`cast`'s clipping): near a cell corner, ray by ray.
@@ -205,7 +212,9 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
       double t0 = 0.0, t1 = t_max;
       if (best[i] == -kInf || !clip_ray_to_box(o, Vec2(dx[i], dy[i]), cells, t0, t1)) continue;
       const double px = o.x() + t0 * dx[i], py = o.y() + t0 * dy[i];
-      if (!(px > -0.5 && py > -0.5) || (near_line(px) && near_line(py))) best[i] = -kInf;
+      if (!(px > -0.5 && py > -0.5) || (near_line(px) && near_line(py))) {
+        best[i] = -kInf;
+      }
     }
   }
 
@@ -451,12 +460,20 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     side(xa, xa, ya + 1, yb - 1);
     if (xb != xa) side(xb, xb, ya + 1, yb - 1);
   }
+  // Cell units to metres (+inf, no hit, to max_range, which is finite); then the beams marked
+  // -inf, the only negative results (but for a max_range of -0), cast ray by ray: in a second
+  // pass, so that the first vectorises.
+  const double res = resolution_;
+  double* result = out.data();
+  std::uint64_t signs = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    if (best[i] == -kInf) {
-      out[i] = cast_ray(origin_world, dirs[i], max_range);
-    } else {
-      out[i] = best[i] < kInf ? std::min(best[i] * resolution_, max_range) : max_range;
-    }
+    const double r = std::min(best[i] * res, max_range);
+    result[i] = r;
+    signs |= std::bit_cast<std::uint64_t>(r);
+  }
+  if ((signs >> 63) != 0) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (best[i] == -kInf) result[i] = cast_ray(origin_world, dirs[i], max_range);
   }
 }
 

@@ -257,6 +257,32 @@ TEST(GridFan, MatchesCastRayOnRandomGrids) {
   EXPECT_GT(rays, 1000000);
 }
 
+// Beams the fan does not take (directions that are not unit vectors) are cast ray by ray, among
+// beams it takes; a range of -0 reads -0 where nothing is hit, as cast_ray does.
+TEST(GridFan, CastsBeamsWithOtherDirectionsRayByRay) {
+  std::vector<std::uint8_t> cells(60 * 40, 0);
+  for (int y = 0; y < 40; ++y) cells[static_cast<std::size_t>(y) * 60 + 45] = 1;
+  for (int x = 0; x < 60; ++x) cells[static_cast<std::size_t>(35) * 60 + x] = 1;
+  const OccupancyGrid g(60, 40, 0.1, Pose2{Vec2(0.0, 0.0), 0.0}, cells);
+  const Vec2 o(1.23, 0.71);
+  std::vector<Vec2> dirs;
+  std::vector<double> angles;
+  make_fan(-0.3, 90, dirs, angles);
+  dirs[7] *= 2.0;  // not unit: cast ray by ray
+  dirs[50] *= 0.5;
+  for (const double range : {10.0, -0.0, 0.0}) {
+    std::vector<double> out(dirs.size(), -1.0);
+    g.cast_fan(o, dirs, angles, range, out);
+    for (std::size_t k = 0; k < dirs.size(); ++k)
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(out[k]),
+                std::bit_cast<std::uint64_t>(g.cast_ray(o, dirs[k], range)))
+          << "range " << range << " beam " << k;
+  }
+  std::vector<double> out(dirs.size());
+  g.cast_fan(o, dirs, angles, 10.0, out);
+  EXPECT_NE(out[7], g.cast_ray(o, dirs[7] / 2.0, 10.0));  // a doubled direction halves t
+}
+
 TEST(GridFan, MatchesCastRayOnTheAwsWarehouse) {
   const auto map = std::filesystem::path(FLOORNAV_TEST_DATA_DIR) / "maps" /
                    "aws-robomaker-small-warehouse" / "005" / "map.yaml";
