@@ -421,10 +421,12 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     tile_side(std::integral_constant<int, 2>{}, t);
     tile_side(std::integral_constant<int, 3>{}, t);
   };
+  // The farthest any beam can still take a hit (cell units): t_max at first, lowered every
+  // fourth ring (the loop costs a few rings' work) and tested at every ring (it only falls).
+  double farthest = t_max;
   for (int ring = 0;; ++ring) {
     if (ring >= 2 && ring % 4 == 0) {
-      // Every fourth ring (the loop costs a few rings' work). A beam cast ray by ray (best =
-      // -inf) raises nothing.
+      // A beam cast ray by ray (best = -inf) raises nothing.
       const auto cap = [&](std::size_t k) { return best[k] < t_max ? best[k] : t_max; };
       double f0 = -kInf, f1 = -kInf, f2 = -kInf, f3 = -kInf;
       std::size_t k = 0;
@@ -435,9 +437,9 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
         f3 = std::max(f3, cap(k + 3));
       }
       for (; k < n; ++k) f0 = std::max(f0, cap(k));
-      const double farthest = std::max(std::max(f0, f1), std::max(f2, f3));
-      if ((ring - 1.0) * T * (1.0 - 1e-5) > farthest) break;
+      farthest = std::max(std::max(f0, f1), std::max(f2, f3));
     }
+    if (ring >= 2 && (ring - 1.0) * T * (1.0 - 1e-5) > farthest) break;
     const int xa = tx0 - ring, xb = tx0 + ring, ya = ty0 - ring, yb = ty0 + ring;
     if (xa < 0 && ya < 0 && xb >= tile_cols_ && yb >= tile_rows_) break;
     // The ring's four sides, each a row or column of tiles clipped to the grid (a ring about an
