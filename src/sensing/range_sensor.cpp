@@ -145,12 +145,6 @@ void cast_fan(const World& world, std::span<const SensorBeam> beams, std::size_t
   }
 }
 
-// An angle reduced into (-pi, pi] by whole turns: within ~1e-15 rad of wrap_angle (which takes an
-// atan2, a sine and a cosine for an angle out of range), for the tolerance tests below.
-double reduce_turns(double a) {
-  return a > -kPi && a <= kPi ? a : a - 2.0 * kPi * std::nearbyint(a / (2.0 * kPi));
-}
-
 // Other robots' bodies on a fan of beams [i, end) that share an origin, lowering ranges[k] to
 // each hit; every range is at most max_range on entry. For evenly spaced beams each disc is
 // tested only against the beams within its angular extent widened by 1e-5 rad on each side (a
@@ -166,10 +160,10 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
   const Vec2 origin = beams[i].origin;
   const double theta0 = beams[i].theta;
   const double step = n > 1 ? wrap_angle(beams[i + 1].theta - theta0) : 0.0;
-  bool even = step > 0.0;
-  for (std::size_t k = 0; even && k < n; ++k)
-    even =
-        std::abs(reduce_turns(beams[i + k].theta - theta0 - static_cast<double>(k) * step)) < 1e-6;
+  // Within 1e-6 rad of theta0 + k step, modulo 2 pi.
+  bool even = step > 0.0 && fan_detail::evenly_spaced(
+                                theta0, step, n, [&](std::size_t k) { return beams[i + k].theta; },
+                                std::nextafter(1e-6, 0.0));
   // Beams that overlap after a full turn are all tested (as are uneven ones).
   even = even && static_cast<double>(n - 1) * step <= 2.0 * kPi - 0.5 * step;
   fan_detail::FanLayout layout;

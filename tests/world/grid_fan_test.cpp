@@ -150,6 +150,34 @@ TEST(FanLayout, FloorAndCeilByTruncationAreLibms) {
   EXPECT_TRUE(std::isnan(ceil_by_truncation(std::nan(""))));
 }
 
+// even_fan takes evenly spaced angles, wrapped or not, and refuses one beam off its place by
+// more than the tolerance, or NaN, wherever it is after the two that set the step (the check
+// runs two beams at a time, then the last one alone): every position of fans of odd and even
+// sizes.
+TEST(FanLayout, EvenFanRefusesAnyBeamOffItsPlace) {
+  for (const int n : {2, 3, 16, 17, 180, 181}) {
+    for (const double first : {-3.1, 0.0, 2.9}) {
+      const double step = 3.0 / (n - 1);
+      std::vector<double> angles(static_cast<std::size_t>(n));
+      for (int k = 0; k < n; ++k)
+        angles[static_cast<std::size_t>(k)] = wrap_angle(first + k * step);
+      const auto fan = fan_detail::even_fan(angles);
+      ASSERT_TRUE(fan.has_value()) << n << " " << first;
+      EXPECT_EQ(fan->n, n);
+      EXPECT_NEAR(fan->step, step, 1e-12);
+      for (int k = 2; k < n; ++k) {  // beam 1 sets the step
+        for (const double off : {0.5e-9, -0.5e-9, 2e-9, -2e-9, std::nan("")}) {
+          std::vector<double> moved = angles;
+          moved[static_cast<std::size_t>(k)] += off;
+          const bool within = std::abs(off) < 1e-9;  // false for NaN
+          EXPECT_EQ(fan_detail::even_fan(moved).has_value(), within)
+              << "n " << n << " first " << first << " beam " << k << " moved by " << off;
+        }
+      }
+    }
+  }
+}
+
 // The diamond angle grows with the angle: worked at the axes and diagonals, and in order over a
 // fine sweep of directions of every length.
 TEST(FanCone, DiamondAngleGrowsWithTheAngle) {
