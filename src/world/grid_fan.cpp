@@ -29,7 +29,7 @@ namespace {
 
 // Labels the free cells by their 4-connected components: label[c] for free cell c, -1 for an
 // occupied one. Outside the grid counts as free and is component 0 with every free cell it
-// touches (possibly none); the others are numbered from 1.
+// touches (possibly none); the others are numbered from 1, the largest first.
 std::vector<std::int32_t> free_components(const std::vector<std::uint8_t>& occupied, int width,
                                           int height) {
   const std::size_t w = static_cast<std::size_t>(width);
@@ -66,6 +66,21 @@ std::vector<std::int32_t> free_components(const std::vector<std::uint8_t>& occup
   std::int32_t next = 1;
   for (std::size_t c = 0; c < label.size(); ++c)
     if (occupied[c] == 0 && label[c] < 0) flood(c, next++);
+  // Renumbered by size, largest first (after 0): a tile's runs are kept in component order, and
+  // a fan from the main floor then stops at the runs of the pockets behind them.
+  std::vector<std::int64_t> size(static_cast<std::size_t>(next), 0);
+  for (const std::int32_t l : label)
+    if (l >= 0) ++size[static_cast<std::size_t>(l)];
+  std::vector<std::int32_t> order(static_cast<std::size_t>(next));
+  for (std::int32_t i = 0; i < next; ++i) order[static_cast<std::size_t>(i)] = i;
+  std::stable_sort(order.begin() + 1, order.end(), [&](std::int32_t a, std::int32_t b) {
+    return size[static_cast<std::size_t>(a)] > size[static_cast<std::size_t>(b)];
+  });
+  std::vector<std::int32_t> renamed(static_cast<std::size_t>(next));
+  for (std::int32_t i = 0; i < next; ++i)
+    renamed[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])] = i;
+  for (std::int32_t& l : label)
+    if (l >= 0) l = renamed[static_cast<std::size_t>(l)];
   return label;
 }
 
@@ -132,6 +147,10 @@ void OccupancyGrid::compute_boundary() {
   std::vector<std::int32_t> fill(tile_start_.begin(), tile_start_.end() - 1);
   for (int s = 0; s < 4; ++s)
     for (const Run& r : runs[s]) tile_runs_[fill[4 * tile_of(s, r) + s]++] = r;
+  // Each tile's side by component (then line and place, as built): a fan takes one component.
+  for (std::size_t g = 0; g + 1 < tile_start_.size(); ++g)
+    std::stable_sort(tile_runs_.begin() + tile_start_[g], tile_runs_.begin() + tile_start_[g + 1],
+                     [](const Run& a, const Run& b) { return a.component < b.component; });
 }
 
 void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dirs,
@@ -351,12 +370,17 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   };
   // Only runs whose side faces the origin: side 0 on columns right of the origin's column, 1 on
   // those left of it, 2 on rows above, 3 on rows below.
-  const auto tile_side = [&](auto side, std::size_t t) {
+  // Tile (tx, ty)'s runs of side s, of the origin's component (together, in component order).
+  // None faces the origin when the tile's lines all lie on the origin's side of the cell.
+  const auto tile_side = [&](auto side, std::size_t t, int tx, int ty) {
     constexpr int s = decltype(side)::value;
+    if ((s == 0 && tx * kTile + kTile - 1 <= ix0) || (s == 1 && tx * kTile >= ix0) ||
+        (s == 2 && ty * kTile + kTile - 1 <= iy0) || (s == 3 && ty * kTile >= iy0))
+      return;
     const Run* r = tile_runs_.data() + tile_start_[4 * t + s];
     const Run* end = tile_runs_.data() + tile_start_[4 * t + s + 1];
-    for (; r != end; ++r) {
-      if (r->component != component) continue;
+    while (r != end && r->component < component) ++r;
+    for (; r != end && r->component == component; ++r) {
       const bool faces = s == 0   ? r->line > ix0
                          : s == 1 ? r->line < ix0
                          : s == 2 ? r->line > iy0
@@ -416,10 +440,10 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     const double x0 = tx * T, x1 = std::min(tx * T + T, width_);
     const double y0 = ty * T, y1 = std::min(ty * T + T, height_);
     if (!wanted(x0, x1, y0, y1)) return;
-    tile_side(std::integral_constant<int, 0>{}, t);
-    tile_side(std::integral_constant<int, 1>{}, t);
-    tile_side(std::integral_constant<int, 2>{}, t);
-    tile_side(std::integral_constant<int, 3>{}, t);
+    tile_side(std::integral_constant<int, 0>{}, t, tx, ty);
+    tile_side(std::integral_constant<int, 1>{}, t, tx, ty);
+    tile_side(std::integral_constant<int, 2>{}, t, tx, ty);
+    tile_side(std::integral_constant<int, 3>{}, t, tx, ty);
   };
   // The farthest any beam can still take a hit (cell units): t_max at first, lowered every
   // fourth ring (the loop costs a few rings' work) and tested at every ring (it only falls).
