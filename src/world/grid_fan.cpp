@@ -368,10 +368,9 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     }
     cone.for_beams(cw_x - ox, cw_y - oy, ccw_x - ox, ccw_y - oy, each);
   };
-  // Only runs whose side faces the origin: side 0 on columns right of the origin's column, 1 on
-  // those left of it, 2 on rows above, 3 on rows below.
-  // Tile (tx, ty)'s runs of side s, of the origin's component (together, in component order).
-  // None faces the origin when the tile's lines all lie on the origin's side of the cell.
+  // Tile (tx, ty)'s runs of side s of the origin's component (together, in component order)
+  // that face the origin: side 0 on columns right of the origin's column, 1 on those left of it,
+  // 2 on rows above, 3 on rows below. None does when all the tile's lines lie on the wrong side.
   const auto tile_side = [&](auto side, std::size_t t, int tx, int ty) {
     constexpr int s = decltype(side)::value;
     if ((s == 0 && tx * kTile + kTile - 1 <= ix0) || (s == 1 && tx * kTile >= ix0) ||
