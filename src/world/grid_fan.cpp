@@ -261,11 +261,11 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     }
     return true;
   };
-  const auto test = [&](int k, int x, int y) {
+  const auto test = [axis_times, best, dx, dy, ix0, iy0, ox = o.x(), oy = o.y(), t_max](
+                        int k, int x, int y) {
     if (best[k] == -kInf) return;
     double ax = 0.0, bx = kInf, ay = 0.0, by = kInf;
-    if (!axis_times(dx[k], x, ix0, o.x(), ax, bx) || !axis_times(dy[k], y, iy0, o.y(), ay, by))
-      return;
+    if (!axis_times(dx[k], x, ix0, ox, ax, bx) || !axis_times(dy[k], y, iy0, oy, ay, by)) return;
     const double h = std::max(0.0, std::max(ax, ay));
     if (h <= std::min(bx, by) && h <= t_max && h < best[k]) best[k] = h;
   };
@@ -327,17 +327,20 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
         test(k, l, c);
       }
     };
-    const auto each = [&](int k) {
+    // The run's numbers by value (one load each in the loop over the beams, not two).
+    const auto each = [&, best, lower, face_oa = face - oa, ob, inside_lo = lo + face_eps,
+                       inside_hi = hi + 1.0 - face_eps, t_max, da_of = axis == 0 ? dx : dy,
+                       db_of = axis == 0 ? dy : dx](int k) {
       if (lower > best[k]) return;
-      const double da = axis == 0 ? dx[k] : dy[k], db = axis == 0 ? dy[k] : dx[k];
+      const double da = da_of[k], db = db_of[k];
       if constexpr (s == 0 || s == 2) {
         if (!(da > 0.0)) return;  // moving away from the face
       } else {
         if (!(da < 0.0)) return;
       }
-      const double q = (face - oa) / da;
+      const double q = face_oa / da;
       const double b = ob + q * db;
-      if (b >= lo + face_eps && b <= hi + 1.0 - face_eps) {
+      if (b >= inside_lo && b <= inside_hi) {
         const double h = std::max(0.0, q);
         if (h <= t_max && h < best[k]) best[k] = h;
         return;
@@ -468,22 +471,22 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     // The ring's four sides, each a row or column of tiles clipped to the grid (a ring about an
     // origin outside the grid may have a side beyond it), passed over at once when the whole
     // side lies beyond reach or behind the fan (a box whose corners are behind is behind).
-    const auto side = [&](int x0, int x1, int y0, int y1) {
+    // (One call site, so that the ring's work is one piece of code.)
+    for (int e = 0; e < 4; ++e) {
+      if ((e == 1 && yb == ya) || (e == 3 && xb == xa)) continue;
+      int x0 = e < 2 ? xa : (e == 2 ? xa : xb), x1 = e < 2 ? xb : (e == 2 ? xa : xb);
+      int y0 = e == 0 ? ya : (e == 1 ? yb : ya + 1), y1 = e == 0 ? ya : (e == 1 ? yb : yb - 1);
       x0 = std::max(x0, 0), x1 = std::min(x1, tile_cols_ - 1);
       y0 = std::max(y0, 0), y1 = std::min(y1, tile_rows_ - 1);
-      if (x0 > x1 || y0 > y1) return;
+      if (x0 > x1 || y0 > y1) continue;
       const double bx0 = x0 * T, bx1 = std::min(x1 * T + T, width_);
       const double by0 = y0 * T, by1 = std::min(y1 * T + T, height_);
       const double gx = std::max({0.0, bx0 - o.x(), o.x() - bx1});
       const double gy = std::max({0.0, by0 - o.y(), o.y() - by1});
-      if (gx * gx + gy * gy > reach2 || wholly_behind(bx0, bx1, by0, by1)) return;
+      if (gx * gx + gy * gy > reach2 || wholly_behind(bx0, bx1, by0, by1)) continue;
       for (int ty = y0; ty <= y1; ++ty)
         for (int tx = x0; tx <= x1; ++tx) tile(tx, ty);
-    };
-    side(xa, xb, ya, ya);
-    if (yb != ya) side(xa, xb, yb, yb);
-    side(xa, xa, ya + 1, yb - 1);
-    if (xb != xa) side(xb, xb, ya + 1, yb - 1);
+    }
   }
   // Cell units to metres (+inf, no hit, to max_range, which is finite); then the beams marked
   // -inf, the only negative results (but for a max_range of -0), cast ray by ray: in a second
