@@ -198,8 +198,25 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
     // No beam reaches the disc before its range ends.
     const double near = d - c.radius - 1e-6 * (1.0 + d);
     if (near >= max_range) continue;
-    const auto test_near = [&](std::size_t k) {
-      if (ranges[i + k] > near) test(k, c);
+    // intersect_ray's numbers that do not depend on the beam, once for all (the same bits): the
+    // origin is outside the disc here (cc > 0 as d > r + 1e-9), so a beam hits at -b - sqrt(b^2 -
+    // cc) unless it points away (b > 0) or passes by (b^2 < cc).
+    const Vec2 m = origin - c.center;
+    const double cc = m.squaredNorm() - c.radius * c.radius;
+    if (!(cc > 0.0)) {
+      for (std::size_t k = 0; k < n; ++k) test(k, c);
+      continue;
+    }
+    const auto test_near = [&, mx = m.x(), my = m.y(), cc, near](std::size_t k) {
+      double& range = ranges[i + k];
+      if (!(range > near)) return;
+      const Vec2& dir = beams[i + k].dir;
+      const double b = mx * dir.x() + my * dir.y();
+      if (b > 0.0) return;
+      const double disc = b * b - cc;
+      if (disc < 0.0) return;
+      const double t = -b - std::sqrt(disc);
+      if (t < range) range = t;
     };
     // asin(x) <= x / sqrt(1 - x^2) (= tan(asin x)); x < 1 here.
     const double x = c.radius / d;
