@@ -14,6 +14,8 @@
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/box2.hpp"
 #include "floornav/geometry/circle.hpp"
+#include "floornav/geometry/fan_cone.hpp"
+#include "floornav/geometry/fan_layout.hpp"
 #include "floornav/geometry/oriented_box.hpp"
 #include "floornav/geometry/polygon.hpp"
 #include "floornav/geometry/pose2.hpp"
