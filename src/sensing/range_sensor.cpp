@@ -147,10 +147,11 @@ void cast_fan(const World& world, std::span<const SensorBeam> beams, std::size_t
 
 // Other robots' bodies on a fan of beams [i, end) that share an origin, lowering ranges[k] to
 // each hit; every range is at most max_range on entry. For evenly spaced beams each disc is
-// tested only against the beams within its angular extent widened by 1e-5 rad on each side (a
-// beam's angle is within 1e-6 rad of its place in the fan, the extent's bearing within 2e-6 rad
-// of atan2's, its half-width an upper bound of asin(r / d), a grazing ray-disc test's rounding
-// orders of magnitude below the rest), and only where the beam's range so far is beyond the
+// tested only against the beams within its angular extent widened by 1e-5 rad on each side and
+// by FanCone's margin (1e-4 rad) (a beam's angle is within 1e-6 rad of its place in the fan, the
+// cone's table gives the bearing's bin exactly and its bounds to within 3e-7 rad, the half-width
+// is an upper bound of asin(r / d), a grazing ray-disc test's rounding orders of magnitude below
+// the rest), and only where the beam's range so far is beyond the
 // disc's distance d - r (less 1e-6 (1 + d), far more than the rounding of a ray-disc hit, which
 // is never nearer than d - r), so the result is the all-pairs loop's, bit for bit: the same
 // test, and the minimum does not depend on the order. Otherwise, every pair.

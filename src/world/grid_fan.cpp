@@ -231,9 +231,7 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
       double t0 = 0.0, t1 = t_max;
       if (best[i] == -kInf || !clip_ray_to_box(o, Vec2(dx[i], dy[i]), cells, t0, t1)) continue;
       const double px = o.x() + t0 * dx[i], py = o.y() + t0 * dy[i];
-      if (!(px > -0.5 && py > -0.5) || (near_line(px) && near_line(py))) {
-        best[i] = -kInf;
-      }
+      if (!(px > -0.5 && py > -0.5) || (near_line(px) && near_line(py))) best[i] = -kInf;
     }
   }
 
@@ -474,7 +472,8 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     // (One call site, so that the ring's work is one piece of code.)
     for (int e = 0; e < 4; ++e) {
       if ((e == 1 && yb == ya) || (e == 3 && xb == xa)) continue;
-      int x0 = e < 2 ? xa : (e == 2 ? xa : xb), x1 = e < 2 ? xb : (e == 2 ? xa : xb);
+      // e: the bottom row, the top row, the left column, the right column (without corners).
+      int x0 = e == 3 ? xb : xa, x1 = e == 2 ? xa : xb;
       int y0 = e == 0 ? ya : (e == 1 ? yb : ya + 1), y1 = e == 0 ? ya : (e == 1 ? yb : yb - 1);
       x0 = std::max(x0, 0), x1 = std::min(x1, tile_cols_ - 1);
       y0 = std::max(y0, 0), y1 = std::min(y1, tile_rows_ - 1);

@@ -20,8 +20,9 @@ namespace floornav::fan_detail {
 
 constexpr double kTwoPi = 2.0 * kPi;
 
-// Margin added on each side of an obstacle's angular extent: covers the coarse atan2, the
-// rounding of the directions and the tolerance on the beams' spacing by orders of magnitude.
+// Margin added on each side of an obstacle's angular extent: covers the coarse atan2 (or the
+// float bounds of FanCone's table), the rounding of the directions and the tolerance on the
+// beams' spacing by orders of magnitude.
 constexpr double kFanMargin = 1e-4;    // rad
 constexpr double kFanAngleTol = 1e-9;  // rad, beam angles against first + k * step
 
