@@ -2,6 +2,7 @@
 #include <cmath>
 #include <optional>
 
+#include "floornav/geometry/fan_cone.hpp"
 #include "floornav/geometry/fan_layout.hpp"
 #include "floornav/geometry/ray.hpp"
 #include "floornav/world/occupancy_grid.hpp"
@@ -16,9 +17,6 @@ namespace {
 
 using fan_detail::even_fan;
 using fan_detail::FanLayout;
-using fan_detail::for_beams_in;
-using fan_detail::kFanMargin;
-using fan_detail::kTwoPi;
 
 // The marks of `scratch` ready for a fan over `items` obstacles: item i is taken in this fan when
 // marks[i] == epoch. Allocates only when the world has more obstacles than the scratch has seen.
@@ -91,6 +89,7 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
   const std::size_t n_segments = segments_.size();
   std::uint32_t* mark = fresh_marks(scratch, n_segments + circles_.size());
   const std::uint32_t epoch = scratch.epoch;
+  const fan_detail::FanCone cone(*fan, 0.0);  // beams and obstacles both in the world frame
   const auto all_beams = [&](auto&& test) {
     for (int k = 0; k < fan->n; ++k) test(k);
   };
@@ -130,11 +129,11 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
           all_beams(test);
           continue;
         }
-        double lo = coarse_atan2(pa.y(), pa.x()), hi = coarse_atan2(pb.y(), pb.x());
-        if (cr < 0.0) std::swap(lo, hi);  // b lies clockwise of a
-        double width = hi - lo;
-        if (width < 0.0) width += kTwoPi;
-        for_beams_in(*fan, lo - kFanMargin, width + 2.0 * kFanMargin, test);
+        if (cr < 0.0) {  // b lies clockwise of a
+          cone.for_beams(pb.x(), pb.y(), pa.x(), pa.y(), test);
+        } else {
+          cone.for_beams(pa.x(), pa.y(), pb.x(), pb.y(), test);
+        }
       }
       for (std::uint32_t k = ix.circle_offsets[c]; k < ix.circle_offsets[c + 1]; ++k) {
         const std::uint32_t id = ix.circle_items[k];
@@ -150,8 +149,7 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
         }
         if (dist - ci.radius > reach) continue;
         const double half = std::asin(ci.radius / dist);
-        const double centre = coarse_atan2(pc.y(), pc.x());
-        for_beams_in(*fan, centre - half - kFanMargin, 2.0 * (half + kFanMargin), test);
+        cone.for_beams_about(pc.x(), pc.y(), half, test);
       }
     }
   }

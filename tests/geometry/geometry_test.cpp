@@ -32,8 +32,8 @@ TEST(WrapAngle, IsIdempotent) {
   }
 }
 
-// The ray fans cull with margins of 1e-5 rad and more around coarse_atan2: its error must stay
-// below the 2e-6 rad it documents, in every octant, on the octant borders and at tiny lengths.
+// coarse_atan2's error stays below the 2e-6 rad it documents, in every octant, on the octant
+// borders and at tiny lengths.
 TEST(CoarseAtan2, StaysWithinTwoMicroradiansOfAtan2) {
   double worst = 0.0;
   for (int i = 0; i < 200000; ++i) {

@@ -112,11 +112,10 @@ void expect_grid_fans_match(const OccupancyGrid& g, Rng& rng, int fans, bool nea
   }
 }
 
-// The fans' floor and ceil without libm: std::floor's and std::ceil's values (a zero may differ
-// in sign, which compares equal), at integers, halves, just beside integers, past 2^52, at
-// infinities and NaN, and on random values of every magnitude.
-TEST(FanLayout, FloorAndCeilByTruncationAreLibms) {
-  using fan_detail::ceil_by_truncation;
+// The fans' floor without libm: std::floor's values (a zero may differ in sign, which compares
+// equal), at integers, halves, just beside integers, past 2^52, at infinities and NaN, and on
+// random values of every magnitude.
+TEST(FanLayout, FloorByTruncationIsLibms) {
   using fan_detail::floor_by_truncation;
   std::vector<double> xs{0.0,
                          -0.0,
@@ -144,10 +143,8 @@ TEST(FanLayout, FloorAndCeilByTruncationAreLibms) {
   for (int i = 0; i < 100000; ++i) xs.push_back(std::ldexp(rng.uniform(-1.0, 1.0), i % 70 - 10));
   for (const double x : xs) {
     EXPECT_EQ(floor_by_truncation(x), std::floor(x)) << x;
-    EXPECT_EQ(ceil_by_truncation(x), std::ceil(x)) << x;
   }
   EXPECT_TRUE(std::isnan(floor_by_truncation(std::nan(""))));
-  EXPECT_TRUE(std::isnan(ceil_by_truncation(std::nan(""))));
 }
 
 // even_fan takes evenly spaced angles, wrapped or not, and refuses one beam off its place by

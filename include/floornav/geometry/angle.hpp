@@ -20,7 +20,7 @@ inline double wrap_angle(double angle) {
 
 /// atan2(y, x) to within 2e-6 rad, for (x, y) != 0: a degree-11 odd polynomial for atan on
 /// [0, 1] (Abramowitz & Stegun style minimax; measured maximum error 1.7e-6), then the octant.
-/// For culling with a margin (the ray fans' angular extents), never for a result.
+/// For culling with a margin, never for a result.
 inline double coarse_atan2(double y, double x) {
   const double ax = std::abs(x), ay = std::abs(y);
   const double a = std::min(ax, ay) / std::max(ax, ay);

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// Even fans of rays (a lidar's beams): the layout check and the angular culling shared by
-/// World::cast_fan, OccupancyGrid::cast_fan and the sensors' fans over other robots. An
+/// Even fans of rays (a lidar's beams): the layout check shared by World::cast_fan,
+/// OccupancyGrid::cast_fan and the sensors' fans over other robots (fan_cone.hpp culls). An
 /// implementation detail (namespace fan_detail), public only because two layers share it.
 
 #include <algorithm>
@@ -20,8 +20,8 @@ namespace floornav::fan_detail {
 
 constexpr double kTwoPi = 2.0 * kPi;
 
-// Margin added on each side of an obstacle's angular extent: covers the coarse atan2 (or the
-// float bounds of FanCone's table), the rounding of the directions and the tolerance on the
+// Margin added on each side of an obstacle's angular extent: covers the float bounds of
+// FanCone's table, the rounding of the directions and the tolerance on the
 // beams' spacing by orders of magnitude.
 constexpr double kFanMargin = 1e-4;    // rad
 constexpr double kFanAngleTol = 1e-9;  // rad, beam angles against first + k * step
@@ -83,33 +83,13 @@ inline std::optional<FanLayout> even_fan(std::span<const double> angles) {
   return f;
 }
 
-// floor and ceil by truncation to an integer: x86-64 before SSE4.1 has no rounding instruction,
-// so std::floor and std::ceil are a dozen instructions each, and the fans take them per obstacle
-// and per tile. The same values (but the sign of a zero result), NaN and huge values included.
+// floor by truncation to an integer: x86-64 before SSE4.1 has no rounding instruction, so
+// std::floor is a dozen instructions, and the fans take it per obstacle and per tile. The same
+// values (but the sign of a zero result), NaN and huge values included.
 inline double floor_by_truncation(double x) {
   if (!(std::abs(x) < 0x1p52)) return std::floor(x);  // an integer already, or NaN
   const double t = static_cast<double>(static_cast<long long>(x));
   return t > x ? t - 1.0 : t;
-}
-inline double ceil_by_truncation(double x) {
-  if (!(std::abs(x) < 0x1p52)) return std::ceil(x);
-  const double t = static_cast<double>(static_cast<long long>(x));
-  return t < x ? t + 1.0 : t;
-}
-
-// Calls f(k) for every beam k whose angle may lie in [start, start + width] (rad, any start,
-// 0 <= width < 2 pi), and possibly a few more.
-template <class F>
-inline void for_beams_in(const FanLayout& fan, double start, double width, F&& f) {
-  double a = start - fan.first;
-  a -= kTwoPi * floor_by_truncation(a * (1.0 / kTwoPi));  // [0, 2 pi], up to rounding
-  const auto range = [&](double lo, double hi) {
-    const double k0 = std::max(0.0, ceil_by_truncation(lo * fan.inv_step));
-    const double k1 = std::min(fan.n - 1.0, floor_by_truncation(hi * fan.inv_step));
-    for (int k = static_cast<int>(k0); k <= static_cast<int>(k1); ++k) f(k);
-  };
-  range(a, a + width);
-  if (a + width >= kTwoPi) range(a - kTwoPi, a + width - kTwoPi);  // wraps past the first beam
 }
 
 }  // namespace floornav::fan_detail
