@@ -287,18 +287,34 @@ void lidar_beams(const Pose2& robot, double c, double s, std::span<const RangeSe
     while (theta <= -kPi) theta += 2.0 * kPi;
     return theta;
   };
-  for (std::size_t anchor = i; anchor < end; anchor += kAnchorEvery) {
-    const std::size_t stop = std::min(end, anchor + kAnchorEvery);
-    const double theta0 = heading(anchor);
-    double x = std::cos(theta0), y = std::sin(theta0);
-    put(anchor, x, y, theta0);
-    for (std::size_t k = anchor + 1; k < stop; ++k) {
-      const double px = x;
-      x = px * tx - y * ty;
-      y = px * ty + y * tx;
-      put(k, x, y, heading(k));
+  // The chains of kAnchorEvery beams from each anchor are independent: stepped side by side
+  // (four at a time), each rotation's latency overlaps the others' (one chain after another
+  // waits on every multiply). Each chain does the same operations as alone: the same bits.
+  const auto chains = [&]<std::size_t N>(std::integral_constant<std::size_t, N>, std::size_t first,
+                                         std::size_t len) {
+    std::array<double, N> xs, ys;
+    for (std::size_t a = 0; a < N; ++a) {
+      const std::size_t anchor = first + a * kAnchorEvery;
+      const double theta0 = heading(anchor);
+      xs[a] = std::cos(theta0);
+      ys[a] = std::sin(theta0);
+      put(anchor, xs[a], ys[a], theta0);
     }
-  }
+    for (std::size_t j = 1; j < len; ++j) {
+      for (std::size_t a = 0; a < N; ++a) {
+        const std::size_t k = first + a * kAnchorEvery + j;
+        const double px = xs[a], py = ys[a];
+        xs[a] = px * tx - py * ty;
+        ys[a] = px * ty + py * tx;
+        put(k, xs[a], ys[a], heading(k));
+      }
+    }
+  };
+  std::size_t k = i;
+  for (; end - k >= 4 * kAnchorEvery; k += 4 * kAnchorEvery)
+    chains(std::integral_constant<std::size_t, 4>{}, k, kAnchorEvery);
+  for (; k < end; k += kAnchorEvery)
+    chains(std::integral_constant<std::size_t, 1>{}, k, std::min(kAnchorEvery, end - k));
 }
 
 // sense_ranges over runs: `run_end(i)` is fan_end(beams, sensors, i, i); `layout` (may be null)
