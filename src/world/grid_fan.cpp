@@ -21,10 +21,10 @@ namespace floornav {
 using cell_detail::clamp_cell;
 using grid_detail::kInf;
 
-// The side of the square tiles (cells) the runs are kept by. Instructions per fan (callgrind,
-// 180-beam fans at 8 m on the cave maps): 16 cells 1.32x those of 32, 64 cells 0.97x, 128 cells
-// 1.12x; 32 also keeps the tiles fine for 3.5 m lidars.
-constexpr int kTile = 32;
+// The side of the square tiles (cells) the runs are kept by. Robot steps per second on Stage's
+// cave (one robot, 180 beams, x86-64-v3 clone, interleaved runs): 64 cells 1.06x those of 32 at
+// 8 m and 1.04x at 3.5 m, 1.11x with 100 robots; 128 cells 0.99x (docs/PERFORMANCE.md).
+constexpr int kTile = OccupancyGrid::kFanTile;
 
 namespace {
 

@@ -39,7 +39,7 @@ void lidar(double heading, double fov, int n, std::vector<Vec2>& dirs,
   }
 }
 
-// Fans from `fans` free origins of `g` (some on cell corners and on the 32-cell tile borders),
+// Fans from `fans` free origins of `g` (some on cell corners and on the fan's tile borders),
 // half of them 180 degrees wide and half full turns, each at one of `ranges`: every beam bit for
 // bit the cell-by-cell walk. Returns the number of beams that hit something.
 long expect_fans_match_oracle(const OccupancyGrid& g, Rng& rng, int fans,
@@ -60,7 +60,8 @@ long expect_fans_match_oracle(const OccupancyGrid& g, Rng& rng, int fans,
     }
     if (g.origin().theta == 0.0 && f % 4 == 2) {
       const Vec2 cell = (p - g.origin().position) / res;
-      p = g.origin().position + Vec2(32.0 * std::round(cell.x() / 32.0), cell.y()) * res;
+      constexpr double tile = OccupancyGrid::kFanTile;
+      p = g.origin().position + Vec2(tile * std::round(cell.x() / tile), cell.y()) * res;
     }
     if (!(g.clearance(p) > 0.0)) {
       --f;
@@ -131,7 +132,7 @@ TEST(GridFanLongRange, MatchesTheCellByCellWalkOnTurnedRandomGrids) {
 }
 
 // Worked by hand: a wall (column 40, rows 0..79) seen across a tile border, and a second wall
-// behind it (column 60) that the first hides; the origin on the tile border y = 32.
+// behind it (column 60) that the first hides; the origin on the tile border y = 64.
 TEST(GridFanLongRange, ANearWallHidesTheOneBehindIt) {
   constexpr int n = 80;
   std::vector<std::uint8_t> cells(n * n, 0);
@@ -140,7 +141,8 @@ TEST(GridFanLongRange, ANearWallHidesTheOneBehindIt) {
     cells[static_cast<std::size_t>(y) * n + 60] = 1;
   }
   const OccupancyGrid g(n, n, 0.5, Pose2{Vec2(0.0, 0.0), 0.0}, cells);
-  const Vec2 o(5.5 * 0.5, 32.0 * 0.5);  // cell units (5.5, 32)
+  static_assert(OccupancyGrid::kFanTile == 64, "the origin below is on a tile border");
+  const Vec2 o(5.5 * 0.5, 64.0 * 0.5);  // cell units (5.5, 64)
   std::vector<Vec2> dirs;
   std::vector<double> angles;
   lidar(0.0, kPi, 181, dirs, angles);  // 1 degree apart; beam 90 points along +x
@@ -148,7 +150,7 @@ TEST(GridFanLongRange, ANearWallHidesTheOneBehindIt) {
   g.cast_fan(o, dirs, angles, 100.0, out);
   // Along +x the walk enters column 40 at x = 40: 34.5 cells = 17.25 m, not column 60's 27.25 m.
   EXPECT_EQ(out[90], 17.25);
-  // At 60 degrees: x = 40 is reached at t = 34.5 / cos 60 = 69 cells, y = 32 + 69 sin 60 = 91.8,
+  // At 60 degrees: x = 40 is reached at t = 34.5 / cos 60 = 69 cells, y = 64 + 69 sin 60 = 123.8,
   // past the grid's top (80): that beam leaves the grid and reads the range.
   EXPECT_EQ(out[150], 100.0);
   for (std::size_t k = 0; k < dirs.size(); ++k) {

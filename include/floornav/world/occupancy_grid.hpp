@@ -95,6 +95,11 @@ class OccupancyGrid {
   /// cell is occupied or (ix, iy) is outside the grid.
   std::int32_t nearest_occupied_index(int ix, int iy) const;
 
+  /// The side (cells) of the square tiles by which cast_fan keeps the runs of occupied cells it
+  /// tests: tiles wholly beyond every beam's hit so far are passed over. Public for the tests,
+  /// which put origins on tile borders.
+  static constexpr int kFanTile = 64;
+
  private:
   Vec2 to_grid(const Vec2& world) const;  // metres, grid frame
   Vec2 to_world(const Vec2& grid) const;  // inverse of to_grid
