@@ -22,17 +22,33 @@ Vec2 origin_of(const Pose2& robot, double c, double s, const RangeSensorSpec& sp
   return robot.position + Vec2(c * m.x() - s * m.y(), s * m.x() + c * m.y());
 }
 
-SensorBeam beam_of(const Pose2& robot, double c, double s, const RangeSensorSpec& spec) {
+// The heading of a sensor mounted at `mount_theta` on a robot heading `robot_theta`: the exact
+// sum, wrapped into (-pi, pi] by whole turns (per beam, where wrap_angle's atan2 would cost a sine,
+// a cosine and an arctangent). A sum beyond a turn and a half either way (a mount angle far out of
+// range) or not finite is left to wrap_angle.
+double beam_heading(double robot_theta, double mount_theta) {
+  double theta = robot_theta + mount_theta;
+  if (!(std::abs(theta) <= 3.0 * kPi)) return wrap_angle(theta);
+  while (theta > kPi) theta -= 2.0 * kPi;
+  while (theta <= -kPi) theta += 2.0 * kPi;
+  return theta;
+}
+
+// The beam of a single sensor: its direction is the mount's (cos, sin) turned by the robot's
+// (c, s), the chapter's composition of the sensor frame with the robot frame, rather than a sine
+// and a cosine of the summed heading per sensor per step.
+SensorBeam beam_of(const Pose2& robot, double c, double s, const RangeSensorSpec& spec,
+                   const Vec2& mount_dir) {
   SensorBeam b;
   b.origin = origin_of(robot, c, s, spec);
-  b.theta = wrap_angle(robot.theta + spec.mount.theta);
-  // A sensor facing straight ahead has the robot's own heading, whose cosine and sine are c, s
-  // (compared as bits: -0 + 0 is +0, whose sine differs in sign).
-  if (std::bit_cast<std::uint64_t>(b.theta) == std::bit_cast<std::uint64_t>(robot.theta))
-    b.dir = Vec2(c, s);
-  else
-    b.dir = Vec2(std::cos(b.theta), std::sin(b.theta));
+  b.theta = beam_heading(robot.theta, spec.mount.theta);
+  const double mc = mount_dir.x(), ms = mount_dir.y();
+  b.dir = Vec2(c * mc - s * ms, s * mc + c * ms);
   return b;
+}
+
+SensorBeam beam_of(const Pose2& robot, double c, double s, const RangeSensorSpec& spec) {
+  return beam_of(robot, c, s, spec, mount_direction(spec));
 }
 
 // A margin against rounding: the disc's radius is a lower bound computed in floating point.
@@ -282,10 +298,7 @@ void lidar_beams(const Pose2& robot, double c, double s, std::span<const RangeSe
     b.theta = theta;
   };
   const auto heading = [&](std::size_t k) {
-    double theta = robot_theta + sensors[k].mount.theta;
-    while (theta > kPi) theta -= 2.0 * kPi;
-    while (theta <= -kPi) theta += 2.0 * kPi;
-    return theta;
+    return beam_heading(robot_theta, sensors[k].mount.theta);
   };
   // The chains of kAnchorEvery beams from each anchor are independent: stepped side by side
   // (four at a time), each rotation's latency overlaps the others' (one chain after another
@@ -356,12 +369,20 @@ void sense_runs(const World& world, std::span<const SensorBeam> beams,
 
 }  // namespace
 
+Vec2 mount_direction(const RangeSensorSpec& sensor) {
+  return {std::cos(sensor.mount.theta), std::sin(sensor.mount.theta)};
+}
+
 SensorLayout::SensorLayout(std::span<const RangeSensorSpec> sensors)
-    : fan_end_(sensors.size()), max_range_(sensors.size()), min_range_(sensors.size()) {
+    : fan_end_(sensors.size()),
+      max_range_(sensors.size()),
+      min_range_(sensors.size()),
+      mount_dir_(sensors.size()) {
   const std::size_t n = sensors.size();
   for (std::size_t i = 0; i < n; ++i) {
     min_range_[i] = sensors[i].min_range;
     max_range_[i] = sensors[i].max_range;
+    mount_dir_[i] = mount_direction(sensors[i]);
   }
   // compute_sensor_beams' walk (none with fewer sensors than a lidar).
   for (std::size_t i = 0; n >= kMinFanBeams && i < n;) {
@@ -421,11 +442,11 @@ void compute_sensor_beams(const Pose2& robot, const Vec2& heading,
   const double c = heading.x(), s = heading.y();
   std::size_t i = 0;
   for (const SensorLayout::Lidar& lidar : layout.lidars()) {
-    for (; i < lidar.begin; ++i) beams[i] = beam_of(robot, c, s, sensors[i]);
+    for (; i < lidar.begin; ++i) beams[i] = beam_of(robot, c, s, sensors[i], layout.mount_dir(i));
     lidar_beams(robot, c, s, sensors, lidar.begin, lidar.end, lidar.turn, beams);
     i = lidar.end;
   }
-  for (; i < sensors.size(); ++i) beams[i] = beam_of(robot, c, s, sensors[i]);
+  for (; i < sensors.size(); ++i) beams[i] = beam_of(robot, c, s, sensors[i], layout.mount_dir(i));
 }
 
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,

@@ -38,11 +38,11 @@ std::uint64_t hash_of(const std::string& file) {
 
 TEST(GoldenTrajectory, ChapterScenarios) {
   const std::pair<const char*, std::uint64_t> kGolden[] = {
-      {"factory_delivery.yaml", 0xd570e4d4781ee532ull},
-      {"rectangle.yaml", 0xe21cc347dc746587ull},
-      {"week7_pocket.yaml", 0x41eb383b2a55c859ull},
-      {"concave_obstacle.yaml", 0xc1461dafed308ab5ull},
-      {"coppeliasim_pioneer.yaml", 0x9440cd8a384e8340ull},
+      {"factory_delivery.yaml", 0x3121c4753356e825ull},
+      {"rectangle.yaml", 0xdcc94f200774bcaaull},
+      {"week7_pocket.yaml", 0x99d07b8463623a2bull},
+      {"concave_obstacle.yaml", 0xe7ed072a8b3c689dull},
+      {"coppeliasim_pioneer.yaml", 0x861b13221a8e1eb2ull},
   };
   for (const auto& [file, expected] : kGolden) {
     EXPECT_EQ(hash_of(file), expected) << file << ": the trajectory changed";

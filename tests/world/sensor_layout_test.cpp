@@ -128,33 +128,54 @@ TEST(SensorLayout, BeamsMatchThePlainFunction) {
   }
 }
 
-// A single-beam sensor's direction is (cos, sin) of its wrapped heading, bit for bit; one facing
-// straight ahead reuses the robot's own cosine and sine, given or taken (and a robot heading of
-// -0, whose sensor heading -0 + 0 is +0, takes the sine of +0).
-TEST(SensorLayout, SingleBeamDirectionsAreTheCosineAndSineOfTheirHeadings) {
-  std::vector<RangeSensorSpec> sensors(4);
-  const double mounts[] = {0.0, -0.0, kPi / 2, -2.5};
+// A single-beam sensor's heading is the exact sum of the robot's and the mount's, wrapped by
+// whole turns (-2.5 + -2 is -4.5, i.e. 2pi - 4.5); its direction is the mount's (cos, sin) turned
+// by the robot's, bit for bit, given or taken, and within 1e-15 of (cos, sin) of the heading. A
+// sensor facing straight ahead (mount 0 or -0) has the robot's own cosine and sine.
+TEST(SensorLayout, SingleBeamDirectionsAreTheMountTurnedByTheRobot) {
+  std::vector<RangeSensorSpec> sensors(5);
+  const double mounts[] = {0.0, -0.0, kPi / 2, -2.5, 3.0};
   for (std::size_t k = 0; k < sensors.size(); ++k) {
     sensors[k].mount = {Vec2(0.1, 0.0), mounts[k]};
     sensors[k].max_range = 0.3;
   }
   const SensorLayout layout(sensors);
-  std::vector<SensorBeam> beams(sensors.size()), given(sensors.size());
+  std::vector<SensorBeam> beams(sensors.size()), given(sensors.size()), plain(sensors.size());
   Rng rng(5);
   for (int i = 0; i < 300; ++i) {
-    const double theta = i == 0 ? -0.0 : i == 1 ? 0.0 : rng.uniform(-kPi, kPi);
+    const double theta = i == 0 ? -0.0 : i == 1 ? 0.0 : i == 2 ? -2.0 : rng.uniform(-kPi, kPi);
     const Pose2 robot{Vec2(rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0)), theta};
+    const double c = std::cos(theta), s = std::sin(theta);
     compute_sensor_beams(robot, sensors, layout, beams);
-    compute_sensor_beams(robot, Vec2(std::cos(theta), std::sin(theta)), sensors, layout, given);
+    compute_sensor_beams(robot, Vec2(c, s), sensors, layout, given);
+    compute_sensor_beams(robot, sensors, plain);
     for (std::size_t k = 0; k < sensors.size(); ++k) {
-      const double heading = wrap_angle(theta + mounts[k]);
+      double heading = theta + mounts[k];
+      if (heading > kPi) heading -= 2.0 * kPi;
+      if (heading <= -kPi) heading += 2.0 * kPi;
       ASSERT_EQ(bits(beams[k].theta), bits(heading)) << i << " " << k;
-      ASSERT_EQ(bits(beams[k].dir.x()), bits(std::cos(heading))) << i << " " << k;
-      ASSERT_EQ(bits(beams[k].dir.y()), bits(std::sin(heading))) << i << " " << k;
-      ASSERT_EQ(bits(given[k].dir.x()), bits(beams[k].dir.x())) << i << " " << k;
-      ASSERT_EQ(bits(given[k].dir.y()), bits(beams[k].dir.y())) << i << " " << k;
+      EXPECT_NEAR(beams[k].theta, wrap_angle(theta + mounts[k]), 1e-15) << i << " " << k;
+      const double mc = std::cos(mounts[k]), ms = std::sin(mounts[k]);
+      ASSERT_EQ(bits(beams[k].dir.x()), bits(c * mc - s * ms)) << i << " " << k;
+      ASSERT_EQ(bits(beams[k].dir.y()), bits(s * mc + c * ms)) << i << " " << k;
+      EXPECT_NEAR(beams[k].dir.x(), std::cos(heading), 1e-15) << i << " " << k;
+      EXPECT_NEAR(beams[k].dir.y(), std::sin(heading), 1e-15) << i << " " << k;
+      if (mounts[k] == 0.0) {
+        EXPECT_EQ(beams[k].dir.x(), c) << i << " " << k;
+        EXPECT_EQ(beams[k].dir.y(), s) << i << " " << k;
+      }
+      for (const auto* other : {&given, &plain}) {
+        ASSERT_EQ(bits((*other)[k].dir.x()), bits(beams[k].dir.x())) << i << " " << k;
+        ASSERT_EQ(bits((*other)[k].dir.y()), bits(beams[k].dir.y())) << i << " " << k;
+        ASSERT_EQ(bits((*other)[k].theta), bits(beams[k].theta)) << i << " " << k;
+      }
     }
   }
+  // The case worked by hand: robot at -2.0 rad, mount -2.5 rad: -4.5 + 2pi = 1.78318530718 rad.
+  compute_sensor_beams(Pose2{Vec2::Zero(), -2.0}, sensors, layout, beams);
+  EXPECT_NEAR(beams[3].theta, 1.7831853071795865, 1e-15);
+  EXPECT_NEAR(beams[3].dir.x(), -0.2107957994307797, 1e-15);  // cos 1.78318530718
+  EXPECT_NEAR(beams[3].dir.y(), 0.9775301176650970, 1e-15);   // sin 1.78318530718
 }
 
 // A walled floor of boxes over a sparse occupancy grid.

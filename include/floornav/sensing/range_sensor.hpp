@@ -38,12 +38,17 @@ struct FreeDisc {
   double radius{0.0};         ///< m
 };
 
+/// The direction (cos, sin) of a sensor's mount heading, in the robot frame.
+Vec2 mount_direction(const RangeSensorSpec& sensor);
+
 /// Writes the world-frame beam of each of `sensors` mounted on `robot` to `beams` (same size):
-/// `robot.compose(mount)` and its heading, bit for bit, with the robot's sine and cosine taken
-/// once for all sensors. A lidar (a run of at least 16 single-beam sensors on one mount point,
-/// evenly spaced in heading) turns each beam's direction from the previous one instead of taking
-/// a sine and a cosine per beam: within 1e-13 of the exact direction, and the heading is the
-/// exact sum, wrapped. No allocation.
+/// the origin is `robot.compose(mount)`'s position, bit for bit; the heading is the exact sum
+/// robot.theta + mount.theta wrapped by whole turns; the direction is the mount's
+/// (mount_direction) turned by the robot's heading, the chapter's composition of the sensor frame
+/// with the robot frame: within 1e-15 of (cos, sin) of the heading, with the robot's sine
+/// and cosine taken once for all sensors. A lidar (a run of at least 16 single-beam sensors on one
+/// mount point, evenly spaced in heading) turns each beam's direction from the previous one: within
+/// 1e-13 of the exact direction. No allocation.
 void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
                           std::span<SensorBeam> beams);
 
@@ -73,12 +78,15 @@ class SensorLayout {
   /// Each sensor's min_range and max_range, contiguous (the noiseless clamp of a fan).
   std::span<const double> min_ranges() const { return min_range_; }
   std::span<const double> max_ranges() const { return max_range_; }
+  /// Sensor `i`'s mount direction (cos, sin) in the robot frame (mount_direction).
+  const Vec2& mount_dir(std::size_t i) const { return mount_dir_[i]; }
 
  private:
   std::vector<Lidar> lidars_;
   std::vector<std::size_t> fan_end_;
   std::vector<double> max_range_;
   std::vector<double> min_range_;
+  std::vector<Vec2> mount_dir_;
 };
 
 /// compute_sensor_beams above with the lidars of `layout` (built from `sensors`) rather than
