@@ -22,16 +22,20 @@ Vec2 origin_of(const Pose2& robot, double c, double s, const RangeSensorSpec& sp
   return robot.position + Vec2(c * m.x() - s * m.y(), s * m.x() + c * m.y());
 }
 
-// The heading of a sensor mounted at `mount_theta` on a robot heading `robot_theta`: the exact
-// sum, wrapped into (-pi, pi] by whole turns (per beam, where wrap_angle's atan2 would cost a sine,
-// a cosine and an arctangent). A sum beyond a turn and a half either way (a mount angle far out of
-// range) or not finite is left to wrap_angle.
-double beam_heading(double robot_theta, double mount_theta) {
-  double theta = robot_theta + mount_theta;
-  if (!(std::abs(theta) <= 3.0 * kPi)) return wrap_angle(theta);
+// `theta` wrapped into (-pi, pi] by whole turns; for |theta| <= 3 pi (at most one turn taken).
+double wrap_turns(double theta) {
   while (theta > kPi) theta -= 2.0 * kPi;
   while (theta <= -kPi) theta += 2.0 * kPi;
   return theta;
+}
+
+// The heading of a sensor mounted at `mount_theta` on a robot heading `robot_theta`: the exact
+// sum, wrapped by whole turns (per beam, where wrap_angle's atan2 would cost a sine, a cosine and
+// an arctangent). A sum beyond a turn and a half either way (a mount angle far out of range) or
+// not finite is left to wrap_angle.
+double beam_heading(double robot_theta, double mount_theta) {
+  const double theta = robot_theta + mount_theta;
+  return std::abs(theta) <= 3.0 * kPi ? wrap_turns(theta) : wrap_angle(theta);
 }
 
 // The beam of a single sensor: its direction is the mount's (cos, sin) turned by the robot's
@@ -297,14 +301,24 @@ void lidar_beams(const Pose2& robot, double c, double s, std::span<const RangeSe
     b.dir.y() = y;
     b.theta = theta;
   };
-  const auto heading = [&](std::size_t k) {
+  // The mount angles of a lidar lie between its first's and its last's: when this holds, every
+  // sum is within a turn and a half, and whole turns wrap it (beam_heading's guard once, not per
+  // beam; the same bits either way).
+  const bool within_turns =
+      std::abs(robot_theta) +
+          std::max(std::abs(sensors[i].mount.theta), std::abs(sensors[end - 1].mount.theta)) <=
+      2.5 * kPi;
+  const auto by_turns = [&](std::size_t k) {
+    return wrap_turns(robot_theta + sensors[k].mount.theta);
+  };
+  const auto guarded = [&](std::size_t k) {
     return beam_heading(robot_theta, sensors[k].mount.theta);
   };
   // The chains of kAnchorEvery beams from each anchor are independent: stepped side by side
   // (four at a time), each rotation's latency overlaps the others' (one chain after another
   // waits on every multiply). Each chain does the same operations as alone: the same bits.
   const auto chains = [&]<std::size_t N>(std::integral_constant<std::size_t, N>, std::size_t first,
-                                         std::size_t len) {
+                                         std::size_t len, const auto& heading) {
     std::array<double, N> xs, ys;
     for (std::size_t a = 0; a < N; ++a) {
       const std::size_t anchor = first + a * kAnchorEvery;
@@ -323,11 +337,17 @@ void lidar_beams(const Pose2& robot, double c, double s, std::span<const RangeSe
       }
     }
   };
-  std::size_t k = i;
-  for (; end - k >= 4 * kAnchorEvery; k += 4 * kAnchorEvery)
-    chains(std::integral_constant<std::size_t, 4>{}, k, kAnchorEvery);
-  for (; k < end; k += kAnchorEvery)
-    chains(std::integral_constant<std::size_t, 1>{}, k, std::min(kAnchorEvery, end - k));
+  const auto all = [&](const auto& heading) {
+    std::size_t k = i;
+    for (; end - k >= 4 * kAnchorEvery; k += 4 * kAnchorEvery)
+      chains(std::integral_constant<std::size_t, 4>{}, k, kAnchorEvery, heading);
+    for (; k < end; k += kAnchorEvery)
+      chains(std::integral_constant<std::size_t, 1>{}, k, std::min(kAnchorEvery, end - k), heading);
+  };
+  if (within_turns)
+    all(by_turns);
+  else
+    all(guarded);
 }
 
 // sense_ranges over runs: `run_end(i)` is fan_end(beams, sensors, i, i); `layout` (may be null)

@@ -178,6 +178,26 @@ TEST(SensorLayout, SingleBeamDirectionsAreTheMountTurnedByTheRobot) {
   EXPECT_NEAR(beams[3].dir.y(), 0.9775301176650970, 1e-15);   // sin 1.78318530718
 }
 
+// Mount angles far outside a turn (as a library user may pass them) wrap as wrap_angle does, to
+// the rounding of the sum, and take no time: whole turns are taken only within a turn and a half.
+TEST(SensorLayout, MountAnglesFarOutsideATurnWrapWithoutLooping) {
+  std::vector<RangeSensorSpec> sensors(3);
+  const double mounts[] = {1e300, -7.5, 40.0};
+  for (std::size_t k = 0; k < sensors.size(); ++k) {
+    sensors[k].mount = {Vec2::Zero(), mounts[k]};
+    sensors[k].max_range = 1.0;
+  }
+  std::vector<SensorBeam> beams(sensors.size());
+  compute_sensor_beams(Pose2{Vec2::Zero(), 3.0}, sensors, beams);
+  for (std::size_t k = 0; k < sensors.size(); ++k) {
+    EXPECT_GT(beams[k].theta, -kPi) << k;
+    EXPECT_LE(beams[k].theta, kPi) << k;
+    EXPECT_NEAR(beams[k].theta, wrap_angle(3.0 + mounts[k]), 1e-12) << k;
+  }
+  // -7.5 + 3 = -4.5: one turn up, 2pi - 4.5 = 1.783185307 rad.
+  EXPECT_NEAR(beams[1].theta, 1.7831853071795865, 1e-15);
+}
+
 // A walled floor of boxes over a sparse occupancy grid.
 std::unique_ptr<World> floor_world(Rng& rng, std::shared_ptr<const OccupancyGrid>& grid) {
   WorldDesc d;
