@@ -26,7 +26,7 @@ struct RangeSensorSpec {
 /// direction computed once for both the ray cast and the obstacle point.
 struct SensorBeam {
   Vec2 origin{Vec2::Zero()};  ///< m, world frame
-  Vec2 dir{1.0, 0.0};         ///< unit vector (cos theta, sin theta)
+  Vec2 dir{1.0, 0.0};         ///< unit vector, (cos theta, sin theta) to within 1e-13
   double theta{0.0};          ///< rad, world frame, wrapped to (-pi, pi]
 };
 
