@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/fan_cone.hpp"
