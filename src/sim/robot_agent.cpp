@@ -42,10 +42,11 @@ void SensingScratch::fit(std::size_t sensors) {
 
 RobotAgent::RobotAgent(AgentSetup setup)
     : world_(setup.world),
-      robot_(&setup.task->robot),
-      sensor_layout_(robot_->sensors),
+      robot_(setup.robot ? setup.robot : &setup.task->robot),
+      sensor_layout_(setup.sensor_layout ? std::move(setup.sensor_layout)
+                                         : std::make_shared<const SensorLayout>(robot_->sensors)),
       goals_(setup.task->goals),
-      nav_(&setup.task->controller.params),
+      nav_(setup.params ? setup.params : &setup.task->controller.params),
       sim_(setup.sim),
       controller_(std::move(setup.controller)),
       rng_(setup.seed),
@@ -184,9 +185,9 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others,
   const std::span<double> ranges(scratch.ranges.data(), n_sensors);
   heading_ = Vec2(std::cos(pose_.theta), std::sin(pose_.theta));
   heading_theta_ = pose_.theta;
-  compute_sensor_beams(pose_, heading_, robot.sensors, sensor_layout_, beams);
+  compute_sensor_beams(pose_, heading_, robot.sensors, *sensor_layout_, beams);
   const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
-  sense_ranges(*world_, beams, robot.sensors, sensor_layout_, robot.sensor_noise, rng_, ranges,
+  sense_ranges(*world_, beams, robot.sensors, *sensor_layout_, robot.sensor_noise, rng_, ranges,
                scratch.fan, free, others, boxes);
   if (sim_->record_ranges_every > 0 && result_.steps % sim_->record_ranges_every == 0) {
     // A step that only switched goals senses again at the same pose: that frame is replaced.

@@ -188,6 +188,24 @@ TEST(Fleet, AFleetOfOneRunsExactlyAsALoneRobot) {
   }
 }
 
+// Robots of one model read one copy of the body, sensors and controller parameters (a fleet step's
+// working set); a robot that differs in any of them keeps its own.
+TEST(Fleet, RobotsOfOneModelShareOneCopyOfItAndOthersKeepTheirOwn) {
+  Scenario s = scenario_file("fleet_crossing.yaml");
+  ASSERT_EQ(s.robots.size(), 4u);
+  s.robots[3].robot.sensors[0].max_range += 0.01;  // another sensor
+  s.robots[2].controller.params.v0 *= 0.99;        // another cruise speed
+  const FleetSimulation fleet = make_fleet_simulation(s);
+  EXPECT_EQ(&fleet.robot(0).robot(), &fleet.robot(1).robot());
+  EXPECT_EQ(&fleet.robot(0).robot(), &fleet.robot(2).robot());
+  EXPECT_NE(&fleet.robot(0).robot(), &fleet.robot(3).robot());
+  EXPECT_EQ(fleet.robot(3).robot(), s.robots[3].robot);
+  EXPECT_EQ(&fleet.robot(0).params(), &fleet.robot(1).params());
+  EXPECT_NE(&fleet.robot(0).params(), &fleet.robot(2).params());
+  EXPECT_EQ(fleet.robot(2).params().v0, s.robots[2].controller.params.v0);
+  EXPECT_EQ(&fleet.robot(0).params(), &fleet.robot(3).params());
+}
+
 // Four robots meet in the middle of a hall and go round each other (a roundabout emerges from
 // the clockwise boundary following); everyone arrives and nobody touches.
 TEST(Fleet, FourRobotsCrossingAHallGoRoundEachOther) {

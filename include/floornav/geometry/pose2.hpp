@@ -28,6 +28,10 @@ struct Pose2 {
   /// The pose whose composition with this one is the identity.
   Pose2 inverse() const { return {-rotate(position, -theta), wrap_angle(-theta)}; }
 
+  bool operator==(const Pose2& other) const {
+    return position == other.position && theta == other.theta;
+  }
+
   bool is_finite() const { return floornav::is_finite(position) && std::isfinite(theta); }
 };
 

@@ -11,6 +11,7 @@ struct DiffDriveParams {
   double track_width{0.09925};    ///< L, metres between the wheels (QuickBot: 0.09925)
   double max_wheel_speed{13.61};  ///< rad/s each wheel, both directions (QuickBot: 130 RPM)
   double min_wheel_speed{0.0};    ///< rad/s; a wheel asked for less (but not 0) stalls to 0
+  bool operator==(const DiffDriveParams&) const = default;
 };
 
 /// Wheel angular speeds, rad/s.

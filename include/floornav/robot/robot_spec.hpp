@@ -25,6 +25,7 @@ struct RobotSpec {
   /// chapter); the `dwa` controller builds its dynamic window from them.
   double max_acceleration{1.0};
   double max_angular_acceleration{5.0};
+  bool operator==(const RobotSpec&) const = default;
 };
 
 /// `beams` single-beam sensors spread evenly over `fov` radians centred on the mount's heading

@@ -20,6 +20,7 @@ struct RangeSensorSpec {
   double max_range{0.30};  ///< metres; "nothing seen" reads as this
   double cone_angle{0.0};  ///< full cone width, radians; 0 for a single beam (lidar, IR)
   int cone_rays{1};        ///< rays cast across the cone (the nearest return wins)
+  bool operator==(const RangeSensorSpec&) const = default;
 };
 
 /// One sensor's axis in the world frame at one step: `robot.compose(mount)`, with its unit

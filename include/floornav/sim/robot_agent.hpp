@@ -62,6 +62,12 @@ struct AgentSetup {
   /// Reserve the trajectory for t_max up front when recording (a lone robot: no reallocation in
   /// the step loop). Fleets grow it instead: most robots finish long before t_max.
   bool reserve_trajectory{true};
+  /// A robot model shared by agents (a fleet's robots of one kind read one copy, which keeps a
+  /// step's working set small): `robot`, equal to task->robot, with `sensor_layout` made from its
+  /// sensors, and `params`, equal to task->controller.params. nullptr: the task's own.
+  const RobotSpec* robot{nullptr};
+  std::shared_ptr<const SensorLayout> sensor_layout;
+  const NavigationParams* params{nullptr};
 };
 
 class RobotAgent {
@@ -104,6 +110,7 @@ class RobotAgent {
   double time() const { return t_; }
   double body_radius() const { return robot_->body_radius; }
   const RobotSpec& robot() const { return *robot_; }
+  const NavigationParams& params() const { return *nav_; }
   const Controller& controller() const { return *controller_; }
   /// The mode the controller reported last.
   int mode() const { return mode_; }
@@ -129,7 +136,8 @@ class RobotAgent {
 
   const World* world_;
   const RobotSpec* robot_;
-  SensorLayout sensor_layout_;  ///< robot_->sensors' lidars and fans, found once
+  /// robot_->sensors' lidars and fans, found once (shared by agents of one model)
+  std::shared_ptr<const SensorLayout> sensor_layout_;
   std::span<const Vec2> goals_;
   const NavigationParams* nav_;
   const SimConfig* sim_;
