@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "floornav/nav/navigation_controller.hpp"
+#include "floornav/sim/robot_models.hpp"
 #include "spin_barrier.hpp"
 
 namespace floornav {
@@ -37,44 +38,6 @@ constexpr std::size_t kRaysPerThread = 2000;
 // nothing), large enough that taking one costs nothing beside stepping it.
 constexpr std::size_t kRobotsPerChunk = 16;
 
-// Robots of one model read one copy of its body, sensors and controller parameters: a fleet
-// step then touches one set of them rather than one per robot, which matters at a thousand
-// robots (each copy would be a few more cache misses per robot step). Tasks that differ keep
-// their own; past this many models a robot keeps its own, so finding them stays linear.
-constexpr std::size_t kMaxSharedModels = 64;
-
-class SharedModels {
- public:
-  void share(const RobotTask& task, AgentSetup& agent) {
-    for (const Model& m : robots_)
-      if (*m.robot == task.robot) {
-        agent.robot = m.robot;
-        agent.sensor_layout = m.layout;
-        break;
-      }
-    if (!agent.robot && robots_.size() < kMaxSharedModels) {
-      robots_.push_back({&task.robot, std::make_shared<const SensorLayout>(task.robot.sensors)});
-      agent.robot = robots_.back().robot;
-      agent.sensor_layout = robots_.back().layout;
-    }
-    for (const NavigationParams* p : params_)
-      if (*p == task.controller.params) {
-        agent.params = p;
-        break;
-      }
-    if (!agent.params && params_.size() < kMaxSharedModels)
-      params_.push_back(agent.params = &task.controller.params);
-  }
-
- private:
-  struct Model {
-    const RobotSpec* robot;
-    std::shared_ptr<const SensorLayout> layout;
-  };
-  std::vector<Model> robots_;
-  std::vector<const NavigationParams*> params_;
-};
-
 }  // namespace
 
 std::string_view to_string(ContactKind kind) {
@@ -96,7 +59,7 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     : world_(world), tasks_(robots), sim_(sim), name_(std::move(name)) {
   const std::size_t n = tasks_.size();
   ControllerMaker controllers;  // robots of one built-in kind share one automaton
-  SharedModels models;
+  RobotModels models;           // and one copy of each robot model
   std::size_t max_sensors = 0;
   double max_reach = 0.0;
   agents_.reserve(n);
@@ -115,7 +78,7 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     a.log_transitions = n == 1 || sim_.record_trajectory;
     a.names = false;
     a.reserve_trajectory = n == 1;
-    models.share(t, a);
+    a.model = models.find(t);
     agents_.emplace_back(std::move(a));
     radius_[i] = t.robot.body_radius;
     reach_[i] = sensing_reach(t.robot);

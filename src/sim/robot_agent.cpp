@@ -42,11 +42,12 @@ void SensingScratch::fit(std::size_t sensors) {
 
 RobotAgent::RobotAgent(AgentSetup setup)
     : world_(setup.world),
-      robot_(setup.robot ? setup.robot : &setup.task->robot),
-      sensor_layout_(setup.sensor_layout ? std::move(setup.sensor_layout)
-                                         : std::make_shared<const SensorLayout>(robot_->sensors)),
+      robot_(setup.model.robot ? setup.model.robot : &setup.task->robot),
+      sensor_layout_(setup.model.sensor_layout
+                         ? std::move(setup.model.sensor_layout)
+                         : std::make_shared<const SensorLayout>(robot_->sensors)),
       goals_(setup.task->goals),
-      nav_(setup.params ? setup.params : &setup.task->controller.params),
+      nav_(setup.model.params ? setup.model.params : &setup.task->controller.params),
       sim_(setup.sim),
       controller_(std::move(setup.controller)),
       rng_(setup.seed),

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "floornav/sim/robot_models.hpp"
+
 namespace floornav {
 
 // --- WorkerPool ------------------------------------------------------------------------------
@@ -105,6 +107,8 @@ VecSimulation::VecSimulation(std::vector<VecCopy> copies, int threads)
   if (copies_.empty()) throw std::invalid_argument("a vector simulation needs at least one copy");
   beams_ = copies_.front().task->robot.sensors.size();
   sims_.reserve(copies_.size());
+  models_.reserve(copies_.size());
+  RobotModels models;  // copies of one kind share one robot model
   for (const VecCopy& c : copies_) {
     if (!c.world || !c.task || !c.sim)
       throw std::invalid_argument("a copy needs a world, a task and sim settings");
@@ -115,6 +119,7 @@ VecSimulation::VecSimulation(std::vector<VecCopy> copies, int threads)
     SimConfig s = *c.sim;
     s.record_trajectory = false;  // a learner keeps what it needs; a run here is not written out
     sims_.push_back(s);
+    models_.push_back(models.find(*c.task));
   }
   agents_.resize(copies_.size());
   scratch_.assign(copies_.size(), SensingScratch(beams_));
@@ -127,6 +132,7 @@ void VecSimulation::reset(std::size_t i, std::uint64_t seed) {
   setup.world = c.world;
   setup.task = c.task;
   setup.sim = &sims_[i];
+  setup.model = models_[i];
   {
     std::lock_guard lock(maker_mutex_);
     setup.controller = maker_.make(c.task->controller, {c.task->robot, c.task->controller.params,

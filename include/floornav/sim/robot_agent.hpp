@@ -49,6 +49,15 @@ struct SensingScratch {
   void fit(std::size_t sensors);
 };
 
+/// A robot model that agents may share (robots of one kind then read one copy, which keeps a
+/// step's working set small; see RobotModels): a body with its sensors' layout, and controller
+/// parameters. Null members: the agent's task's own.
+struct RobotModel {
+  const RobotSpec* robot{nullptr};                    ///< equal to the task's robot
+  std::shared_ptr<const SensorLayout> sensor_layout;  ///< made from robot->sensors
+  const NavigationParams* params{nullptr};            ///< equal to the task's controller.params
+};
+
 /// What an agent needs to know; every reference must outlive it.
 struct AgentSetup {
   const World* world{nullptr};
@@ -62,12 +71,7 @@ struct AgentSetup {
   /// Reserve the trajectory for t_max up front when recording (a lone robot: no reallocation in
   /// the step loop). Fleets grow it instead: most robots finish long before t_max.
   bool reserve_trajectory{true};
-  /// A robot model shared by agents (a fleet's robots of one kind read one copy, which keeps a
-  /// step's working set small): `robot`, equal to task->robot, with `sensor_layout` made from its
-  /// sensors, and `params`, equal to task->controller.params. nullptr: the task's own.
-  const RobotSpec* robot{nullptr};
-  std::shared_ptr<const SensorLayout> sensor_layout;
-  const NavigationParams* params{nullptr};
+  RobotModel model;  ///< shared with other agents of the task's kind; empty: the task's own
 };
 
 class RobotAgent {

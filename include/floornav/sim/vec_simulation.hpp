@@ -113,6 +113,7 @@ class VecSimulation {
   std::vector<VecCopy> copies_;
   std::vector<SimConfig> sims_;  ///< per copy: its seed, nothing recorded
   std::vector<std::optional<RobotAgent>> agents_;
+  std::vector<RobotModel> models_;  ///< per copy, shared by copies of one kind
   std::vector<SensingScratch> scratch_;
   std::size_t beams_{0};
   std::mutex maker_mutex_;  ///< ControllerMaker is not thread-safe; resets may run in parallel
