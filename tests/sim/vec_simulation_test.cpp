@@ -116,6 +116,23 @@ TEST(VecSimulation, EachCopyEqualsASimulationWithItsSeed) {
   }
 }
 
+// Copies of one kind (here two equal scenarios, not one) read one robot model; one with another
+// body keeps its own.
+TEST(VecSimulation, CopiesOfOneKindShareOneRobotModel) {
+  const Scenario a = noisy(), b = noisy();
+  Scenario other = noisy();
+  other.robots[0].robot.body_radius += 0.01;
+  std::vector<VecCopy> mixed = copies(a, 1);
+  mixed.push_back(copies(b, 1).front());
+  mixed.push_back(copies(other, 1).front());
+  VecSimulation vec(mixed, 1);
+  for (std::size_t i = 0; i < 3; ++i) vec.reset(i, i);
+  EXPECT_EQ(&vec.agent(0).robot(), &vec.agent(1).robot());
+  EXPECT_EQ(&vec.agent(0).params(), &vec.agent(1).params());
+  EXPECT_NE(&vec.agent(0).robot(), &vec.agent(2).robot());
+  EXPECT_EQ(vec.agent(2).body_radius(), other.robots[0].robot.body_radius);
+}
+
 TEST(VecSimulation, ControllersDriveWithoutCommandsAndThreadsChangeNothing) {
   const Scenario s = noisy();
   VecSimulation one(copies(s, 40), 1), two(copies(s, 40), 2);
