@@ -20,20 +20,25 @@ Vec2 origin_of(const Pose2& robot, double c, double s, const RangeSensorSpec& sp
   return robot.position + Vec2(c * m.x() - s * m.y(), s * m.x() + c * m.y());
 }
 
-// `theta` wrapped into (-pi, pi] by whole turns; for |theta| <= 3 pi (at most one turn taken).
-double wrap_turns(double theta) {
-  while (theta > kPi) theta -= 2.0 * kPi;
-  while (theta <= -kPi) theta += 2.0 * kPi;
-  return theta;
+// Sums of a heading and a mount angle within this of 0 are at most one turn from (-pi, pi]: a
+// robot's heading (within pi) plus a mount angle within a turn and a half.
+constexpr double kOneTurnAway = 2.5 * kPi;
+
+// `theta` wrapped into (-pi, pi] by at most one whole turn, for |theta| <= kOneTurnAway: a select
+// rather than a loop (no branch in the beam loops). The turn is added exactly (Sterbenz: pi <=
+// |theta| <= 4 pi): the result is theta's true wrap.
+double wrap_turn(double theta) {
+  const double up = theta <= -kPi ? theta + 2.0 * kPi : theta;
+  return theta > kPi ? theta - 2.0 * kPi : up;
 }
 
 // The heading of a sensor mounted at `mount_theta` on a robot heading `robot_theta`: the exact
-// sum, wrapped by whole turns (per beam, where wrap_angle's atan2 would cost a sine, a cosine and
-// an arctangent). A sum beyond a turn and a half either way (a mount angle far out of range) or
-// not finite is left to wrap_angle.
+// sum, wrapped by a whole turn (per beam, where wrap_angle's atan2 would cost a sine, a cosine and
+// an arctangent). A sum farther out (a mount angle far out of range) or not finite is left to
+// wrap_angle.
 double beam_heading(double robot_theta, double mount_theta) {
   const double theta = robot_theta + mount_theta;
-  return std::abs(theta) <= 3.0 * kPi ? wrap_turns(theta) : wrap_angle(theta);
+  return std::abs(theta) <= kOneTurnAway ? wrap_turn(theta) : wrap_angle(theta);
 }
 
 // The beam of a single sensor: its direction is the mount's (cos, sin) turned by the robot's
@@ -300,14 +305,14 @@ void lidar_beams(const Pose2& robot, double c, double s, std::span<const RangeSe
     b.theta = theta;
   };
   // The mount angles of a lidar lie between its first's and its last's: when this holds, every
-  // sum is within a turn and a half, and whole turns wrap it (beam_heading's guard once, not per
-  // beam; the same bits either way).
+  // sum is within kOneTurnAway, and wrap_turn wraps it (beam_heading's guard once, not per beam;
+  // the same bits either way).
   const bool within_turns =
       std::abs(robot_theta) +
           std::max(std::abs(sensors[i].mount.theta), std::abs(sensors[end - 1].mount.theta)) <=
-      2.5 * kPi;
+      kOneTurnAway;
   const auto by_turns = [&](std::size_t k) {
-    return wrap_turns(robot_theta + sensors[k].mount.theta);
+    return wrap_turn(robot_theta + sensors[k].mount.theta);
   };
   const auto guarded = [&](std::size_t k) {
     return beam_heading(robot_theta, sensors[k].mount.theta);
