@@ -43,9 +43,10 @@ double beam_heading(double robot_theta, double mount_theta) {
 
 // The beam of a single sensor: its direction is the mount's (cos, sin) turned by the robot's
 // (c, s), the chapter's composition of the sensor frame with the robot frame, rather than a sine
-// and a cosine of the summed heading per sensor per step.
-SensorBeam beam_of(const Pose2& robot, double c, double s, const RangeSensorSpec& spec,
-                   const Vec2& mount_dir) {
+// and a cosine of the summed heading per sensor per step. Inlined: a call costs as much as it does.
+__attribute__((always_inline)) inline SensorBeam beam_of(const Pose2& robot, double c, double s,
+                                                         const RangeSensorSpec& spec,
+                                                         const Vec2& mount_dir) {
   SensorBeam b;
   b.origin = origin_of(robot, c, s, spec);
   b.theta = beam_heading(robot.theta, spec.mount.theta);
@@ -85,9 +86,12 @@ double finish_reading(double r, const RangeSensorSpec& s, double noise_stddev, R
   return std::clamp(r, s.min_range, s.max_range);
 }
 
-double sense_one(const World& world, const SensorBeam& b, const RangeSensorSpec& s,
-                 double noise_stddev, Rng& rng, const FreeDisc& free,
-                 std::span<const Circle> others, std::span<const OrientedBox> boxes) {
+__attribute__((always_inline)) inline double sense_one(const World& world, const SensorBeam& b,
+                                                       const RangeSensorSpec& s,
+                                                       double noise_stddev, Rng& rng,
+                                                       const FreeDisc& free,
+                                                       std::span<const Circle> others,
+                                                       std::span<const OrientedBox> boxes) {
   const double free_radius = free.radius - kFreeMargin;
   const double from_centre2 = (b.origin - free.centre).squaredNorm();
   const bool known_free = free_radius > 0.0 && from_centre2 < free_radius * free_radius;
