@@ -55,6 +55,7 @@
 #include "floornav/sim/crowd.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/robot_agent.hpp"
+#include "floornav/sim/robot_models.hpp"
 #include "floornav/sim/robot_neighbour_grid.hpp"
 #include "floornav/sim/robot_task.hpp"
 #include "floornav/sim/run_result.hpp"
