@@ -10,6 +10,7 @@
 
 #include "floornav/automaton/hybrid_automaton.hpp"
 #include "floornav/core/input_error.hpp"
+#include "floornav/core/isa_clones.hpp"
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/box2.hpp"

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 
+#include "floornav/core/isa_clones.hpp"
 #include "floornav/geometry/polygon.hpp"
 #include "floornav/nav/behaviours.hpp"
 
@@ -70,6 +71,7 @@ bool corridor_clear(const Vec2& x, const Vec2& goal, std::span<const Vec2> point
   return true;
 }
 
+FLOORNAV_ISA_CLONES
 NavigationInput make_navigation_input(const Vec2& x, const Vec2& goal,
                                       std::span<const Vec2> obstacle_points, double body_radius,
                                       const NavigationParams& p, const BodyShape* shape) {

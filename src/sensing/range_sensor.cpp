@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "floornav/core/isa_clones.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/fan_cone.hpp"
 #include "floornav/geometry/ray.hpp"
@@ -463,6 +464,7 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
                        beams);
 }
 
+FLOORNAV_ISA_CLONES
 void compute_sensor_beams(const Pose2& robot, const Vec2& heading,
                           std::span<const RangeSensorSpec> sensors, const SensorLayout& layout,
                           std::span<SensorBeam> beams) {
@@ -484,6 +486,7 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
              boxes, [&](std::size_t i) { return fan_end(beams, sensors, i, i); });
 }
 
+FLOORNAV_ISA_CLONES
 void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<const RangeSensorSpec> sensors, const SensorLayout& layout,
                   double noise_stddev, Rng& rng, std::span<double> ranges, FanScratch& scratch,
@@ -508,6 +511,7 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
   sense_ranges(world, beams, sensors, noise_stddev, rng, ranges, scratch, free, others, boxes);
 }
 
+FLOORNAV_ISA_CLONES
 std::size_t ranges_to_points(std::span<const SensorBeam> beams,
                              std::span<const RangeSensorSpec> sensors,
                              std::span<const double> ranges, std::span<Vec2> points) {

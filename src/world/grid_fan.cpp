@@ -6,12 +6,12 @@
 #include <type_traits>
 
 #include "cell_index.hpp"
+#include "floornav/core/isa_clones.hpp"
 #include "floornav/geometry/fan_cone.hpp"
 #include "floornav/geometry/fan_layout.hpp"
 #include "floornav/geometry/ray.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "grid_walk.hpp"
-#include "isa_clones.hpp"
 
 // OccupancyGrid::cast_fan: a lidar's beams from one origin, tested against the runs of occupied
 // cells that a walk can enter first (gathered once, when the grid is built).
