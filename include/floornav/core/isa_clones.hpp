@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// FLOORNAV_ISA_CLONES: a hot function compiled twice (the library's own use; public because
-/// modules at every layer mark their hot loops with it).
+/// FLOORNAV_ISA_CLONES, for the library's own hot loops (public because modules at every layer
+/// use it).
 //
-// FLOORNAV_ISA_CLONES: a hot function compiled twice, for x86-64-v3 (AVX2, BMI: VEX's
+// A function marked with it is compiled twice, for x86-64-v3 (AVX2, BMI: VEX's
 // three-operand forms, a rounding instruction for floor) and for the baseline x86-64, the loader
 // taking the one the CPU runs (GCC's target_clones, an ELF ifunc). Both do the same IEEE
 // operations in the same order, none fused (the project builds with -ffp-contract=off), so the
