@@ -148,6 +148,16 @@ void OccupancyGrid::compute_boundary() {
   std::vector<std::int32_t> fill(tile_start_.begin(), tile_start_.end() - 1);
   for (int s = 0; s < 4; ++s)
     for (const Run& r : runs[s]) tile_runs_[fill[4 * tile_of(s, r) + s]++] = r;
+  tile_box_.assign(tiles, CellBox{width_, 0, height_, 0});
+  for (int s = 0; s < 4; ++s) {
+    const bool rows = s >= 2;
+    for (const Run& r : runs[s]) {
+      CellBox& b = tile_box_[tile_of(s, r)];
+      const int x0 = rows ? r.first : r.line, x1 = rows ? r.last + 1 : r.line + 1;
+      const int y0 = rows ? r.line : r.first, y1 = rows ? r.line + 1 : r.last + 1;
+      b = {std::min(b.x0, x0), std::max(b.x1, x1), std::min(b.y0, y0), std::max(b.y1, y1)};
+    }
+  }
   // Each tile's side by component (then line and place, as built): a fan takes one component.
   for (std::size_t g = 0; g + 1 < tile_start_.size(); ++g)
     std::stable_sort(tile_runs_.begin() + tile_start_[g], tile_runs_.begin() + tile_start_[g + 1],
@@ -392,11 +402,11 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
       if (faces) run(side, r->line, *r);
     }
   };
-  // Whether some beam may still take a hit from a cell of box [x0, x1] x [y0, y1] (a tile): a
-  // beam within the box's angular extent whose hit so far (or t_max) is not nearer than the
-  // box's lower bound. When none may, `run` would leave every run of the box untested: each of
-  // its beams is either outside the run's extent (the run's box is inside the tile's), so its
-  // walk touches no cell of the run, or sees the run's lower bound (not below the tile's) above
+  // Whether some beam may still take a hit from a cell of box [x0, x1] x [y0, y1] (the box of a
+  // tile's runs): a beam within the box's angular extent whose hit so far (or t_max) is not
+  // nearer than the box's lower bound. When none may, `run` would leave every run of the box
+  // untested: each of its beams is either outside the run's extent (the run's box is inside), so
+  // its walk touches no cell of the run, or sees the run's lower bound (not below the box's) above
   // its hit so far or above t_max, which a hit h >= lower bound cannot beat.
   //
   // First, without an atan2: a fan narrower than a full turn (a lidar of 180 degrees) leaves out
@@ -441,9 +451,9 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
   const auto tile = [&](int tx, int ty) {
     const std::size_t t = static_cast<std::size_t>(ty) * tile_cols_ + tx;
     if (tile_start_[4 * t] == tile_start_[4 * t + 4]) return;
-    const double x0 = tx * T, x1 = std::min(tx * T + T, width_);
-    const double y0 = ty * T, y1 = std::min(ty * T + T, height_);
-    if (!wanted(x0, x1, y0, y1)) return;
+    // The box of the tile's runs: every cell a run of it holds is in there.
+    const CellBox& b = tile_box_[t];
+    if (!wanted(b.x0, b.x1, b.y0, b.y1)) return;
     tile_side(std::integral_constant<int, 0>{}, t, tx, ty);
     tile_side(std::integral_constant<int, 1>{}, t, tx, ty);
     tile_side(std::integral_constant<int, 2>{}, t, tx, ty);

@@ -158,6 +158,12 @@ class OccupancyGrid {
   int tile_rows_{0};
   std::vector<Run> tile_runs_;
   std::vector<std::int32_t> tile_start_;
+  /// For each tile, the cells its runs cover: [x0, x1) x [y0, y1) (empty for a tile without
+  /// runs). A fan asks whether a beam may still reach this box rather than the whole tile.
+  struct CellBox {
+    std::int32_t x0, x1, y0, y1;
+  };
+  std::vector<CellBox> tile_box_;
   std::size_t occupied_count_{0};
   double cos_yaw_{1.0};
   double sin_yaw_{0.0};
