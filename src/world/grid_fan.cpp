@@ -1,9 +1,11 @@
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <optional>
 #include <type_traits>
+#include <utility>
 
 #include "cell_index.hpp"
 #include "floornav/core/isa_clones.hpp"
@@ -128,15 +130,46 @@ void OccupancyGrid::compute_boundary() {
         // The component this cell's run faces, -1 for a cell in no run.
         const std::int32_t c = i < along && occupied_at(x, y) ? component(x + dx, y + dy) : -1;
         if (open >= 0 && c != open_component) {
-          runs[s].push_back({l, open, i - 1, open_component});
+          runs[s].push_back({l, open, i - 1, open_component, 0});
           open = -1;
         }
         if (c >= 0 && open < 0) open = i, open_component = c;
         // A run ends at a tile border too.
         if (open >= 0 && i % T == T - 1) {
-          runs[s].push_back({l, open, i, open_component});
+          runs[s].push_back({l, open, i, open_component, 0});
           open = -1;
         }
+      }
+    }
+  }
+  // Runs of one cell that another run tests for them (the cave's walls are mostly staircases,
+  // whose cells have two such faces). Run r1 of cell c and side s1 (say the left face, 0) is
+  // covered by run R of a perpendicular side s2 (say the bottom faces of a row, 2) in the same
+  // component that ends at c on r1's side (c is R's first cell). A walk from an origin both
+  // face (left of c's column, below its row) that enters c through its left face moves right
+  // and up, so it crossed R's face line left of c, beyond R's end: R's test of that walk falls
+  // back to the exact test of the cells near the crossing clamped to R, c among them. R's box
+  // holds c, so R's beams and distance cover c's. A fan from such an origin leaves r1 out. R is
+  // longer than one cell or of a later side, so the relation has no cycle: R is tested.
+  for (int s1 = 0; s1 < 4; ++s1) {
+    const bool rows1 = s1 >= 2;
+    for (Run& r1 : runs[s1]) {
+      if (r1.first != r1.last) continue;
+      // The cell's row (for a face of a column run) or column, and its place along it.
+      const int line = r1.first, at = r1.line;
+      for (const int s2 : rows1 ? std::array{0, 1} : std::array{2, 3}) {
+        // runs[s2] is in order of line, then of first cell: the run of `line` holding `at`.
+        const auto after =
+            std::upper_bound(runs[s2].begin(), runs[s2].end(), std::pair{line, at},
+                             [](const std::pair<int, int>& p, const Run& r) {
+                               return p.first < r.line || (p.first == r.line && p.second < r.first);
+                             });
+        if (after == runs[s2].begin()) continue;
+        const Run& r2 = *std::prev(after);
+        const bool at_end = s1 % 2 == 0 ? r2.first == at : r2.last == at;  // left, bottom: first
+        if (r2.line == line && at_end && r2.component == r1.component &&
+            (r2.first != r2.last || s2 > s1))
+          r1.cover |= 1 << s2;
       }
     }
   }
@@ -399,7 +432,15 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
                          : s == 1 ? r->line < ix0
                          : s == 2 ? r->line > iy0
                                   : r->line < iy0;
-      if (faces) run(side, r->line, *r);
+      if (!faces) continue;
+      if (r->cover != 0) {
+        // Left out when a run that tests its cell for it faces the origin too.
+        const int cx = s >= 2 ? r->first : r->line, cy = s >= 2 ? r->line : r->first;
+        if (((r->cover & 1) && cx > ix0) || ((r->cover & 2) && cx < ix0) ||
+            ((r->cover & 4) && cy > iy0) || ((r->cover & 8) && cy < iy0))
+          continue;
+      }
+      run(side, r->line, *r);
     }
   };
   // Whether some beam may still take a hit from a cell of box [x0, x1] x [y0, y1] (the box of a

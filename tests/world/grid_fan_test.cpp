@@ -274,6 +274,19 @@ TEST(GridFan, MatchesCastRayOnRandomGrids) {
         }
       }
     }
+    if (n % 4 == 3) {
+      // Walls at any angle: staircases of cells, whose faces are runs of one cell on two sides
+      // (the cave's walls are mostly such).
+      for (int r = 0; r < 10; ++r) {
+        const double x0 = rng.uniform(0.0, w), y0 = rng.uniform(0.0, h);
+        const double a = rng.uniform(-kPi, kPi), len = rng.uniform(1.0, 80.0);
+        for (double t = 0.0; t <= len; t += 0.25) {
+          const int x = static_cast<int>(x0 + t * std::cos(a));
+          const int y = static_cast<int>(y0 + t * std::sin(a));
+          if (x >= 0 && y >= 0 && x < w && y < h) cells[static_cast<std::size_t>(y) * w + x] = 1;
+        }
+      }
+    }
     const double yaw = n % 3 == 0 ? rng.uniform(-kPi, kPi) : (n % 3 == 1 ? 0.5 * kPi : 0.0);
     const double res = n % 2 == 0 ? 0.05 : 0.1;
     const OccupancyGrid g(w, h, res, Pose2{Vec2(-1.0, -2.0), yaw}, cells);

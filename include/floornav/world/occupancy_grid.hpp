@@ -149,6 +149,10 @@ class OccupancyGrid {
     std::int32_t last;   ///< inclusive
     /// The free component (free_component_) whose walks can touch the run's cells first.
     std::int32_t component;
+    /// For a run of one cell: bit s set when a run of side s (perpendicular, same component)
+    /// has this cell at its end on this run's face, and tests the cell for it: a fan from an
+    /// origin that run faces leaves this one out (grid_fan.cpp).
+    std::int32_t cover{0};
   };
   /// For each free cell, its 4-connected component of free cells (0: the one outside the grid,
   /// which counts as free, and those touching it); -1 for an occupied cell. A fan from a
