@@ -130,7 +130,8 @@ constexpr std::size_t kMinFanBeams = 16;
 // A lidar's beam directions are turned from the previous beam's, and computed exactly every
 // this many beams.
 constexpr std::size_t kAnchorEvery = 32;
-// Four doubles (GCC's vector extensions).
+// Two and four doubles (GCC's vector extensions).
+using V2d = double __attribute__((vector_size(16)));
 using V4d = double __attribute__((vector_size(32)));
 constexpr std::size_t kFanChunk = 256;
 
@@ -330,11 +331,13 @@ void lidar_beams(const Pose2& robot, double c, double s, std::span<const RangeSe
   // waits on every multiply). Each chain does the same operations as alone: the same bits.
   const auto chains = [&]<std::size_t N>(std::integral_constant<std::size_t, N>, std::size_t first,
                                          std::size_t len, const auto& heading) {
-    // Four lanes at a time where there are four chains: the rotations in one vector operation
-    // each (GCC's vector extensions; SSE2 pairs outside the x86-64-v3 clone), lane by lane the
-    // same operations.
-    using Lanes = std::conditional_t<N == 4, V4d, std::array<double, N>>;
-    Lanes xs, ys;
+    // The chains side by side as the lanes of one vector (GCC's vector extensions; SSE2 pairs
+    // outside the x86-64-v3 clone): one operation per rotation for all, lane by lane the same.
+    // Two lanes for a chain alone (GCC takes a vector of one double for a double); the unused
+    // one stays 0.
+    static_assert(N == 1 || N == 4);
+    using Lanes = std::conditional_t<N == 4, V4d, V2d>;
+    Lanes xs{}, ys{};
     for (std::size_t a = 0; a < N; ++a) {
       const std::size_t anchor = first + a * kAnchorEvery;
       const double theta0 = heading(anchor);
@@ -343,22 +346,12 @@ void lidar_beams(const Pose2& robot, double c, double s, std::span<const RangeSe
       put(anchor, xs[a], ys[a], theta0);
     }
     for (std::size_t j = 1; j < len; ++j) {
-      if constexpr (N == 4) {
-        const V4d px = xs, py = ys;
-        xs = px * tx - py * ty;
-        ys = px * ty + py * tx;
-        for (std::size_t a = 0; a < N; ++a) {
-          const std::size_t k = first + a * kAnchorEvery + j;
-          put(k, xs[a], ys[a], heading(k));
-        }
-      } else {
-        for (std::size_t a = 0; a < N; ++a) {
-          const std::size_t k = first + a * kAnchorEvery + j;
-          const double px = xs[a], py = ys[a];
-          xs[a] = px * tx - py * ty;
-          ys[a] = px * ty + py * tx;
-          put(k, xs[a], ys[a], heading(k));
-        }
+      const Lanes px = xs, py = ys;
+      xs = px * tx - py * ty;
+      ys = px * ty + py * tx;
+      for (std::size_t a = 0; a < N; ++a) {
+        const std::size_t k = first + a * kAnchorEvery + j;
+        put(k, xs[a], ys[a], heading(k));
       }
     }
   };
