@@ -180,13 +180,13 @@ void OccupancyGrid::compute_boundary() {
   for (std::size_t i = 1; i < tile_start_.size(); ++i) tile_start_[i] += tile_start_[i - 1];
   tile_runs_.resize(static_cast<std::size_t>(tile_start_.back()));
   std::vector<std::int32_t> fill(tile_start_.begin(), tile_start_.end() - 1);
-  for (int s = 0; s < 4; ++s)
-    for (const Run& r : runs[s]) tile_runs_[fill[4 * tile_of(s, r) + s]++] = r;
   tile_box_.assign(tiles, CellBox{width_, 0, height_, 0});
   for (int s = 0; s < 4; ++s) {
     const bool rows = s >= 2;
     for (const Run& r : runs[s]) {
-      CellBox& b = tile_box_[tile_of(s, r)];
+      const std::size_t t = tile_of(s, r);
+      tile_runs_[fill[4 * t + s]++] = r;
+      CellBox& b = tile_box_[t];
       const int x0 = rows ? r.first : r.line, x1 = rows ? r.last + 1 : r.line + 1;
       const int y0 = rows ? r.line : r.first, y1 = rows ? r.line + 1 : r.last + 1;
       b = {std::min(b.x0, x0), std::max(b.x1, x1), std::min(b.y0, y0), std::max(b.y1, y1)};
