@@ -297,6 +297,41 @@ TEST(GridFan, MatchesCastRayOnRandomGrids) {
 
 // Beams the fan does not take (directions that are not unit vectors) are cast ray by ray, among
 // beams it takes; a range of -0 reads -0 where nothing is hit, as cast_ray does.
+// Which one-cell runs the fan may leave out: a cell's left and right faces, each a run of one cell,
+// are covered by the row runs of its bottom and top faces that end at it; a run of one cell covers
+// one of another side only when it comes later (bottom and top cover no left or right face
+// back), and a longer run covers whatever ends at its end cells.
+TEST(GridFan, KeepsWhichOneCellRunsAnotherRunCovers) {
+  const auto counts = [](int w, int h, std::initializer_list<std::pair<int, int>> occupied) {
+    std::vector<std::uint8_t> cells(static_cast<std::size_t>(w) * h, 0);
+    for (const auto& [x, y] : occupied) cells[static_cast<std::size_t>(y) * w + x] = 1;
+    return OccupancyGrid(w, h, 0.1, Pose2{}, cells).fan_run_counts();
+  };
+  // One cell: four runs of one cell; its left and right faces covered, its bottom and top not.
+  auto c = counts(5, 5, {{2, 2}});
+  EXPECT_EQ(c.runs, 4u);
+  EXPECT_EQ(c.covered, 2u);
+  // Two cells in a row: the row's bottom and top runs (two cells) cover the end faces.
+  c = counts(6, 5, {{2, 2}, {3, 2}});
+  EXPECT_EQ(c.runs, 4u);
+  EXPECT_EQ(c.covered, 2u);
+  // Two cells in a column: its left and right runs (two cells) cover the bottom and top faces.
+  c = counts(5, 6, {{2, 2}, {2, 3}});
+  EXPECT_EQ(c.runs, 4u);
+  EXPECT_EQ(c.covered, 2u);
+  // A staircase of three cells touching at corners: each cell is alone among free cells.
+  c = counts(7, 7, {{1, 1}, {2, 2}, {3, 3}});
+  EXPECT_EQ(c.runs, 12u);
+  EXPECT_EQ(c.covered, 6u);
+  // An H: two columns of three cells joined by a cell between their middles. Twelve runs: each
+  // column's outer side (three cells), the inner sides' end cells, the bottom and top faces of
+  // the columns' end cells and of the middle cell. The columns' single faces are all covered;
+  // the middle cell's bottom and top faces are not (no run of its column ends at it).
+  c = counts(7, 5, {{2, 1}, {2, 2}, {2, 3}, {3, 2}, {4, 1}, {4, 2}, {4, 3}});
+  EXPECT_EQ(c.runs, 12u);
+  EXPECT_EQ(c.covered, 8u);
+}
+
 TEST(GridFan, CastsBeamsWithOtherDirectionsRayByRay) {
   std::vector<std::uint8_t> cells(60 * 40, 0);
   for (int y = 0; y < 40; ++y) cells[static_cast<std::size_t>(y) * 60 + 45] = 1;

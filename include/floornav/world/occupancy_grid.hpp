@@ -100,6 +100,20 @@ class OccupancyGrid {
   /// which put origins on tile borders.
   static constexpr int kFanTile = 64;
 
+  /// The runs of occupied cells cast_fan keeps (a maximal stretch of cells along a row or column
+  /// whose neighbour on one side is free, cut at tile borders), and how many of them are one cell
+  /// long and left out of a fan wherever a perpendicular run ending at that cell faces its origin
+  /// too. For the tests and for reports.
+  struct FanRunCounts {
+    std::size_t runs{0};
+    std::size_t covered{0};
+  };
+  FanRunCounts fan_run_counts() const {
+    FanRunCounts c{tile_runs_.size(), 0};
+    for (const Run& r : tile_runs_) c.covered += r.cover != 0 ? 1 : 0;
+    return c;
+  }
+
  private:
   Vec2 to_grid(const Vec2& world) const;  // metres, grid frame
   Vec2 to_world(const Vec2& grid) const;  // inverse of to_grid
