@@ -295,8 +295,6 @@ TEST(GridFan, MatchesCastRayOnRandomGrids) {
   EXPECT_GT(rays, 1000000);
 }
 
-// Beams the fan does not take (directions that are not unit vectors) are cast ray by ray, among
-// beams it takes; a range of -0 reads -0 where nothing is hit, as cast_ray does.
 // Which one-cell runs the fan may leave out: a cell's left and right faces, each a run of one cell,
 // are covered by the row runs of its bottom and top faces that end at it; a run of one cell covers
 // one of another side only when it comes later (bottom and top cover no left or right face
@@ -332,6 +330,8 @@ TEST(GridFan, KeepsWhichOneCellRunsAnotherRunCovers) {
   EXPECT_EQ(c.covered, 8u);
 }
 
+// Beams the fan does not take (directions that are not unit vectors) are cast ray by ray, among
+// beams it takes; a range of -0 reads -0 where nothing is hit, as cast_ray does.
 TEST(GridFan, CastsBeamsWithOtherDirectionsRayByRay) {
   std::vector<std::uint8_t> cells(60 * 40, 0);
   for (int y = 0; y < 40; ++y) cells[static_cast<std::size_t>(y) * 60 + 45] = 1;
