@@ -8,8 +8,13 @@ worlds/bitmaps/cave.png (500 x 500 pixels, black = rock) and the 100 robot poses
 benchmark, worlds/benchmark/cave.world. Nothing of Stage's is copied into the repository; OUT_DIR
 (scratch) gets:
 
-  cave.png, cave.yaml          the bitmap, and a ROS map_server yaml for it: 16 x 16 m, 0.032 m
-                               cells, origin (-8, -8), so both simulators share one frame
+  cave.png                     the bitmap, Stage's floorplan (with `boundary 1`: Stage closes it
+                               with a wall 0.01 m thick around its 16 x 16 m bounding box)
+  cave.pgm, cave.yaml          floornav's ROS map_server map of it: the bitmap with its outermost
+                               ring of pixels set to rock (Stage's boundary; 1,642 of the 1,996
+                               border pixels are open, so without it floornav's robots could leave
+                               the cave where Stage's cannot), 0.032 m cells, origin (-8, -8), so
+                               both simulators share one frame
   stage_cave_{1,100}.world     Stage: the bitmap as its floorplan (16 x 16 m, centred), robots
                                (0.44 x 0.38 m boxes, differential drive) with a 180-sample, 180 deg,
                                8 m laser, driven by Stage's example `wander` controller
@@ -64,6 +69,20 @@ def read_gray_png(path):
         rows.append(line)
         prev = line
     return rows
+
+
+def with_boundary(rows):
+    """The bitmap with its outermost ring of pixels black: Stage's `boundary 1` as map cells."""
+    h, w = len(rows), len(rows[0])
+    return [[0 if x in (0, w - 1) or y in (0, h - 1) else v for x, v in enumerate(row)]
+            for y, row in enumerate(rows)]
+
+
+def write_pgm(path, rows):
+    """Binary 8-bit greyscale PGM (P5), top row first, as ROS map_server reads it."""
+    with open(path, "wb") as f:
+        f.write(b"P5\n%d %d\n255\n" % (len(rows[0]), len(rows)))
+        f.write(bytes(v for row in rows for v in row))
 
 
 class Cave:
@@ -129,9 +148,11 @@ def main():
     os.makedirs(out, exist_ok=True)
     png = os.path.join(src, "worlds", "bitmaps", "cave.png")
     shutil.copyfile(png, os.path.join(out, "cave.png"))
-    cave = Cave(read_gray_png(png))
+    rows = with_boundary(read_gray_png(png))
+    write_pgm(os.path.join(out, "cave.pgm"), rows)
+    cave = Cave(rows)
     open(os.path.join(out, "cave.yaml"), "w").write(
-        "image: cave.png\nresolution: 0.032\norigin: [-8.0, -8.0, 0.0]\nnegate: 0\n"
+        "image: cave.pgm\nresolution: 0.032\norigin: [-8.0, -8.0, 0.0]\nnegate: 0\n"
         "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
     text = open(os.path.join(src, "worlds", "benchmark", "cave.world")).read()
     poses = [tuple(float(v) for v in m.split()[0:2] + [m.split()[3]])
