@@ -29,6 +29,15 @@ std::uint32_t* fresh_marks(FanScratch& scratch, std::size_t items) {
   return scratch.marks.data();
 }
 
+// `out` (the grid's casts) as cast_ray_from_free has them: min(max_range, the grid's cast_ray).
+// Every cast of the grid is max_range or std::min(a finite time, max_range), so for a positive
+// max_range (+inf included) the minimum changes no bit and is left out; otherwise (0, -0, a
+// negative range or NaN) the sign of a zero or a NaN may change, and it is taken.
+void at_most(double max_range, std::span<double> out) {
+  if (max_range > 0.0) return;
+  for (double& r : out) r = std::min(max_range, r);
+}
+
 }  // namespace
 
 void World::cast_fan(const Vec2& origin, std::span<const Vec2> dirs, std::span<const double> angles,
@@ -57,7 +66,7 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
       return;
     }
     grid_->cast_fan(origin, dirs, angles, max_range, out, scratch);
-    for (std::size_t i = 0; i < n; ++i) out[i] = std::min(max_range, out[i]);
+    at_most(max_range, out);
     return;
   }
   std::optional<FanLayout> fan;
@@ -72,7 +81,7 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
   // within max_range, which does not depend on the order (each test keeps the smaller value).
   if (grid_ != nullptr) {
     grid_->cast_fan(origin, dirs, angles, max_range, out, scratch);
-    for (std::size_t i = 0; i < n; ++i) out[i] = std::min(max_range, out[i]);
+    at_most(max_range, out);
   } else {
     std::fill(out.begin(), out.end(), max_range);
   }

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -196,6 +197,38 @@ TEST(FanCast, AxisAlignedBeamsAlongGridAlignedWalls) {
       ASSERT_NO_FATAL_FAILURE(
           expect_fan_matches(w, Vec2(x + 0.5, y + 1e-13), dirs, angles, 4.0, false));
     }
+}
+
+// cast_fan_from_free is cast_ray_from_free, min(max_range, the grid's cast_ray), to the bit: the
+// minimum is left out for a positive range (it changes nothing there) and must be taken for 0 and
+// -0, where the grid's hit at distance +0 (an origin on the face of an occupied cell) becomes -0.
+TEST(FanCast, FromFreeOnAGridTakesTheRangeAsCastRayFromFreeDoes) {
+  Rng rng(20261201);
+  std::vector<Vec2> dirs;
+  std::vector<double> angles;
+  for (int world_no = 0; world_no < 40; ++world_no) {
+    const int w = 12, h = 10;
+    std::vector<std::uint8_t> cells(static_cast<std::size_t>(w) * h);
+    for (auto& c : cells) c = rng.uniform() < 0.15 ? 1 : 0;
+    cells[static_cast<std::size_t>(h / 2) * w + w / 2] = 0;      // the origin's cell, free
+    cells[static_cast<std::size_t>(h / 2) * w + w / 2 + 1] = 1;  // and rock to its right
+    const double res = 0.25;
+    const auto grid = std::make_shared<const OccupancyGrid>(w, h, res, Pose2{}, cells);
+    WorldDesc d;
+    d.grid = grid;
+    if (world_no % 2 == 1) d.circles.push_back({Vec2(0.4, 0.3), 0.1});  // the other branch
+    const World world(std::move(d));
+    // On the rock's face (a hit at +0 for the beams into it), and inside the free cell.
+    const Vec2 on_face((w / 2 + 1) * res, (h / 2 + 0.5) * res);
+    const Vec2 inside((w / 2 + rng.uniform(0.1, 0.9)) * res, (h / 2 + rng.uniform(0.1, 0.9)) * res);
+    for (const Vec2& o : {on_face, inside}) {
+      for (const double range : {2.5, 1e-310, 0.0, -0.0, std::numeric_limits<double>::infinity()}) {
+        make_fan(rng.uniform(-kPi, kPi), 2.0 * kPi, 90, dirs, angles);
+        ASSERT_NO_FATAL_FAILURE(expect_fan_matches(world, o, dirs, angles, range, true))
+            << "world " << world_no << " range " << range;
+      }
+    }
+  }
 }
 
 TEST(FanCast, UnevenAnglesFallBackToRayByRay) {
