@@ -479,9 +479,10 @@ void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dir
     if (gap2 < 1e-12) return true;
     if (wholly_behind(x0, x1, y0, y1)) return false;
     const double lower = std::sqrt(gap2) * (1.0 - 1e-5);
-    return for_beams_towards(x0, x1, y0, y1, [&](int k) {
-      return best[k] != -kInf && lower <= std::min(best[k], t_max);
-    });
+    // lower <= min(best[k], t_max) for a beam not cast ray by ray (best[k] != -inf): as lower
+    // >= 0, the same as lower <= t_max (once) and lower <= best[k].
+    if (!(lower <= t_max)) return false;
+    return for_beams_towards(x0, x1, y0, y1, [&](int k) { return lower <= best[k]; });
   };
   // The tiles in rings about the origin's tile (ring r: Chebyshev distance r in tiles), nearest
   // first, so that near hits skip the tiles behind them. Every cell of ring r >= 1 is at least
