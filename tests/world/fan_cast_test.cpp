@@ -200,8 +200,8 @@ TEST(FanCast, AxisAlignedBeamsAlongGridAlignedWalls) {
 }
 
 // cast_fan_from_free is cast_ray_from_free, min(max_range, the grid's cast_ray), to the bit: the
-// minimum is left out for a positive range (it changes nothing there) and must be taken for 0 and
-// -0, where the grid's hit at distance +0 (an origin on the face of an occupied cell) becomes -0.
+// minimum is left out for a positive range (it changes nothing there) and taken for 0 and -0; for
+// -0 it turns the grid's hit at +0 (an origin on the face of an occupied cell) into -0.
 TEST(FanCast, FromFreeOnAGridTakesTheRangeAsCastRayFromFreeDoes) {
   Rng rng(20261201);
   std::vector<Vec2> dirs;
