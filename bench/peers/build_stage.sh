@@ -8,7 +8,8 @@
 # `fetch github:rtv/Stage` made, /work/.mirror/rtv+Stage/repo). Output: $PEERS_DIR/stage/install
 # (PEERS_DIR defaults to /tmp/floornav-peers), with bin/stage, lib/libstage and the wander
 # controller, and $PEERS_DIR/stage/stage_driver (stage_driver.cpp, our timing loop). Build dependencies, all from Debian:
-#   apt-get install cmake g++ libfltk1.3-dev libltdl-dev libpng-dev libjpeg-dev libgl-dev libglu1-mesa-dev
+#   apt-get install cmake g++ libfltk1.3-dev fluid libltdl-dev libpng-dev libjpeg-dev libgl-dev libglu1-mesa-dev
+# (fluid: Debian 12's FLTK CMake config names /usr/bin/fluid, and CMake stops without it.)
 set -euo pipefail
 src_git=${1:-/work/.mirror/rtv+Stage/repo}
 peers=${PEERS_DIR:-/tmp/floornav-peers}

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <type_traits>
 
+#include <emmintrin.h>
+
 #include "floornav/core/isa_clones.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/fan_cone.hpp"
@@ -217,30 +219,22 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
   const auto test = [&](std::size_t k, const Circle& c) {
     ranges[i + k] = ray_circle_hit(origin, beams[i + k].dir, c, ranges[i + k]);
   };
-  for (const Circle& c : others) {
-    const Vec2 v = c.center - origin;
-    // Beyond max_range + r + 1 m, the test against `near` below would skip the disc: no root.
-    const double far = max_range + c.radius + 1.0;
-    if (even && v.squaredNorm() > far * far) continue;
-    if (half_plane && v.dot(centre_dir) < -(c.radius + 1e-5 * (1.0 + far))) continue;
-    const double d = v.norm();
-    if (!even || d <= c.radius + 1e-9) {  // uneven fan, or the origin inside the body
-      for (std::size_t k = 0; k < n; ++k) test(k, c);
-      continue;
-    }
-    // No beam reaches the disc before its range ends.
-    const double near = d - c.radius - 1e-6 * (1.0 + d);
-    if (near >= max_range) continue;
-    // intersect_ray's numbers that do not depend on the beam, once for all (the same bits): the
-    // origin is outside the disc here (cc > 0 as d > r + 1e-9), so a beam hits at -b - sqrt(b^2 -
-    // cc) unless it points away (b > 0) or passes by (b^2 < cc).
-    const Vec2 m = origin - c.center;
-    const double cc = m.squaredNorm() - c.radius * c.radius;
-    if (!(cc > 0.0)) {
-      for (std::size_t k = 0; k < n; ++k) test(k, c);
-      continue;
-    }
-    const auto test_near = [&, mx = m.x(), my = m.y(), cc, near](std::size_t k) {
+  const auto every_beam = [&](const Circle& c) {
+    for (std::size_t k = 0; k < n; ++k) test(k, c);
+  };
+  if (!even) {  // an uneven fan: every pair
+    for (const Circle& c : others) every_beam(c);
+    return;
+  }
+  // The beams k0 to k1 against the disc whose intersect_ray numbers that do not depend on the
+  // beam are m = origin - centre and cc = |m|^2 - r^2 (once for all, the same bits; the origin
+  // is outside the disc, so a beam hits at -b - sqrt(b^2 - cc) unless it points away, b > 0, or
+  // passes by, b^2 < cc), only where its range so far is beyond `near`. Two beams at a time: SSE2's
+  // lanes do the scalar test's IEEE operations in its order (b, b * b - cc, -b - the root), and a
+  // lane takes t where it would (range > near, b not > 0, t < range; a negative b * b - cc has a
+  // NaN root, which no comparison takes), so the ranges are the same to the bit.
+  const auto test_span = [&](int k0, int k1, double mx, double my, double cc, double near) {
+    const auto test_near = [&](std::size_t k) {
       double& range = ranges[i + k];
       if (!(range > near)) return;
       const Vec2& dir = beams[i + k].dir;
@@ -251,11 +245,50 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
       const double t = -b - std::sqrt(disc);
       if (t < range) range = t;
     };
+    const __m128d vmx = _mm_set1_pd(mx), vmy = _mm_set1_pd(my), vcc = _mm_set1_pd(cc);
+    const __m128d vnear = _mm_set1_pd(near), sign = _mm_set1_pd(-0.0), zero = _mm_setzero_pd();
+    std::size_t k = static_cast<std::size_t>(k0);
+    const auto last = static_cast<std::size_t>(k1);
+    for (; k < last; k += 2) {
+      const __m128d d0 = _mm_loadu_pd(beams[i + k].dir.data());
+      const __m128d d1 = _mm_loadu_pd(beams[i + k + 1].dir.data());
+      const __m128d b = _mm_add_pd(_mm_mul_pd(vmx, _mm_unpacklo_pd(d0, d1)),
+                                   _mm_mul_pd(vmy, _mm_unpackhi_pd(d0, d1)));
+      const __m128d root = _mm_sqrt_pd(_mm_sub_pd(_mm_mul_pd(b, b), vcc));
+      const __m128d t = _mm_sub_pd(_mm_xor_pd(b, sign), root);
+      double* range = &ranges[i + k];
+      const __m128d r = _mm_loadu_pd(range);
+      const __m128d take = _mm_andnot_pd(_mm_cmpgt_pd(b, zero),
+                                         _mm_and_pd(_mm_cmpgt_pd(r, vnear), _mm_cmplt_pd(t, r)));
+      _mm_storeu_pd(range, _mm_or_pd(_mm_and_pd(take, t), _mm_andnot_pd(take, r)));
+    }
+    if (k == last) test_near(k);
+  };
+  for (const Circle& c : others) {
+    const Vec2 v = c.center - origin;
+    // Beyond max_range + r + 1 m, the test against `near` below would skip the disc: no root.
+    const double far = max_range + c.radius + 1.0;
+    if (v.squaredNorm() > far * far) continue;
+    if (half_plane && v.dot(centre_dir) < -(c.radius + 1e-5 * (1.0 + far))) continue;
+    const double d = v.norm();
+    if (d <= c.radius + 1e-9) {  // the origin inside the body
+      every_beam(c);
+      continue;
+    }
+    // No beam reaches the disc before its range ends.
+    const double near = d - c.radius - 1e-6 * (1.0 + d);
+    if (near >= max_range) continue;
+    const Vec2 m = origin - c.center;
+    const double cc = m.squaredNorm() - c.radius * c.radius;
+    if (!(cc > 0.0)) {
+      every_beam(c);
+      continue;
+    }
     // asin(x) <= x / sqrt(1 - x^2) (= tan(asin x)); x < 1 here.
     const double x = c.radius / d;
     const double half = std::min(kPi, x / std::sqrt(1.0 - x * x)) + 1e-5;
-    cone.for_beams_about(v.x(), v.y(), half,
-                         [&](int k) { test_near(static_cast<std::size_t>(k)); });
+    cone.for_spans_about(v.x(), v.y(), half,
+                         [&](int k0, int k1) { test_span(k0, k1, m.x(), m.y(), cc, near); });
   }
 }
 
@@ -525,10 +558,12 @@ FLOORNAV_ISA_CLONES
 std::size_t ranges_to_points(std::span<const SensorBeam> beams,
                              std::span<const RangeSensorSpec> sensors,
                              std::span<const double> ranges, std::span<Vec2> points) {
+  // Every point is written and kept when its beam saw something: no branch on the readings
+  // (hits and misses alternate along a scan). points[n] is within the span (n <= i).
   std::size_t n = 0;
   for (std::size_t i = 0; i < sensors.size(); ++i) {
-    if (ranges[i] >= sensors[i].max_range) continue;
-    points[n++] = beams[i].origin + ranges[i] * beams[i].dir;
+    points[n] = beams[i].origin + ranges[i] * beams[i].dir;
+    n += !(ranges[i] >= sensors[i].max_range);
   }
   return n;
 }

@@ -253,6 +253,39 @@ TEST(FanCone, CallsEveryBeamInTheConeAndFewOthers) {
   EXPECT_LT(extra, inside / 20);
 }
 
+// FanCone::for_spans_about gives the beams for_beams_about calls, each once, as at most two
+// intervals: for cones across beam 0 (a turn later), fans of every width, half-widths up to pi.
+TEST(FanCone, SpansAboutAreTheBeamsForBeamsAboutCalls) {
+  Rng rng(37);
+  int wrapped = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int n = 2 + static_cast<int>(rng.uniform(0.0, 400.0));
+    const double width =
+        trial % 3 == 0 ? 2.0 * kPi * (n - 1) / n : rng.uniform(0.01, 2.0 * kPi - 0.1);
+    fan_detail::FanLayout fan;
+    fan.first = rng.uniform(-10.0, 10.0);
+    fan.step = width / (n - 1);
+    fan.inv_step = 1.0 / fan.step;
+    fan.n = n;
+    const fan_detail::FanCone cone(fan, trial % 5 == 0 ? 0.0 : rng.uniform(-7.0, 7.0));
+    const double a = rng.uniform(-kPi, kPi), l = rng.uniform(0.1, 100.0);
+    const double half = trial % 7 == 0 ? kPi : rng.uniform(0.0, 1.0);
+    const double x = l * std::cos(a), y = l * std::sin(a);
+    std::vector<int> calls(static_cast<std::size_t>(n), 0), spans(calls);
+    cone.for_beams_about(x, y, half, [&](int k) { ++calls[static_cast<std::size_t>(k)]; });
+    int count = 0;
+    cone.for_spans_about(x, y, half, [&](int k0, int k1) {
+      ASSERT_LE(0, k0);
+      ASSERT_LE(k0, k1);
+      ASSERT_LT(k1, n);
+      for (int k = k0; k <= k1; ++k) ++spans[static_cast<std::size_t>(k)];
+      wrapped += ++count == 2;
+    });
+    ASSERT_EQ(spans, calls) << "trial " << trial;
+  }
+  EXPECT_GT(wrapped, 100);  // cones across beam 0 were among them
+}
+
 TEST(GridFan, MatchesCastRayOnRandomGrids) {
   Rng rng(7);
   long rays = 0;

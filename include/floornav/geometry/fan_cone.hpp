@@ -86,16 +86,43 @@ class FanCone {
     return for_angles(lo, hi, f);
   }
 
+  // The beams for_beams_about calls f for, as at most two intervals: g(k0, k1) for each, beams
+  // k0 to k1 (k0 <= k1), for callers that test several beams at once.
+  template <class G>
+  void for_spans_about(double x, double y, double half, G&& g) const {
+    const int b = bin(x, y);
+    const double lo = static_cast<double>(bounds_[b]) - first_ - half - kFanMargin;
+    const double hi = static_cast<double>(bounds_[b + 1]) - first_ + half + kFanMargin;
+    const Spans s = spans(lo, hi);
+    if (s.k0 <= s.k1) g(s.k0, s.k1);
+    if (s.wrap_last >= 0) g(0, s.wrap_last);
+  }
+
  private:
-  // The beams at angles [lo, hi] from beam 0, modulo 2 pi: lo >= -4 pi, hi >= lo.
-  template <class F>
-  bool for_angles(double lo, double hi, F&& f) const {
+  // The beams at angles [lo, hi] from beam 0, modulo 2 pi (lo >= -4 pi, hi >= lo): k0 to k1,
+  // then, past beam 0 again (a turn later), 0 to wrap_last (below k0; -1 for none).
+  struct Spans {
+    int k0, k1, wrap_last;
+  };
+  Spans spans(double lo, double hi) const {
     while (lo < 0.0) lo += kTwoPi, hi += kTwoPi;
     // Beam k (k >= 0) is at k * step; lo >= 0, so truncation is floor.
     const double a = lo * fan_.inv_step, z = hi * fan_.inv_step;
     int k0 = static_cast<int>(a);
     if (k0 < a) ++k0;
     const int k1 = static_cast<int>(std::min(z, fan_.n - 1.0));
+    int wrap_last = -1;
+    if (hi >= kTwoPi) {
+      const int k2 = static_cast<int>(std::min((hi - kTwoPi) * fan_.inv_step, fan_.n - 1.0));
+      wrap_last = std::min(k2, k0 - 1);
+    }
+    return {k0, k1, wrap_last};
+  }
+
+  // The beams at angles [lo, hi] from beam 0, modulo 2 pi: lo >= -4 pi, hi >= lo.
+  template <class F>
+  bool for_angles(double lo, double hi, F&& f) const {
+    const auto [k0, k1, wrap_last] = spans(lo, hi);
     const auto call = [&](int k) {
       if constexpr (std::is_same_v<decltype(f(k)), bool>) {
         return f(k);
@@ -106,11 +133,8 @@ class FanCone {
     };
     for (int k = k0; k <= k1; ++k)
       if (call(k)) return true;
-    if (hi >= kTwoPi) {  // past beam 0 again (a turn later)
-      const int k2 = static_cast<int>(std::min((hi - kTwoPi) * fan_.inv_step, fan_.n - 1.0));
-      for (int k = 0; k <= k2 && k < k0; ++k)
-        if (call(k)) return true;
-    }
+    for (int k = 0; k <= wrap_last; ++k)
+      if (call(k)) return true;
     return false;
   }
 

@@ -138,7 +138,8 @@ void sense_ranges(const World& world, const Pose2& robot, std::span<const RangeS
                   double noise_stddev, Rng& rng, std::span<double> ranges);
 
 /// Turns readings into world-frame obstacle points: one per sensor that saw something (range
-/// below its max). Returns how many were written to `points` (sized at least `sensors.size()`).
+/// below its max). Returns how many were written to `points` (sized at least `sensors.size()`;
+/// the element after them may be overwritten too).
 std::size_t ranges_to_points(const Pose2& robot, std::span<const RangeSensorSpec> sensors,
                              std::span<const double> ranges, std::span<Vec2> points);
 
