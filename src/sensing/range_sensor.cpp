@@ -284,9 +284,11 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
       every_beam(c);
       continue;
     }
-    // asin(x) <= x / sqrt(1 - x^2) (= tan(asin x)); x < 1 here.
-    const double x = c.radius / d;
-    const double half = std::min(kPi, x / std::sqrt(1.0 - x * x)) + 1e-5;
+    // The half-width: asin(r / d) <= tan(asin(r / d)) = r / sqrt(d^2 - r^2), with cc for
+    // d^2 - r^2 (rounded to a relative 4e-16 d^2 / cc: with d > r + 1e-9, below 2e-7 r / 1 m,
+    // as 1 - (r / d)^2 was, far below the 1e-5 added). From cc, not d: its root and division
+    // wait on no other root or division (the latency of the disc's chain halves).
+    const double half = std::min(kPi, c.radius / std::sqrt(cc)) + 1e-5;
     cone.for_spans_about(v.x(), v.y(), half,
                          [&](int k0, int k1) { test_span(k0, k1, m.x(), m.y(), cc, near); });
   }
