@@ -266,10 +266,12 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
   };
   for (const Circle& c : others) {
     const Vec2 v = c.center - origin;
-    // Beyond max_range + r + 1 m, the test against `near` below would skip the disc: no root.
+    // Behind the lidar first: half the bodies a fleet hands in are (it gathers them within the
+    // sensors' reach, so the test of `far` rarely skips one).
     const double far = max_range + c.radius + 1.0;
-    if (v.squaredNorm() > far * far) continue;
     if (half_plane && v.dot(centre_dir) < -(c.radius + 1e-5 * (1.0 + far))) continue;
+    // Beyond max_range + r + 1 m, the test against `near` below would skip the disc: no root.
+    if (v.squaredNorm() > far * far) continue;
     const double d = v.norm();
     if (d <= c.radius + 1e-9) {  // the origin inside the body
       every_beam(c);
