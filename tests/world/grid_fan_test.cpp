@@ -203,6 +203,20 @@ TEST(FanCone, DiamondAngleGrowsWithTheAngle) {
   EXPECT_NEAR(bounds.back(), 2.0 * kPi, 1e-6);
 }
 
+// A fan of 2 to 401 beams, from any start, a full turn less a step wide every third trial and
+// otherwise 0.01 to 2 pi - 0.1 rad.
+fan_detail::FanLayout random_fan(Rng& rng, int trial) {
+  const int n = 2 + static_cast<int>(rng.uniform(0.0, 400.0));
+  const double width =
+      trial % 3 == 0 ? 2.0 * kPi * (n - 1) / n : rng.uniform(0.01, 2.0 * kPi - 0.1);
+  fan_detail::FanLayout fan;
+  fan.first = rng.uniform(-10.0, 10.0);
+  fan.step = width / (n - 1);
+  fan.inv_step = 1.0 / fan.step;
+  fan.n = n;
+  return fan;
+}
+
 // FanCone::for_beams against atan2: every beam whose angle lies in the cone (widened by the
 // margin) is called, for fans of every width and start, frames turned every way and cones across
 // angle 0 of either frame; and not many more (a bin's width beyond each edge).
@@ -210,14 +224,8 @@ TEST(FanCone, CallsEveryBeamInTheConeAndFewOthers) {
   Rng rng(31);
   long extra = 0, inside = 0;
   for (int trial = 0; trial < 20000; ++trial) {
-    const int n = 2 + static_cast<int>(rng.uniform(0.0, 400.0));
-    const double width =
-        trial % 3 == 0 ? 2.0 * kPi * (n - 1) / n : rng.uniform(0.01, 2.0 * kPi - 0.1);
-    fan_detail::FanLayout fan;
-    fan.first = rng.uniform(-10.0, 10.0);
-    fan.step = width / (n - 1);
-    fan.inv_step = 1.0 / fan.step;
-    fan.n = n;
+    const fan_detail::FanLayout fan = random_fan(rng, trial);
+    const int n = fan.n;
     const double yaw = trial % 5 == 0 ? 0.0 : rng.uniform(-7.0, 7.0);
     const fan_detail::FanCone cone(fan, yaw);
     const double a0 = rng.uniform(-kPi, kPi), span = rng.uniform(0.0, kPi - 1e-3);
@@ -259,14 +267,8 @@ TEST(FanCone, SpansAboutAreTheBeamsForBeamsAboutCalls) {
   Rng rng(37);
   int wrapped = 0;
   for (int trial = 0; trial < 20000; ++trial) {
-    const int n = 2 + static_cast<int>(rng.uniform(0.0, 400.0));
-    const double width =
-        trial % 3 == 0 ? 2.0 * kPi * (n - 1) / n : rng.uniform(0.01, 2.0 * kPi - 0.1);
-    fan_detail::FanLayout fan;
-    fan.first = rng.uniform(-10.0, 10.0);
-    fan.step = width / (n - 1);
-    fan.inv_step = 1.0 / fan.step;
-    fan.n = n;
+    const fan_detail::FanLayout fan = random_fan(rng, trial);
+    const int n = fan.n;
     const fan_detail::FanCone cone(fan, trial % 5 == 0 ? 0.0 : rng.uniform(-7.0, 7.0));
     const double a = rng.uniform(-kPi, kPi), l = rng.uniform(0.1, 100.0);
     const double half = trial % 7 == 0 ? kPi : rng.uniform(0.0, 1.0);
