@@ -80,20 +80,14 @@ class FanCone {
   // The same for the beams within `half` (in [0, pi]) of the direction of (x, y) (not zero).
   template <class F>
   bool for_beams_about(double x, double y, double half, F&& f) const {
-    const int b = bin(x, y);
-    const double lo = static_cast<double>(bounds_[b]) - first_ - half - kFanMargin;
-    const double hi = static_cast<double>(bounds_[b + 1]) - first_ + half + kFanMargin;
-    return for_angles(lo, hi, f);
+    return for_each_beam(spans_about(x, y, half), f);
   }
 
   // The beams for_beams_about calls f for, as at most two intervals: g(k0, k1) for each, beams
   // k0 to k1 (k0 <= k1), for callers that test several beams at once.
   template <class G>
   void for_spans_about(double x, double y, double half, G&& g) const {
-    const int b = bin(x, y);
-    const double lo = static_cast<double>(bounds_[b]) - first_ - half - kFanMargin;
-    const double hi = static_cast<double>(bounds_[b + 1]) - first_ + half + kFanMargin;
-    const Spans s = spans(lo, hi);
+    const Spans s = spans_about(x, y, half);
     if (s.k0 <= s.k1) g(s.k0, s.k1);
     if (s.wrap_last >= 0) g(0, s.wrap_last);
   }
@@ -119,10 +113,25 @@ class FanCone {
     return {k0, k1, wrap_last};
   }
 
+  // The spans of the beams within `half` of the direction of (x, y).
+  Spans spans_about(double x, double y, double half) const {
+    const int b = bin(x, y);
+    const double lo = static_cast<double>(bounds_[b]) - first_ - half - kFanMargin;
+    const double hi = static_cast<double>(bounds_[b + 1]) - first_ + half + kFanMargin;
+    return spans(lo, hi);
+  }
+
   // The beams at angles [lo, hi] from beam 0, modulo 2 pi: lo >= -4 pi, hi >= lo.
   template <class F>
   bool for_angles(double lo, double hi, F&& f) const {
-    const auto [k0, k1, wrap_last] = spans(lo, hi);
+    return for_each_beam(spans(lo, hi), f);
+  }
+
+  // f(k) for each beam of `s` in order; when f returns bool, true stops the calls (and is
+  // returned).
+  template <class F>
+  static bool for_each_beam(const Spans& s, F&& f) {
+    const auto [k0, k1, wrap_last] = s;
     const auto call = [&](int k) {
       if constexpr (std::is_same_v<decltype(f(k)), bool>) {
         return f(k);
