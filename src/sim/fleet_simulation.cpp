@@ -119,6 +119,8 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     note_status(i);
   }
   moved_to_ = positions_;
+  moved_cell_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) moved_cell_[i] = grid_.cell_index(positions_[i]);
   update_snapshot();
 
   // Robots that start touching each other have collided before the first step.
@@ -170,6 +172,7 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
     }
     // What the serial part needs of the robot, written while its state is in this core's cache.
     moved_to_[i] = agents_[i].pose().position;
+    moved_cell_[i] = grid_.cell_index(moved_to_[i]);
     note_status(i);
     if (status_[i] != 0) events_[thread].any = true;
   }
@@ -200,7 +203,7 @@ void FleetSimulation::prepare_contacts() {
   if (!velocities_.empty())
     for (std::size_t i = 0; i < agents_.size(); ++i)
       velocities_[i] = (status_[i] & kEnded) != 0 ? Vec2::Zero() : agents_[i].velocity();
-  grid_.build(positions_, present_);
+  grid_.refile(moved_cell_, present_);  // the cells taken on the robots' threads
   if (crowd_) crowd_->step(static_cast<double>(steps_ - 1) * sim_.dt, sim_.dt, bodies());
 }
 

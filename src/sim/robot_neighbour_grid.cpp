@@ -25,20 +25,77 @@ void RobotNeighbourGrid::reset(const Box2& box, double cell, std::size_t robots)
   start_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_) + 1, 0);
   items_.assign(robots, 0);
   cell_of_robot_.assign(robots, 0);
+  moved_.clear();
+  moved_.reserve(robots);
 }
 
 void RobotNeighbourGrid::build(std::span<const Vec2> positions,
                                std::span<const std::uint8_t> present) {
-  std::fill(start_.begin(), start_.end(), 0u);
   const std::size_t n = positions.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (present[i]) cell_of_robot_[i] = cell_index(positions[i]);
+  sort_into_cells(present.first(n));
+}
+
+void RobotNeighbourGrid::refile(std::span<const std::uint32_t> cells,
+                                std::span<const std::uint8_t> present) {
+  moved_.clear();
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    if (present[i] && cells[i] != cell_of_robot_[i])
+      moved_.push_back(static_cast<std::uint32_t>(i));
+  // A move shifts the starts and the items between its two cells, a vertical one a whole row
+  // of them; the counting sort passes three times over the robots and twice over the cells. Take
+  // the cheaper. Always moving in place ran 0.82x of the sort for 100,000 robots (rows of 632
+  // cells), while it gains 4-30 % for 1,000 (benchmark BM_Fleet_QuickBotWarehouse).
+  const std::size_t sort_cost = 3 * cells.size() + 2 * start_.size();
+  std::size_t move_cost = 0;
+  for (const std::uint32_t i : moved_) {
+    const std::uint32_t from = cell_of_robot_[i], to = cells[i];
+    move_cost += (from < to ? to - from : from - to) +
+                 (from < to ? start_[to] - start_[from] : start_[from] - start_[to]);
+    if (move_cost > sort_cost) break;
+  }
+  if (move_cost > sort_cost) {
+    for (const std::uint32_t i : moved_) cell_of_robot_[i] = cells[i];
+    sort_into_cells(present.first(cells.size()));
+    return;
+  }
+  for (const std::uint32_t i : moved_) {
+    move_robot(i, cell_of_robot_[i], cells[i]);
+    cell_of_robot_[i] = cells[i];
+  }
+}
+
+void RobotNeighbourGrid::move_robot(std::uint32_t robot, std::uint32_t from, std::uint32_t to) {
+  const auto cell = [&](std::uint32_t c) {
+    return std::pair{items_.begin() + start_[c], items_.begin() + start_[c + 1]};
+  };
+  // Cells keep their robots sorted by index: find the robot in its old cell, and its place in
+  // the new one, in the layout before the move.
+  const auto [from_begin, from_end] = cell(from);
+  const auto at = std::lower_bound(from_begin, from_end, robot);
+  const auto [to_begin, to_end] = cell(to);
+  const auto place = std::lower_bound(to_begin, to_end, robot);
+  if (from < to) {
+    // The items between close up over the robot's old place; the cells after `from`, up to and
+    // including `to`, begin one item earlier.
+    std::move(at + 1, place, at);
+    *(place - 1) = robot;
+    for (std::uint32_t c = from + 1; c <= to; ++c) --start_[c];
+  } else {
+    std::move_backward(place, at, at + 1);
+    *place = robot;
+    for (std::uint32_t c = to + 1; c <= from; ++c) ++start_[c];
+  }
+}
+
+void RobotNeighbourGrid::sort_into_cells(std::span<const std::uint8_t> present) {
+  std::fill(start_.begin(), start_.end(), 0u);
+  const std::size_t n = present.size();
   // Count robots per cell (shifted by one), prefix-sum into starts, then place in index order:
   // items within a cell stay sorted by robot index, so every query visits them in one order.
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!present[i]) continue;
-    const auto c = static_cast<std::uint32_t>(cell_of(positions[i]));
-    cell_of_robot_[i] = c;
-    ++start_[c + 1];
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (present[i]) ++start_[cell_of_robot_[i] + 1];
   for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
   for (std::size_t i = 0; i < n; ++i) {
     if (!present[i]) continue;

@@ -453,6 +453,47 @@ TEST(RobotNeighbourGrid, FindsEveryRobotWithinTheRadius) {
   }
 }
 
+// refile moves robots between cells in place; the grid must be the one build makes, items in the
+// same order (a robot's neighbours are visited in that order), whether a few robots changed cell
+// (moved in place, to near and far cells, out of the box) or many (the counting sort again).
+TEST(RobotNeighbourGrid, RefileFilesTheRobotsAsBuildWould) {
+  Rng rng(11);
+  const Box2 box{Vec2(0, 0), Vec2(10, 8)};
+  std::vector<Vec2> pts(400);
+  std::vector<std::uint8_t> present(pts.size(), 1);
+  for (auto& p : pts) p = Vec2(rng.uniform(-1.0, 11.0), rng.uniform(-1.0, 9.0));
+  for (std::size_t i = 0; i < pts.size(); i += 9) present[i] = 0;
+  RobotNeighbourGrid grid, fresh;
+  grid.reset(box, 0.5, pts.size());
+  fresh.reset(box, 0.5, pts.size());
+  grid.build(pts, present);
+  const auto visits = [&](const RobotNeighbourGrid& g, const Vec2& c, double r) {
+    std::vector<std::size_t> v;
+    g.for_each_near(c, r, [&](std::size_t j) { v.push_back(j); });
+    return v;
+  };
+  std::vector<std::uint32_t> cells(pts.size());
+  for (int round = 0; round < 60; ++round) {
+    const bool many = round % 4 == 3;  // moves costing more than the counting sort: rebuilt
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      if (rng.uniform(0.0, 1.0) < (many ? 0.5 : 0.02)) {
+        pts[i] = rng.uniform(0.0, 1.0) < 0.7
+                     ? pts[i] + Vec2(rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6))
+                     : Vec2(rng.uniform(-2.0, 12.0), rng.uniform(-2.0, 10.0));
+      }
+      cells[i] = grid.cell_index(pts[i]);
+    }
+    grid.refile(cells, present);
+    fresh.build(pts, present);
+    const double h = grid.cell_size();
+    for (double y = -0.5 * h; y < 8.0 + h; y += h)
+      for (double x = -0.5 * h; x < 10.0 + h; x += h)
+        ASSERT_EQ(visits(grid, Vec2(x, y), 0.0), visits(fresh, Vec2(x, y), 0.0))
+            << "round " << round << ", the cell at (" << x << ", " << y << ")";
+    ASSERT_EQ(visits(grid, Vec2(5, 4), 20.0), visits(fresh, Vec2(5, 4), 20.0)) << round;
+  }
+}
+
 TEST(FleetSummary, ListsTheFleetTheCollisionsAndEachRobot) {
   const Scenario s = load_scenario_text(head_on_yaml("go_to_goal", 0.5), "head_on.yaml");
   const FleetResult f = simulate_fleet(s);

@@ -118,6 +118,7 @@ class FleetSimulation {
   // Each robot's position and status after its move, written by the thread that moved it, so
   // that the serial part reads small arrays rather than every robot's state.
   std::vector<Vec2> moved_to_;
+  std::vector<std::uint32_t> moved_cell_;  ///< grid_.cell_index(moved_to_[i])
   static constexpr std::uint8_t kEnded = 1, kCollided = 2;
   std::vector<std::uint8_t> status_;  ///< kEnded | kCollided, as of the last note_status(i)
   void note_status(std::size_t i);
