@@ -59,6 +59,7 @@ RobotAgent::RobotAgent(AgentSetup setup)
   use_memory_ = nav_->obstacle_memory > 0.0 && n_sensors <= kMaxSensorsForMemory;
   stuck_radius_ = sim_->stuck_radius > 0.0 ? sim_->stuck_radius : robot_->body_radius;
   stuck_anchor_ = pose_.position;
+  if (!goals_.empty()) goal_ = goals_.front();
   if (const double rate = std::round(1.0 / sim_->dt);
       rate >= 1.0 && rate <= 1e9 && std::abs(rate * sim_->dt - 1.0) < 1e-12)
     steps_per_second_ = rate;
@@ -213,7 +214,7 @@ Observation RobotAgent::observe(const SensingScratch& scratch) const {
   obs.t = t_;
   obs.dt = sim_->dt;
   obs.pose = pose_;
-  obs.goal = goals_[std::min(goal_index_, goals_.size() - 1)];
+  obs.goal = goal_;
   obs.goal_index = static_cast<int>(goal_index_);
   obs.goal_count = static_cast<int>(goals_.size());
   obs.ranges = std::span<const double>(scratch.ranges.data(), n_sensors);
@@ -266,6 +267,7 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
       finish(RunStatus::Reached);
       return false;
     }
+    goal_ = goals_[goal_index_];
     controller_->reset();
     mode_ = controller_->mode();
     pid_ = {};

@@ -152,6 +152,9 @@ class RobotAgent {
   Rng rng_;
   ObstacleMemory memory_{};
   Pose2 pose_{};
+  /// goals_[min(goal_index_, size - 1)], kept beside the pose: reading it from the task's goal
+  /// list every step was a cache miss per robot step in a fleet of 1,000.
+  Vec2 goal_{Vec2::Zero()};
   Vec2 velocity_{Vec2::Zero()};
   double t_{0.0};
   double steps_per_second_{0.0};  ///< 1/dt when that is a whole number, else 0: recorded_time
