@@ -92,12 +92,11 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     for (const RangeSensorSpec& sensor : t.robot.sensors)
       rays_per_step_ += static_cast<std::size_t>(std::max(sensor.cone_rays, 1));
   }
-  scratch_.emplace_back(max_sensors);
+  thread_scratch_.emplace_back(max_sensors);
   events_.resize(1);
-  if (!tell_range_.empty()) scratch_.back().robots.resize(n);
+  if (!tell_range_.empty()) thread_scratch_.back().sensing.robots.resize(n);
   if (!tell_range_.empty() || (crowd && !crowd->empty())) velocities_.assign(n, Vec2::Zero());
-  others_.emplace_back();
-  others_.back().reserve(n);
+  thread_scratch_.back().others.reserve(n);
 
   // The grid covers the world (and the robots, for unbounded worlds); cells about one sensing
   // reach wide, so a robot's query touches few cells.
@@ -129,7 +128,7 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
   // The crowd starts after that check (validation keeps robots clear of people and forklifts).
   if (crowd && !crowd->empty()) {
     crowd_ = std::make_unique<Crowd>(*crowd, world_, n, sim_.record_trajectory);
-    others_.back().reserve(n + crowd->people.size());
+    thread_scratch_.back().others.reserve(n + crowd->people.size());
   }
 }
 
@@ -150,10 +149,13 @@ void FleetSimulation::update_snapshot() {
 }
 
 void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_t thread) {
-  SensingScratch& scratch = scratch_[thread];
-  std::vector<Circle>& others = others_[thread];
+  SensingScratch& scratch = thread_scratch_[thread].sensing;
+  std::vector<Circle>& others = thread_scratch_[thread].others;
   for (std::size_t i = begin; i < end; ++i) {
-    if (!moving_[i]) continue;
+    if (!moving_[i]) {
+      moved_to_[i] = positions_[i];
+      continue;
+    }
     // The bodies this robot's sensors could reach, as they stood at the start of the step.
     others.clear();
     const Vec2 p = positions_[i];
@@ -198,8 +200,7 @@ void FleetSimulation::tell_nearby(std::size_t i, SensingScratch& scratch) const 
 
 void FleetSimulation::prepare_contacts() {
   ++steps_;
-  for (std::size_t i = 0; i < agents_.size(); ++i)
-    if (moving_[i]) positions_[i] = moved_to_[i];
+  positions_.swap(moved_to_);  // step_robots wrote every robot's
   if (!velocities_.empty())
     for (std::size_t i = 0; i < agents_.size(); ++i)
       velocities_[i] = (status_[i] & kEnded) != 0 ? Vec2::Zero() : agents_[i].velocity();
@@ -330,11 +331,14 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     }
     return steps_ - first;
   }
-  while (scratch_.size() < n_threads) {
-    scratch_.emplace_back(scratch_.front().beams.size());
-    scratch_.back().robots.resize(scratch_.front().robots.size());
-    others_.emplace_back();
-    others_.back().reserve(agents_.size());
+  while (thread_scratch_.size() < n_threads) {
+    // Sized as the first thread's (read before emplace_back may move it).
+    const ThreadScratch& first = thread_scratch_.front();
+    const std::size_t sensors = first.sensing.beams.size(), told = first.sensing.robots.size(),
+                      bodies = first.others.capacity();  // robots, and people in a crowd
+    ThreadScratch& added = thread_scratch_.emplace_back(sensors);
+    added.sensing.robots.resize(told);
+    added.others.reserve(bodies);
   }
   events_.resize(std::max(events_.size(), n_threads));
   // Each thread steps its own slice of the robots, in chunks taken from the slice's counter,
