@@ -1,8 +1,9 @@
 #pragma once
 /// @file
-/// Which robots are near a point: a uniform grid over robot positions, rebuilt every step by a
-/// counting sort into contiguous arrays (O(robots + cells), no allocation once sized). Robots
-/// outside the grid's box are kept in its border cells, so no robot is ever lost.
+/// Which robots are near a point: a uniform grid over robot positions in contiguous arrays, built
+/// by a counting sort (O(robots + cells), no allocation once sized) and refiled every step, the
+/// few robots that changed cell moved in place. Robots outside the grid's box are kept in its
+/// border cells, so no robot is ever lost.
 
 #include <algorithm>
 #include <cmath>
