@@ -50,9 +50,8 @@ void RobotNeighbourGrid::refile(std::span<const std::uint32_t> cells,
   const std::size_t sort_cost = 3 * cells.size() + 2 * start_.size();
   std::size_t move_cost = 0;
   for (const std::uint32_t i : moved_) {
-    const std::uint32_t from = cell_of_robot_[i], to = cells[i];
-    move_cost += (from < to ? to - from : from - to) +
-                 (from < to ? start_[to] - start_[from] : start_[from] - start_[to]);
+    const auto [lo, hi] = std::minmax(cell_of_robot_[i], cells[i]);
+    move_cost += (hi - lo) + (start_[hi] - start_[lo]);
     if (move_cost > sort_cost) break;
   }
   if (move_cost > sort_cost) {
