@@ -50,6 +50,56 @@ class PidGains:
     def __init__(self) -> None: ...
     def to_dict(self) -> dict[str, Any]: ...
 
+class PlannerParams:
+    fields: tuple[str, ...]
+    kind: str
+    map: str
+    radius: float
+    inflation: float
+    cell_size: float
+    lookahead: float
+    replan_period: float
+    progress_window: float
+    progress_distance: float
+    backup_distance: float
+    recovery_turn: float
+    max_recoveries: int
+    window: float
+    decay: float
+    sense_range: float
+    memory_range: float
+    max_samples: int
+    guard_horizon: float
+    guard_margin: float
+    def __init__(self) -> None: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+class DwaParams:
+    fields: tuple[str, ...]
+    horizon: float
+    sim_step: float
+    v_samples: int
+    omega_samples: int
+    heading: float
+    clearance: float
+    velocity: float
+    max_clearance: float
+    margin: float
+    range: float
+    def __init__(self) -> None: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+class SafetyParams:
+    fields: tuple[str, ...]
+    enabled: bool
+    margin: float
+    reaction_time: float
+    slowdown_distance: float
+    slowdown_speed: float
+    person_margin: float
+    def __init__(self) -> None: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
 class NavigationParams:
     fields: tuple[str, ...]
     v0: float
@@ -70,7 +120,13 @@ class NavigationParams:
     slow_when_turning: bool
     chatter_switches: int
     chatter_window: float
+    avoidance_range: float
+    avoidance_horizon: float
+    avoidance_margin: float
     pid: PidGains
+    planner: PlannerParams
+    dwa: DwaParams
+    safety: SafetyParams
     def __init__(self) -> None: ...
     def to_dict(self) -> dict[str, Any]: ...
 

@@ -171,6 +171,17 @@ Turn turn_of(py::handle h) {
 void bind_behaviours(py::module_& m) {
   py::class_<PidGains> pid(m, "PidGains", "Heading PID gains (eqs. 5.12-5.15).");
   bind_params(pid);
+  py::class_<PlannerParams> planner(
+      m, "PlannerParams",
+      "The planning layer's `controller.planner:` section (docs/SCENARIOS.md).");
+  bind_params(planner);
+  py::class_<DwaParams> dwa(m, "DwaParams",
+                            "The `dwa` controller kind's `controller.dwa:` section.");
+  bind_params(dwa);
+  py::class_<SafetyParams> safety(
+      m, "SafetyParams",
+      "The safety layer's `controller.safety:` section (docs/SAFETY.md): on by default.");
+  bind_params(safety);
   py::class_<NavigationParams> params(
       m, "NavigationParams",
       "A robot's `controller:` section: speeds, the switching distances of Fig 5.11, the goal "

@@ -59,6 +59,7 @@ nlohmann::ordered_json summary_to_json(const RunResult& r) {
       r.first_chatter_time < 0.0 ? Json(nullptr) : number(r.first_chatter_time);
   j["final_pose"] = Json::array({number(r.final_x), number(r.final_y), number(r.final_theta)});
   j["wait_time"] = number(r.wait_time);
+  j["safety_time"] = number(r.safety_time);
 
   const std::size_t shown = std::min(r.transitions.size(), kSummaryMaxTransitions);
   Json transitions = Json::array();
@@ -155,6 +156,9 @@ nlohmann::ordered_json fleet_summary_to_json(const FleetResult& f) {
   double wait = 0.0;
   for (const RunResult& r : f.robots) wait += r.wait_time;
   fleet["wait_time"] = number(wait);
+  double safety = 0.0;
+  for (const RunResult& r : f.robots) safety += r.safety_time;
+  fleet["safety_time"] = number(safety);
   j["fleet"] = std::move(fleet);
   if (!f.crowd.empty()) {
     const CrowdMetrics& m = f.crowd.metrics;

@@ -82,6 +82,14 @@ bool read_bool(const std::string& file, const YAML::Node& node, const std::strin
   fail(file, node, key, fmt::format("expected true or false, got {}", quote_input(s)));
 }
 
+bool read_switch(const std::string& file, const YAML::Node& node, const std::string& key) {
+  const std::string s = scalar_of(file, node, key, "on, off or a mapping of keys to values");
+  if (s == "on" || s == "true" || s == "True" || s == "yes") return true;
+  if (s == "off" || s == "false" || s == "False" || s == "no") return false;
+  fail(file, node, key,
+       fmt::format("expected on, off or a mapping of keys to values, got {}", quote_input(s)));
+}
+
 std::string read_string(const std::string& file, const YAML::Node& node, const std::string& key) {
   return scalar_of(file, node, key, "a string");
 }

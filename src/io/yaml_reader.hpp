@@ -30,6 +30,8 @@ double read_double(const std::string& file, const YAML::Node& node, const std::s
 std::int64_t read_int(const std::string& file, const YAML::Node& node, const std::string& key);
 bool read_bool(const std::string& file, const YAML::Node& node, const std::string& key);
 std::string read_string(const std::string& file, const YAML::Node& node, const std::string& key);
+/// A section switched by one word: on (true, yes) or off (false, no).
+bool read_switch(const std::string& file, const YAML::Node& node, const std::string& key);
 /// A sequence of exactly `n` numbers (n = 0: any length).
 std::vector<double> read_numbers(const std::string& file, const YAML::Node& node,
                                  const std::string& key, std::size_t n);
@@ -93,9 +95,18 @@ class MapReader {
     }
     fail(file_, n, path_of(key), "unknown value '" + text + "' (expected " + expected + ")");
   }
+  /// A section's mapping; a section that can be switched off (it has `enabled`) may also be given
+  /// as one word, `on` or `off` (`controller.safety: off`).
   template <class T>
   void section(const char* key, T& sub_struct) {
     if (!has(key)) return;
+    if constexpr (requires { sub_struct.enabled = true; }) {
+      const YAML::Node n = get(key);
+      if (n.IsScalar()) {
+        sub_struct.enabled = read_switch(file_, n, path_of(key));
+        return;
+      }
+    }
     MapReader r = sub(key);
     sub_struct.serialize(r);
     r.finish();

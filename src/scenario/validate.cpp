@@ -115,6 +115,24 @@ void validate_dwa(const DwaParams& p, const RobotKeys& k) {
   if (!(p.range >= 0.0 && p.range <= 100.0)) bad("range", "must be in [0, 100] m (0: derived)");
 }
 
+// controller.safety: a field of a few centimetres to a metre, a speed cap that is a speed.
+void validate_safety(const SafetyParams& p, const RobotKeys& k) {
+  auto bad = [&](const char* key, const std::string& what) {
+    k.fail(k.controller(std::string("safety.") + key), what);
+  };
+  if (!(p.margin >= 0.0 && p.margin <= 1.0))
+    bad("margin", fmt::format("must be in [0, 1] m, got {}", p.margin));
+  if (!(p.reaction_time >= 0.0 && p.reaction_time <= 2.0))
+    bad("reaction_time", fmt::format("must be in [0, 2] s, got {}", p.reaction_time));
+  if (!(p.slowdown_distance >= 0.0 && p.slowdown_distance <= 10.0))
+    bad("slowdown_distance",
+        fmt::format("must be in [0, 10] m (0: no slow-down field), got {}", p.slowdown_distance));
+  if (!(p.slowdown_speed >= 0.0 && p.slowdown_speed <= 100.0))
+    bad("slowdown_speed", fmt::format("must be in [0, 100] m/s, got {}", p.slowdown_speed));
+  if (!(p.person_margin >= 0.0 && p.person_margin <= 5.0))
+    bad("person_margin", fmt::format("must be in [0, 5] m, got {}", p.person_margin));
+}
+
 // The controller section: the guards of Fig 5.11 need d_unsafe < d_fb < d_o, ...
 void validate_controller(const NavigationParams& n, const RobotKeys& k) {
   auto bad = [&](const char* key, const std::string& what) { k.fail(k.controller(key), what); };
@@ -145,6 +163,7 @@ void validate_controller(const NavigationParams& n, const RobotKeys& k) {
   if (!(n.obstacle_range >= 0.0)) bad("obstacle_range", "must not be negative (0: use all)");
   validate_planner(n.planner, k);
   validate_dwa(n.dwa, k);
+  validate_safety(n.safety, k);
   if (!(n.avoidance_range > 0.0) || n.avoidance_range > 1000.0)
     bad("avoidance_range", "must be in (0, 1000] m");
   if (!(n.avoidance_horizon > 0.0)) bad("avoidance_horizon", "must be positive");

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "floornav/sim/robot_agent.hpp"
+
 namespace floornav {
 
 namespace {
@@ -274,6 +276,31 @@ void Crowd::check(double dt, const RobotBodies& robots, std::vector<CrowdContact
       forklift[k] = touching;
     }
     gap_[i] = nearest;
+  }
+}
+
+void Crowd::safety_bodies_near(const Vec2& p, double reach, double dt, double person_margin,
+                               SensingScratch& scratch) const {
+  const SocialForceParams& sf = spec_.social;
+  for (std::size_t a = 0; a < bodies_.size(); ++a) {
+    const Circle& c = bodies_[a];
+    const double r =
+        reach + c.radius + person_margin + sf.max_speed_factor * spec_.people[a].speed * dt;
+    if ((c.center - p).squaredNorm() >= r * r) continue;
+    SafetyDisc& d = scratch.safety_discs[scratch.safety_disc_count++];
+    d.position = c.center;
+    d.radius = c.radius;
+    d.approach = sf.max_speed_factor * spec_.people[a].speed * dt;
+    d.reciprocal = false;
+    d.extra_margin = person_margin;
+  }
+  for (std::size_t k = 0; k < boxes_.size(); ++k) {
+    const OrientedBox& b = boxes_[k];
+    // Driving on, or turning on the spot at a corner of its route (its far corners sweep fastest).
+    const double approach =
+        std::max(spec_.forklifts[k].speed, kForkliftTurnRate * b.bounding_radius()) * dt;
+    if (signed_distance(b, p) >= reach + approach) continue;
+    scratch.safety_boxes[scratch.safety_box_count++] = {b, approach};
   }
 }
 

@@ -31,6 +31,15 @@ double sensing_reach(const RobotSpec& robot) {
   return reach;
 }
 
+// m of gap within which another body matters to robot `robot`'s safety layer: its field and
+// twice its stopping path at top speed (its share of the room, against a body that takes none).
+double safety_reach(const RobotSpec& robot, const SafetyParams& safety, double dt) {
+  const SafetyLayer layer(robot, safety, dt);
+  const double v = max_forward_speed(robot.drive);
+  return safety.margin + safety.person_margin + safety.slowdown_distance +
+         2.0 * std::abs(layer.stopping_path({v, 0.0}).v);
+}
+
 // Rays a thread should have per step before a fleet is split across threads.
 constexpr std::size_t kRaysPerThread = 2000;
 // Robots a thread takes at a time when a fleet is split: small enough that the threads finish a
@@ -85,6 +94,14 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     max_radius_ = std::max(max_radius_, radius_[i]);
     max_reach = std::max(max_reach, reach_[i]);
     max_sensors = std::max(max_sensors, t.robot.sensors.size());
+    top_step_.push_back(max_forward_speed(t.robot.drive) * sim_.dt);
+    max_top_step_ = std::max(max_top_step_, top_step_.back());
+    if (t.controller.params.safety.enabled) {
+      safety_on_.resize(n, 0);
+      safety_reach_.resize(n, 0.0);
+      safety_on_[i] = 1;
+      safety_reach_[i] = safety_reach(t.robot, t.controller.params.safety, sim_.dt);
+    }
     if (t.controller.params.robot_avoidance != RobotAvoidance::None) {
       tell_range_.resize(n, 0.0);
       tell_range_[i] = t.controller.params.avoidance_range;
@@ -130,6 +147,11 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     crowd_ = std::make_unique<Crowd>(*crowd, world_, n, sim_.record_trajectory);
     thread_scratch_.back().others.reserve(n + crowd->people.size());
   }
+  if (!safety_on_.empty()) {
+    SensingScratch& first = thread_scratch_.back().sensing;
+    first.safety_discs.resize(n + (crowd ? crowd->people.size() : 0));
+    first.safety_boxes.resize(crowd ? crowd->forklifts.size() : 0);
+  }
 }
 
 void FleetSimulation::update_snapshot() {
@@ -166,6 +188,7 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
       if ((positions_[j] - p).squaredNorm() < r * r) others.push_back({positions_[j], radius_[j]});
     });
     if (!tell_range_.empty()) tell_nearby(i, scratch);
+    if (!safety_on_.empty()) gather_safety_bodies(i, scratch);
     if (crowd_) {
       crowd_->people_near(p, reach, others);
       agents_[i].step(scratch, others, crowd_->forklifts());
@@ -196,6 +219,30 @@ void FleetSimulation::tell_nearby(std::size_t i, SensingScratch& scratch) const 
     scratch.robots[scratch.robot_count++] = {positions_[j], velocities_[j], radius_[j],
                                              moving_[j] != 0};
   });
+}
+
+void FleetSimulation::gather_safety_bodies(std::size_t i, SensingScratch& scratch) const {
+  scratch.safety_disc_count = 0;
+  scratch.safety_box_count = 0;
+  if (!safety_on_[i]) return;
+  const Vec2 p = positions_[i];
+  // Bodies beyond this gap cannot bind this step (SafetyLayer::slack's quick bound).
+  const double gap_reach = safety_reach_[i] + max_top_step_;
+  grid_.for_each_near(p, radius_[i] + max_radius_ + gap_reach, [&](std::size_t j) {
+    if (j == i) return;
+    const double r = radius_[i] + radius_[j] + gap_reach;
+    if ((positions_[j] - p).squaredNorm() >= r * r) return;
+    const bool moving = moving_[j] != 0;
+    SafetyDisc& d = scratch.safety_discs[scratch.safety_disc_count++];
+    d.position = positions_[j];
+    d.radius = radius_[j];
+    d.reciprocal = moving && safety_on_[j];
+    d.approach = moving && !safety_on_[j] ? top_step_[j] : 0.0;
+    d.extra_margin = 0.0;
+  });
+  if (crowd_)
+    crowd_->safety_bodies_near(p, radius_[i] + gap_reach, sim_.dt,
+                               agents_[i].params().safety.person_margin, scratch);
 }
 
 void FleetSimulation::prepare_contacts() {
@@ -336,8 +383,12 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     const ThreadScratch& first = thread_scratch_.front();
     const std::size_t sensors = first.sensing.beams.size(), told = first.sensing.robots.size(),
                       bodies = first.others.capacity();  // robots, and people in a crowd
+    const std::size_t discs = first.sensing.safety_discs.size(),
+                      boxes = first.sensing.safety_boxes.size();
     ThreadScratch& added = thread_scratch_.emplace_back(sensors);
     added.sensing.robots.resize(told);
+    added.sensing.safety_discs.resize(discs);
+    added.sensing.safety_boxes.resize(boxes);
     added.others.reserve(bodies);
   }
   events_.resize(std::max(events_.size(), n_threads));

@@ -36,8 +36,9 @@ void SensingScratch::fit(std::size_t sensors) {
   if (beams.size() >= sensors) return;
   beams.assign(sensors, SensorBeam{});
   ranges.assign(sensors, 0.0);
-  sensed.assign(sensors, Vec2::Zero());
-  points.assign(sensors + ObstacleMemory::kCapacity, Vec2::Zero());
+  // One more than the sensors: the point a safety stop met (RobotAgent::guard).
+  sensed.assign(sensors + 1, Vec2::Zero());
+  points.assign(sensors + 1 + ObstacleMemory::kCapacity, Vec2::Zero());
 }
 
 RobotAgent::RobotAgent(AgentSetup setup)
@@ -55,6 +56,7 @@ RobotAgent::RobotAgent(AgentSetup setup)
       log_transitions_(setup.log_transitions) {
   controller_->reset();
   mode_ = controller_->mode();
+  if (nav_->safety.enabled) safety_.emplace(*robot_, nav_->safety, sim_->dt);
   const std::size_t n_sensors = robot_->sensors.size();
   use_memory_ = nav_->obstacle_memory > 0.0 && n_sensors <= kMaxSensorsForMemory;
   stuck_radius_ = sim_->stuck_radius > 0.0 ? sim_->stuck_radius : robot_->body_radius;
@@ -118,6 +120,7 @@ void RobotAgent::finish(RunStatus status) {
   result_.status = status;
   result_.reached_goal = status == RunStatus::Reached;
   result_.sim_time = recorded_time(result_.steps);
+  result_.safety_time = recorded_time(result_.safety_steps);
   // Each mode's time is a whole number of steps: written without the drift of adding dt up.
   for (double& m : result_.mode_time)
     m = recorded_time(static_cast<long long>(std::llround(m / sim_->dt)));
@@ -170,6 +173,35 @@ void RobotAgent::record_extras(const SensingScratch* scratch) {
   }
 }
 
+void RobotAgent::guard(const SensingScratch& scratch, WheelSpeeds& wheels,
+                       UnicycleCommand& driven) {
+  SafetyScene scene;
+  scene.world = world_;
+  // A disc body's clearance bound is kept up to date every step; a footprint's is exact.
+  scene.world_clearance = clearance_bound_;
+  scene.discs = {scratch.safety_discs.data(), scratch.safety_disc_count};
+  scene.boxes = {scratch.safety_boxes.data(), scratch.safety_box_count};
+  scene.points = {scratch.sensed.data(), scratch.sensed_count};
+  const SafetyVerdict verdict = safety_->filter(pose_, driven, scene);
+  if (!verdict.limited) return;
+  // What stopped the robot reaches its controller at the next step as one more return (a
+  // safety scanner's), so that a controller whose sensors missed it (a corner between two IR
+  // beams) turns away rather than pushing on against the field.
+  if (verdict.blocked) {
+    safety_return_ = verdict.blocker;
+    has_safety_return_ = true;
+  }
+  wheels = saturate_wheels(robot_->drive, verdict.command);
+  driven = wheels_to_unicycle(robot_->drive, wheels);
+  // Wheels that stall below their least speed pivot the body differently: then stand still.
+  if ((driven.v != verdict.command.v || driven.omega != verdict.command.omega) &&
+      safety_->slack(pose_, driven, scene) < 0.0) {
+    wheels = {};
+    driven = {};
+  }
+  ++result_.safety_steps;
+}
+
 void RobotAgent::collide_with_robot(double gap) {
   note_robot_gap(gap);
   if (finished_) return;  // already stopped: the other robot drove into it
@@ -201,6 +233,10 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others,
     result_.ranges.insert(result_.ranges.end(), ranges.begin(), ranges.end());
   }
   scratch.sensed_count = ranges_to_points(beams, robot.sensors, ranges, scratch.sensed);
+  if (has_safety_return_) {
+    scratch.sensed[scratch.sensed_count++] = safety_return_;
+    has_safety_return_ = false;
+  }
   scratch.point_count = scratch.sensed_count;
   if (use_memory_)
     scratch.point_count =
@@ -296,8 +332,11 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
     last_wanted_ = wanted;
     last_theta_ = pose_.theta;
   }
-  const WheelSpeeds wheels = saturate_wheels(robot.drive, wanted);
-  const UnicycleCommand driven = wheels_to_unicycle(robot.drive, wheels);
+  WheelSpeeds wheels = saturate_wheels(robot.drive, wanted);
+  UnicycleCommand driven = wheels_to_unicycle(robot.drive, wheels);
+
+  // 4b. guard: the safety layer lets through only what can stop short of everything it knows.
+  if (safety_) guard(scratch, wheels, driven);
 
   // 5. integrate
   // The sensors' cosine and sine of the heading, if they were taken at this heading.

@@ -44,7 +44,8 @@ TEST(Cli, RunWritesTheThreeFiles) {
 TEST(Cli, SetChangesTheController) {
   const fs::path out = temp_dir("set");
   const Output o = floornav("run " + scenario("rectangle.yaml") +
-                            " --set controller.kind=go_to_goal --out " + out.string());
+                            " --set controller.kind=go_to_goal --set controller.safety=off --out " +
+                            out.string());
   ASSERT_EQ(o.status, 0) << o.text;
   EXPECT_NE(o.text.find("collision"), std::string::npos);
 }

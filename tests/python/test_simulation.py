@@ -174,7 +174,8 @@ def test_stepping_a_finished_simulation_is_a_value_error():
 
 
 def test_the_final_observation_is_sensed_where_the_robot_stopped():
-    sim = floornav.Simulation(load(**{"robot.start": [0.85, 0.0, 0.0]}))
+    # Without the safety layer, so that the robot can drive into the rectangle.
+    sim = floornav.Simulation(load(**{"robot.start": [0.85, 0.0, 0.0], "controller.safety": "off"}))
     obs = sim.reset()
     while obs["status"] == "running":
         obs = sim.step((0.2, 0.0))  # straight into the rectangle
@@ -193,3 +194,16 @@ def test_reset_with_a_seed_and_the_mode_property():
     c = poses(floornav.Simulation(s.with_seed(7)), 800)
     assert b == c and a != b
     assert sim.mode in ("go_to_goal", "follow_boundary_cw", "follow_boundary_ccw", "avoid_obstacle")
+
+
+def test_the_safety_layer_stops_a_command_short_of_the_rectangle():
+    # The same command straight at the rectangle's face at x = 1.0, the safety layer on (the
+    # default): the robot stops 1 cm (its margin) short and never touches; the run ends stuck.
+    sim = floornav.Simulation(load(**{"robot.start": [0.85, 0.0, 0.0]}))
+    obs = sim.reset()
+    while obs["status"] == "running":
+        obs = sim.step((0.2, 0.0))
+    assert obs["status"] == "stuck"
+    assert obs["pose"][0] + 0.075 == pytest.approx(1.0 - 0.01, abs=2e-3)
+    assert sim.result.summary["min_clearance"] >= 0.01 - 1e-9
+    assert sim.result.summary["safety_time"] > 0

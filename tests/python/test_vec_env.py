@@ -119,7 +119,7 @@ def test_same_step_autoreset_puts_the_final_observation_in_info():
 
 
 def test_copies_that_end_are_restarted_alone():
-    s = load(**{"robot.start": [0.85, 0.0, 0.0]})
+    s = load(**{"robot.start": [0.85, 0.0, 0.0], "controller.safety": "off"})
     env = floornav.VecEnv(s, 3, seed=0)
     env.reset()
     a = np.array([[0.3, 0.0], [-0.1, 0.0], [0.0, 0.0]])  # copy 0 drives into the rectangle
@@ -141,7 +141,7 @@ def test_copies_that_end_are_restarted_alone():
 def test_the_default_reward():
     # Straight at the goal (2.4, 0) from (0.85, 0): progress is the distance driven, and the
     # collision with the rectangle's face at x = 1.0 costs 1.
-    env = floornav.VecEnv(load(**{"robot.start": [0.85, 0.0, 0.0]}), 1, seed=0)
+    env = floornav.VecEnv(load(**{"robot.start": [0.85, 0.0, 0.0], "controller.safety": "off"}), 1, seed=0)
     obs, _ = env.reset()
     x0 = obs["pose"][0, 0]
     obs, r, te, tr, info = env.step(np.array([[0.1, 0.0]]))

@@ -209,7 +209,7 @@ std::string corridor_yaml(const std::string& extra) {
   return "world: {bounds: [0, 0, 3, 0.7]}\n"
          "robots:\n"
          "  - {name: bot, start: [0.3, 0.35, 0], goal: [2.9, 0.35]}\n"
-         "controller: {kind: go_to_goal}\n"
+         "controller: {kind: go_to_goal, safety: off}\n"
          "sim: {t_max: 40}\n" +
          extra;
 }

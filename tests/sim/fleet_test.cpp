@@ -37,14 +37,14 @@ double time_in(const RunResult& r, const std::string& mode) {
 }
 
 // Two robots facing each other along y = 0, `gap` metres apart between their bodies.
-std::string head_on_yaml(const std::string& kind, double gap) {
+std::string head_on_yaml(const std::string& kind, double gap, const char* safety = "off") {
   const double x = 0.075 + 0.5 * gap;  // QuickBot body radius 0.075 m
   return "world: {bounds: [-2, -1, 2, 1]}\n"
          "robots:\n"
          "  - {name: a, start: [" +
          std::to_string(-x) + ", 0, 0], goal: [1.5, 0]}\n" + "  - {name: b, start: [" +
          std::to_string(x) + ", 0, 3.141592653589793], goal: [-1.5, 0]}\n" +
-         "controller: {kind: " + kind + "}\n";
+         "controller: {kind: " + kind + ", safety: " + safety + "}\n";
 }
 
 // A ray meets another robot's body as it meets a circular obstacle: a beam along +x from the
@@ -253,8 +253,8 @@ TEST(Fleet, TheAutomatonAloneInTheAislesNeverTouches) {
   }
 }
 
-// Go-to-goal ignores what it senses: two robots driving at each other touch, both runs end as
-// collisions, and the pair is logged once.
+// Go-to-goal ignores what it senses: two robots driving at each other (the safety layer off) touch,
+// both runs end as collisions, and the pair is logged once.
 TEST(Fleet, RobotsThatIgnoreEachOtherCollideAndThePairIsLoggedOnce) {
   const Scenario s = load_scenario_text(head_on_yaml("go_to_goal", 0.5), "head_on.yaml");
   const FleetResult f = simulate_fleet(s);
@@ -372,6 +372,7 @@ TEST(Fleet, ContactsCollisionsAndLeavingRobotsOnTwoThreadsGiveTheSameBitsAsStep)
       "robot: {preset: quickbot, sensors: {lidar: {beams: 60, fov: 6.283185307, "
       "min_range: 0.02, max_range: 0.4}}}\n"
       "sim: {t_max: 30, park_finished: false}\n"
+      "controller: {safety: off}\n"
       "robots:\n";
   Rng rng(11);
   int n = 0;

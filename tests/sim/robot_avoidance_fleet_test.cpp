@@ -25,13 +25,14 @@ int robot_collisions(const FleetResult& f) {
 }
 
 // Two robots facing each other along y = 0, 1 m apart.
-std::string head_on_yaml(const std::string& kind, const std::string& avoidance) {
+std::string head_on_yaml(const std::string& kind, const std::string& avoidance,
+                         const char* safety = "on") {
   return "world: {bounds: [-2, -1, 2, 1]}\n"
          "robots:\n"
          "  - {name: a, start: [-0.5, 0, 0], goal: [1.5, 0]}\n"
          "  - {name: b, start: [0.5, 0, 3.141592653589793], goal: [-1.5, 0]}\n"
          "controller: {kind: " +
-         kind + ", robot_avoidance: " + avoidance + "}\n";
+         kind + ", robot_avoidance: " + avoidance + ", safety: " + safety + "}\n";
 }
 
 // y of the robot's trajectory where it crosses x = 0.
@@ -46,8 +47,8 @@ double y_at_middle(const RunResult& r) {
 // The failure the layer is for: four QuickBots follow a pillar in opposite pairs and meet head on.
 // The chapter's automaton alone: all four collide; with the layer: all four arrive, no contact.
 TEST(RobotAvoidance, FourRobotsRoundAPillarCollideWithoutTheLayerAndArriveWithIt) {
-  const FleetResult none =
-      simulate_fleet(scenario_file("fleet_pillar.yaml", {"controller.robot_avoidance=none"}));
+  const FleetResult none = simulate_fleet(scenario_file(
+      "fleet_pillar.yaml", {"controller.robot_avoidance=none", "controller.safety=off"}));
   EXPECT_EQ(none.collided, 4);
   EXPECT_GE(robot_collisions(none), 2);
   const FleetResult orca = simulate_fleet(scenario_file("fleet_pillar.yaml"));
@@ -61,7 +62,7 @@ TEST(RobotAvoidance, FourRobotsRoundAPillarCollideWithoutTheLayerAndArriveWithIt
 // on its own right (robot a, heading +x, below the line; robot b, heading -x, above it).
 TEST(RobotAvoidance, GoToGoalRobotsHeadOnPassOnTheRight) {
   const FleetResult none =
-      simulate_fleet(load_scenario_text(head_on_yaml("go_to_goal", "none"), "head_on.yaml"));
+      simulate_fleet(load_scenario_text(head_on_yaml("go_to_goal", "none", "off"), "head_on.yaml"));
   EXPECT_EQ(none.collided, 2);
   const FleetResult f =
       simulate_fleet(load_scenario_text(head_on_yaml("go_to_goal", "orca"), "head_on.yaml"));

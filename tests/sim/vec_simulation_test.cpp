@@ -78,7 +78,8 @@ TEST(Simulation, ObserveBeforeStepSharesTheStepsSensing) {
 TEST(Simulation, AFinishedRunIsObservedWhereItStopped) {
   // Straight into the rectangle's face at x = 1.0: the last observation is sensed at the
   // final pose (the front IR sensor sits 0.0664 m ahead of the centre, min range 0.04 m).
-  const Scenario s = scenario_file("rectangle.yaml", {"robot.start=[0.85, 0, 0]"});
+  const Scenario s =
+      scenario_file("rectangle.yaml", {"robot.start=[0.85, 0, 0]", "controller.safety=off"});
   Simulation sim = make_simulation(s);
   while (sim.step(Command::unicycle(0.2, 0.0))) {
   }

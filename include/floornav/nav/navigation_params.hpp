@@ -10,6 +10,7 @@
 #include "floornav/nav/dwa_params.hpp"
 #include "floornav/nav/pid.hpp"
 #include "floornav/nav/planner_params.hpp"
+#include "floornav/nav/safety_params.hpp"
 
 namespace floornav {
 
@@ -67,6 +68,9 @@ struct NavigationParams {
   double avoidance_range{1.0};    ///< m between centres: robots told to this one (NearbyRobot)
   double avoidance_horizon{2.0};  ///< s: ORCA's time horizon tau for other robots
   double avoidance_margin{0.02};  ///< m added to the sum of two robots' radii
+  /// The safety layer between the controller and the wheels (nav/safety_layer.hpp); it is the
+  /// simulator's, under every controller, so user controllers get it too.
+  SafetyParams safety{};
 
   bool operator==(const NavigationParams&) const = default;
 
@@ -102,6 +106,7 @@ struct NavigationParams {
     a.section("pid", heading_pid);
     a.section("planner", planner);
     a.section("dwa", dwa);
+    a.section("safety", safety);
   }
 };
 

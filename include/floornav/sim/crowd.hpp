@@ -27,6 +27,8 @@
 
 namespace floornav {
 
+struct SensingScratch;
+
 /// A person of the scenario (`people:`).
 struct PersonSpec {
   std::string name;
@@ -129,6 +131,11 @@ class Crowd {
   std::span<const Circle> people() const { return bodies_; }
   /// The forklifts' footprints now.
   std::span<const OrientedBox> forklifts() const { return boxes_; }
+  /// Writes to the safety scratch of a robot at `p` the people and forklifts whose bodies come
+  /// within `reach` of it, each with how far it may come in one step of `dt`; people get
+  /// `person_margin` as extra margin.
+  void safety_bodies_near(const Vec2& p, double reach, double dt, double person_margin,
+                          SensingScratch& scratch) const;
   /// Appends to `out` the bodies of the people whose disc comes within `reach` of `p`.
   void people_near(const Vec2& p, double reach, std::vector<Circle>& out) const;
 

@@ -101,6 +101,8 @@ class FleetSimulation {
   void update_snapshot();
   /// Robots that use robot avoidance are told of the robots near them (Observation::robots).
   void tell_nearby(std::size_t i, SensingScratch& scratch) const;
+  /// The bodies robot i's safety layer keeps clear of: robots, people and forklifts near it.
+  void gather_safety_bodies(std::size_t i, SensingScratch& scratch) const;
   /// The fleet's result from each robot's run (in robot order), names filled in.
   FleetResult make_result(std::vector<RunResult> runs) const;
 
@@ -136,6 +138,12 @@ class FleetSimulation {
   // velocities they are told (start of the step). Empty when no robot uses it.
   std::vector<double> tell_range_;  ///< m; 0: not told
   std::vector<Vec2> velocities_;
+  // The safety layer (nav/safety_layer.hpp): which robots run it, how near another body must be
+  // to matter to it (m of gap), and how far each robot can drive in one step. Empty when none.
+  std::vector<std::uint8_t> safety_on_;
+  std::vector<double> safety_reach_;
+  std::vector<double> top_step_;
+  double max_top_step_{0.0};
   double max_radius_{0.0};
   std::size_t rays_per_step_{0};  ///< over all robots: the work of a step, to size the threads
   RobotNeighbourGrid grid_;

@@ -15,12 +15,14 @@
 #include <vector>
 
 #include <memory>
+#include <optional>
 
 #include "floornav/automaton/hybrid_automaton.hpp"
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/circle.hpp"
 #include "floornav/nav/controller.hpp"
 #include "floornav/nav/pid.hpp"
+#include "floornav/nav/safety_layer.hpp"
 #include "floornav/sensing/obstacle_memory.hpp"
 #include "floornav/sensing/range_sensor.hpp"
 #include "floornav/sim/robot_task.hpp"
@@ -43,6 +45,12 @@ struct SensingScratch {
   /// the step; robot_count is 0 for a lone robot and for robots without robot avoidance.
   std::vector<NearbyRobot> robots;
   std::size_t robot_count{0};
+  /// The bodies near this robot that its safety layer keeps clear of (other robots, people,
+  /// forklifts), written by the fleet before the step; empty for a lone robot.
+  std::vector<SafetyDisc> safety_discs;
+  std::size_t safety_disc_count{0};
+  std::vector<SafetyBox> safety_boxes;
+  std::size_t safety_box_count{0};
 
   explicit SensingScratch(std::size_t sensors = 0) { fit(sensors); }
   /// Makes room for robots with up to `sensors` sensors (allocates only when growing).
@@ -116,6 +124,8 @@ class RobotAgent {
   const RobotSpec& robot() const { return *robot_; }
   const NavigationParams& params() const { return *nav_; }
   const Controller& controller() const { return *controller_; }
+  /// The safety layer under the controller (nullptr with `controller.safety: off`).
+  const SafetyLayer* safety() const { return safety_ ? &*safety_ : nullptr; }
   /// The mode the controller reported last.
   int mode() const { return mode_; }
   std::size_t goal_index() const { return goal_index_; }
@@ -135,6 +145,8 @@ class RobotAgent {
   void finish(RunStatus status);
   /// Logs a transition of the controller at time t (mode change or a named guard).
   void log_transition(double t, int to, int guard);
+  /// Step 4b: the safety layer's verdict on the command about to be driven.
+  void guard(const SensingScratch& scratch, WheelSpeeds& wheels, UnicycleCommand& driven);
   /// Appends the extra columns (SimConfig::record) of the row just recorded.
   void record_extras(const SensingScratch* scratch);
 
@@ -146,6 +158,10 @@ class RobotAgent {
   const NavigationParams* nav_;
   const SimConfig* sim_;
   std::unique_ptr<Controller> controller_;
+  std::optional<SafetyLayer> safety_;
+  /// The point the last safety stop met, for the next sense() (RobotAgent::guard).
+  Vec2 safety_return_{Vec2::Zero()};
+  bool has_safety_return_{false};
   int mode_{0};
   ChatterMonitor chatter_{};
   PidState pid_{};

@@ -44,7 +44,10 @@ struct RunResult {
   int goal_count{0};
   double sim_time{0.0};
   double path_length{0.0};
-  double wait_time{0.0};      ///< s the robot's body moved slower than 1 cm/s (waiting, turning)
+  double wait_time{0.0};  ///< s the robot's body moved slower than 1 cm/s (waiting, turning)
+  /// s during which the safety layer changed the controller's command (slowed, stopped it)
+  double safety_time{0.0};
+  int safety_steps{0};        ///< steps at which it did
   double min_clearance{0.0};  ///< m between body and obstacles, over the run (<= 0 on collision)
   int mode_switches{0};
   int steps{0};

@@ -1,0 +1,40 @@
+#pragma once
+/// @file
+/// The safety layer's parameters (`controller.safety`; nav/safety_layer.hpp). On by default for
+/// every controller; `controller.safety: off` is the chapter's robot alone, for the teaching
+/// scenes that must show a collision.
+
+namespace floornav {
+
+struct SafetyParams {
+  bool enabled{true};
+  /// m: the protective field beyond the body. A moving robot never enters it; a robot already
+  /// inside (it started there, or something came to it) may only move so as not to come nearer.
+  double margin{0.01};
+  /// s: added to the time the robot needs to stop (a real base's latency); the stopping path is
+  /// then driven at the command for one control period plus this, and braked at the robot's
+  /// max_acceleration and max_angular_acceleration.
+  double reaction_time{0.0};
+  /// m: the slow-down field. Within this gap of anything, the forward speed is capped at
+  /// slowdown_speed (0: no slow-down field; the protective field alone).
+  double slowdown_distance{0.0};
+  double slowdown_speed{0.3};  ///< m/s: the cap inside the slow-down field
+  /// m: extra room kept from people (added to the margin for a person's body).
+  double person_margin{0.0};
+
+  bool operator==(const SafetyParams&) const = default;
+
+  template <class Archive>
+  void serialize(Archive& a) {
+    a("enabled", enabled, "the safety layer between the controller and the wheels (on|off)");
+    a("margin", margin, "protective field beyond the body: never entered while moving, m");
+    a("reaction_time", reaction_time, "added to the time needed to stop, s");
+    a("slowdown_distance", slowdown_distance,
+      "slow-down field: within this gap of anything, speed is capped at slowdown_speed, m "
+      "(0: off)");
+    a("slowdown_speed", slowdown_speed, "speed cap inside the slow-down field, m/s");
+    a("person_margin", person_margin, "extra room kept from people, m");
+  }
+};
+
+}  // namespace floornav

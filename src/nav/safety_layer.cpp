@@ -1,0 +1,342 @@
+#include "floornav/nav/safety_layer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "floornav/geometry/polygon.hpp"
+#include "floornav/kinematics/unicycle.hpp"
+#include "floornav/robot/body_clearance.hpp"
+#include "floornav/world/world.hpp"
+
+namespace floornav {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// m between two sampled poses of the stopping path, at most (fewer samples on long paths: the
+// slack between samples is then up to half their spacing).
+constexpr double kSampleSpacing = 0.005;
+constexpr int kMaxSamples = 16;
+// m: rounding allowed in a slack (a robot exactly at its margin may move straight away).
+constexpr double kTolerance = 1e-9;
+// Bisection steps of the largest allowed speed: 1/256 of the wanted speed.
+constexpr int kBisections = 8;
+
+// The poses along a stopping path, from the pose (k = 0) to the path's end (k = count - 1).
+struct PathSamples {
+  std::array<Pose2, kMaxSamples + 1> pose;
+  /// s from now at which the robot passes each pose (+infinity on a path that does not move the
+  /// centre: it stands, turning at most)
+  std::array<double, kMaxSamples + 1> time;
+  int count{1};
+  double spacing{0.0};         ///< m: the most any body point moves between two samples
+  double centre_spacing{0.0};  ///< m: the most the centre moves between two samples
+  /// m: how far the centre's arc strays from the chord between two samples
+  double centre_sagitta{0.0};
+};
+
+// When the centre has come `s` m along a stopping path driven at `speed` for `drive` s and then
+// braked at `decel`: the time, s.
+double time_along(double s, double speed, double drive, double decel) {
+  if (!(speed > 0.0)) return kInf;
+  const double cruise = speed * drive;
+  if (s <= cruise) return s / speed;
+  const double rest = std::max(0.0, speed * speed - 2.0 * decel * (s - cruise));
+  return drive + (speed - std::sqrt(rest)) / decel;
+}
+
+PathSamples sample_path(const Pose2& pose, const UnicycleCommand& path, double reach, double speed,
+                        double drive, double decel) {
+  PathSamples s;
+  s.pose[0] = pose;
+  s.time[0] = 0.0;
+  const int segments =
+      reach > 0.0 ? std::clamp(static_cast<int>(std::ceil(reach / kSampleSpacing)), 1, kMaxSamples)
+                  : 0;
+  for (int k = 1; k <= segments; ++k) {
+    const double f = static_cast<double>(k) / segments;
+    s.pose[static_cast<std::size_t>(k)] = integrate_unicycle(pose, path, f);
+    s.time[static_cast<std::size_t>(k)] = time_along(f * std::abs(path.v), speed, drive, decel);
+  }
+  s.count = segments + 1;
+  if (segments > 0) {
+    s.spacing = reach / segments;
+    s.centre_spacing = std::abs(path.v) / segments;
+    const double turn = std::abs(path.omega) / segments;
+    if (turn > 0.0) s.centre_sagitta = s.centre_spacing / turn * (1.0 - std::cos(0.5 * turn));
+  }
+  return s;
+}
+
+// The least a 1-Lipschitz function of the path (a distance, a projection) can be between two
+// samples that read a and b, `spacing` apart along the path.
+double between(double a, double b, double spacing) {
+  return 0.5 * (a + b - spacing);
+}
+
+// Signed distance from a point (world frame) to the footprint at `pose`: negative inside.
+double footprint_gap(std::span<const Vec2> footprint, const Pose2& pose, const Vec2& q) {
+  const Vec2 local = rotate(q - pose.position, -pose.theta);
+  const double d = boundary_distance(footprint, local);
+  return contains(footprint, local) ? -d : d;
+}
+
+// The unit vector from the box's nearest boundary point to `p` (p outside the box), or from the
+// centre when p is inside.
+Vec2 away_from_box(const OrientedBox& b, const Vec2& p) {
+  const Vec2 local = b.to_local(p);
+  const Vec2 nearest(std::clamp(local.x(), -b.half.x(), b.half.x()),
+                     std::clamp(local.y(), -b.half.y(), b.half.y()));
+  Vec2 d = local - nearest;
+  if (d.squaredNorm() == 0.0) d = local;
+  const Vec2 across(-b.axis.y(), b.axis.x());
+  const Vec2 world = d.x() * b.axis + d.y() * across;
+  const double n = world.norm();
+  return n > 0.0 ? Vec2(world / n) : Vec2(1.0, 0.0);
+}
+
+// The nearest point of the world's obstacles to `p`: down the clearance's gradient (central
+// differences; its direction is exact away from the medial axis).
+Vec2 nearest_world_point(const World& world, const Vec2& p) {
+  constexpr double h = 1e-4;  // m
+  const Vec2 dx(h, 0.0), dy(0.0, h);
+  const Vec2 g(world.clearance(p + dx) - world.clearance(p - dx),
+               world.clearance(p + dy) - world.clearance(p - dy));
+  const double n = g.norm();
+  if (!(n > 0.0)) return p;
+  return p - world.clearance(p) * (g / n);
+}
+
+// The least slack of a half-plane constraint along the sampled centre path: the projection of
+// the centre's displacement on `n` must stay >= `need` plus, for a body that comes on its own,
+// `approach` x (the time passed, up to one step `dt`). Between two samples the projection runs
+// along the chord (strayed from by the arc's sagitta at most) at a constant speed while the robot
+// cruises, and so does the need: their difference is least at one of the two samples.
+double projection_slack(const PathSamples& s, const Vec2& n, double need, double approach,
+                        double dt) {
+  auto need_at = [&](double t) { return need + approach * std::min(1.0, t / dt); };
+  if (s.count == 1) return -need_at(kInf);
+  double worst = kInf;
+  double before = -need;  // the slack at the pose itself, now
+  for (int k = 1; k < s.count; ++k) {
+    const std::size_t i = static_cast<std::size_t>(k);
+    const double now = n.dot(s.pose[i].position - s.pose[0].position) - need_at(s.time[i]);
+    worst = std::min(worst, std::min(before, now) - s.centre_sagitta);
+    before = now;
+  }
+  return worst;
+}
+
+}  // namespace
+
+SafetyLayer::SafetyLayer(const RobotSpec& robot, const SafetyParams& params, double dt)
+    : robot_(&robot), params_(params), dt_(dt) {
+  for (const Vec2& q : robot.footprint) body_reach_ = std::max(body_reach_, q.norm());
+}
+
+UnicycleCommand SafetyLayer::stopping_path(const UnicycleCommand& c) const {
+  const double drive = dt_ + params_.reaction_time;
+  const double v = std::abs(c.v), w = std::abs(c.omega);
+  const double length = v * drive + v * v / (2.0 * robot_->max_acceleration);
+  const double turn = w * drive + w * w / (2.0 * robot_->max_angular_acceleration);
+  return {std::copysign(length, c.v), std::copysign(turn, c.omega)};
+}
+
+double SafetyLayer::sweep_reach(const UnicycleCommand& path) const {
+  return std::abs(path.v) + std::abs(path.omega) * body_reach_;
+}
+
+double SafetyLayer::slack(const Pose2& pose, const UnicycleCommand& command,
+                          const SafetyScene& scene) const {
+  return measure(pose, command, scene, nullptr);
+}
+
+double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
+                            const SafetyScene& scene, Vec2* blocker) const {
+  const UnicycleCommand path = stopping_path(command);
+  const double reach = sweep_reach(path);
+  const double margin = params_.margin;
+  const double radius = robot_->body_radius;
+  const bool disc = robot_->footprint.empty();
+  const Vec2 p = pose.position;
+  double worst = kInf;
+  PathSamples samples;
+  bool sampled = false;
+  auto path_samples = [&]() -> const PathSamples& {
+    if (!sampled)
+      samples = sample_path(pose, path, reach, std::abs(command.v), dt_ + params_.reaction_time,
+                            robot_->max_acceleration);
+    sampled = true;
+    return samples;
+  };
+
+  // The world: by the lower bound when it clears the whole sweep, else measured along the path.
+  if (scene.world) {
+    const double bound = scene.world_clearance - reach - margin;
+    if (bound >= 0.0) {
+      worst = std::min(worst, bound);
+    } else {
+      const PathSamples& s = path_samples();
+      double before = body_clearance(*scene.world, *robot_, pose);
+      const double need = std::min(margin, before);
+      if (s.count == 1) worst = std::min(worst, before - need);
+      const double world_worst = worst;
+      for (int k = 1; k < s.count; ++k) {
+        const double now =
+            body_clearance(*scene.world, *robot_, s.pose[static_cast<std::size_t>(k)]);
+        worst = std::min(worst, between(before, now, s.spacing) - need);
+        before = now;
+      }
+      if (blocker && worst < world_worst) *blocker = nearest_world_point(*scene.world, p);
+    }
+  }
+
+  // This step's range returns, each like a piece of the world.
+  const double body_bound = disc ? radius : body_reach_;
+  for (const Vec2& q : scene.points) {
+    const double lower = (q - p).norm() - body_bound;  // a lower bound on the gap now
+    if (lower - reach - margin >= 0.0) {
+      worst = std::min(worst, lower - reach - margin);
+      continue;
+    }
+    const PathSamples& s = path_samples();
+    auto gap = [&](const Pose2& at) {
+      return disc ? (q - at.position).norm() - radius : footprint_gap(robot_->footprint, at, q);
+    };
+    double before = gap(pose);
+    const double need = std::min(margin, before);
+    double point_worst = s.count == 1 ? before - need : kInf;
+    for (int k = 1; k < s.count; ++k) {
+      const double now = gap(s.pose[static_cast<std::size_t>(k)]);
+      point_worst = std::min(point_worst, between(before, now, s.spacing) - need);
+      before = now;
+    }
+    if (blocker && point_worst < worst) *blocker = q;
+    worst = std::min(worst, point_worst);
+  }
+
+  // Bodies that move: half-planes across the line between the centres. The robot's own body
+  // counts as its disc here, as the simulator measures contacts between bodies.
+  const double travel = std::abs(path.v);
+  for (const SafetyDisc& b : scene.discs) {
+    const Vec2 d = p - b.position;
+    const double distance = d.norm();
+    const double gap = distance - radius - b.radius;
+    const double room = gap - margin - b.extra_margin;
+    // Reciprocal: half the room beyond the margin (none once inside it). Otherwise the room
+    // less what the other body may close in one step (which may ask the robot to back off).
+    const double need = b.reciprocal ? 0.5 * std::min(0.0, -room) : std::min(0.0, -room);
+    const double approach = b.reciprocal ? 0.0 : b.approach;
+    if (-travel - need - approach >= 0.0) {
+      worst = std::min(worst, -travel - need - approach);
+      continue;
+    }
+    const Vec2 n = distance > 0.0 ? Vec2(d / distance) : Vec2(pose.heading());
+    const double disc_worst = projection_slack(path_samples(), n, need, approach, dt_);
+    if (blocker && disc_worst < worst) *blocker = b.position + b.radius * n;
+    worst = std::min(worst, disc_worst);
+  }
+  for (const SafetyBox& b : scene.boxes) {
+    const double gap = signed_distance(b.box, p) - radius;
+    const double need = std::min(0.0, margin - gap);
+    if (-travel - need - b.approach >= 0.0) {
+      worst = std::min(worst, -travel - need - b.approach);
+      continue;
+    }
+    const Vec2 n = away_from_box(b.box, p);
+    const double box_worst = projection_slack(path_samples(), n, need, b.approach, dt_);
+    if (blocker && box_worst < worst) *blocker = p - (gap + radius) * n;
+    worst = std::min(worst, box_worst);
+  }
+  return worst;
+}
+
+double SafetyLayer::slowdown_cap(const Pose2& pose, const SafetyScene& scene) const {
+  const double field = params_.slowdown_distance;
+  if (field <= 0.0) return kInf;
+  const Vec2 p = pose.position;
+  const double radius = robot_->footprint.empty() ? robot_->body_radius : body_reach_;
+  bool inside = false;
+  if (scene.world && scene.world_clearance < field)
+    inside = body_clearance(*scene.world, *robot_, pose) < field;
+  for (const Vec2& q : scene.points) inside = inside || (q - p).norm() - radius < field;
+  for (const SafetyDisc& b : scene.discs)
+    inside = inside || (b.position - p).norm() - robot_->body_radius - b.radius < field;
+  for (const SafetyBox& b : scene.boxes)
+    inside = inside || signed_distance(b.box, p) - robot_->body_radius < field;
+  return inside ? params_.slowdown_speed : kInf;
+}
+
+UnicycleCommand SafetyLayer::way_out(const Pose2& pose, const SafetyScene& scene) const {
+  const DiffDriveParams& drive = robot_->drive;
+  const double v = 0.25 * max_forward_speed(drive), w = 0.5 * max_turn_rate(drive);
+  const std::array<UnicycleCommand, 9> options{{
+      {0.0, 0.0},
+      {-v, 0.0},
+      {v, 0.0},
+      {-v, w},
+      {-v, -w},
+      {v, w},
+      {v, -w},
+      {0.0, w},
+      {0.0, -w},
+  }};
+  UnicycleCommand best{};
+  double best_slack = -kInf;
+  for (const UnicycleCommand& o : options) {
+    const UnicycleCommand c = wheels_to_unicycle(drive, saturate_wheels(drive, o));
+    const double s = slack(pose, c, scene);
+    if (s > best_slack + kTolerance) {
+      best_slack = s;
+      best = c;
+    }
+  }
+  return best;
+}
+
+SafetyVerdict SafetyLayer::filter(const Pose2& pose, const UnicycleCommand& wanted,
+                                  const SafetyScene& scene) const {
+  UnicycleCommand c = wanted;
+  const double cap = slowdown_cap(pose, scene);
+  if (std::abs(c.v) > cap) c.v = std::copysign(cap, c.v);
+  // What standing still keeps: normally a slack >= 0; below 0 when a body that moves on its own
+  // is coming in and the robot can no longer keep its field by standing. Then any command that
+  // keeps no less than standing does is allowed (the controller's own way out among them).
+  const double floor = std::min(0.0, slack(pose, UnicycleCommand{}, scene)) - kTolerance;
+  auto allowed = [&](const UnicycleCommand& u) { return slack(pose, u, scene) >= floor; };
+  Vec2 blocker = pose.position;
+  if (measure(pose, c, scene, &blocker) >= floor)
+    return {c, c.v != wanted.v || c.omega != wanted.omega};
+  SafetyVerdict verdict;
+  verdict.limited = true;
+  verdict.blocker = blocker;
+  verdict.blocked = blocker != pose.position;
+
+  // The largest fraction s of `c` (scaled by `scale`) that is allowed, knowing that s = 0 is.
+  auto largest = [&](auto scale) {
+    double lo = 0.0, hi = 1.0;
+    for (int i = 0; i < kBisections; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (allowed(scale(mid)) ? lo : hi) = mid;
+    }
+    return scale(lo);
+  };
+  // Keep the turn (a disc body turns on the spot without moving), shed the speed; a footprint
+  // that cannot turn here either slows both.
+  const UnicycleCommand turn{0.0, c.omega};
+  if (allowed(turn))
+    verdict.command = largest([&](double s) { return UnicycleCommand{s * c.v, c.omega}; });
+  else
+    verdict.command = largest([&](double s) { return UnicycleCommand{s * c.v, s * c.omega}; });
+  // Something is coming in: a way out that keeps more than the controller's command does.
+  if (floor < -kTolerance) {
+    const UnicycleCommand out = way_out(pose, scene);
+    if (slack(pose, out, scene) > slack(pose, verdict.command, scene) + kTolerance)
+      verdict.command = out;
+  }
+  return verdict;
+}
+
+}  // namespace floornav
