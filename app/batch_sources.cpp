@@ -11,6 +11,7 @@
 #include "floornav/io/barn.hpp"
 #include "floornav/io/movingai_map.hpp"
 #include "floornav/io/scenario_file.hpp"
+#include "floornav/scenario/shared_floor.hpp"
 #include "floornav/scenario/validate.hpp"
 
 namespace floornav {
@@ -330,6 +331,34 @@ CaseSource make_floor_cases(const std::string& template_file, int count, std::ui
     validate_scenario(s, fmt::format("{} (floor {})", template_file, seed));
     cases.push_back(
         {std::move(s), fmt::format("floor:{}", seed), static_cast<std::size_t>(i), {}, {}, {}});
+  }
+  return from_cases(std::move(cases));
+}
+
+CaseSource make_shared_floor_cases(const std::string& template_file, int count,
+                                   std::uint64_t first_seed,
+                                   std::span<const std::string> overrides, SweepHasher& hash) {
+  if (count < 1 || count > 100000)
+    throw InputError("", "--shared-floors", fmt::format("must be in [1, 100000], got {}", count));
+  hash.add("mode", "shared_floors");
+  add_overrides(hash, overrides);
+  hash.add("shared_floors", fmt::format("{}", count));
+  hash.add("floor_seed", fmt::format("{}", first_seed));
+  hash.add_file("template", template_file);
+  const Scenario base = load_scenario_file(template_file, overrides);
+  std::vector<BatchCase> cases;
+  for (int i = 0; i < count; ++i) {
+    const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
+    SharedFloorOptions o;
+    o.robot = &base.robot();
+    o.t_max = base.sim.t_max;
+    Scenario s = make_shared_floor(seed, o);
+    s.sim = base.sim;
+    s.sim.seed = seed;
+    s.name = fmt::format("{}-shared{}", base.name, seed);
+    validate_scenario(s, fmt::format("{} (shared floor {})", template_file, seed));
+    cases.push_back({std::move(s), fmt::format("shared_floor:{}", seed),
+                     static_cast<std::size_t>(i), {}, {}, {}});
   }
   return from_cases(std::move(cases));
 }

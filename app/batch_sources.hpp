@@ -51,4 +51,11 @@ CaseSource make_grid_cases(const std::string& template_file, std::span<const std
 CaseSource make_floor_cases(const std::string& template_file, int count, std::uint64_t first_seed,
                             std::span<const std::string> overrides, SweepHasher& hash);
 
+/// `count` generated shared floors (scenario/shared_floor.hpp: a hall with pillars and boxes, 4 to
+/// 12 robots on routes of 1 to 3 goals, people and a forklift on some; floor seed
+/// `first_seed + i`), every robot the template's robot and controller, sim from the template.
+CaseSource make_shared_floor_cases(const std::string& template_file, int count,
+                                   std::uint64_t first_seed,
+                                   std::span<const std::string> overrides, SweepHasher& hash);
+
 }  // namespace floornav

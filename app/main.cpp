@@ -331,7 +331,15 @@ int main(int argc, char** argv) {
                    "one case per generated factory floor (20 x 20 m, 50 obstacles, a tour of 4 "
                    "goals): N floors, robot and controller from the template")
       ->check(CLI::Range(1, 100000));
-  batch->add_option("--floor-seed", batch_floor_seed, "with --floors: the first floor's seed (1)");
+  int batch_shared_floors = 0;
+  batch
+      ->add_option("--shared-floors", batch_shared_floors,
+                   "one case per generated shared floor (a hall with pillars and boxes, 4 to 12 "
+                   "robots with routes of 1 to 3 goals, people and a forklift on some): N floors, "
+                   "every robot and controller the template's")
+      ->check(CLI::Range(1, 100000));
+  batch->add_option("--floor-seed", batch_floor_seed,
+                    "with --floors or --shared-floors: the first floor's seed (1)");
 
   // sweep
   BatchRequest sweep_rq;
@@ -423,9 +431,19 @@ int main(int argc, char** argv) {
         throw InputError("", "--barn-paths", "applies only with --worlds");
       if (batch_floors > 0 && (!batch_scen.empty() || !batch_worlds.empty()))
         throw InputError("", "--floors", "give --floors alone, not with --scen or --worlds");
+      if (batch_shared_floors > 0 &&
+          (batch_floors > 0 || !batch_scen.empty() || !batch_worlds.empty()))
+        throw InputError("", "--shared-floors",
+                         "give --shared-floors alone, not with --floors, --scen or --worlds");
       SweepHasher hash;
       CaseSource source;
-      if (batch_floors > 0) {
+      if (batch_shared_floors > 0) {
+        if (batch_files.size() != 1)
+          throw InputError("", "--shared-floors",
+                           "give exactly one template scenario with --shared-floors");
+        source = make_shared_floor_cases(batch_files[0], batch_shared_floors, batch_floor_seed,
+                                         batch_rq.sets, hash);
+      } else if (batch_floors > 0) {
         if (batch_files.size() != 1)
           throw InputError("", "--floors", "give exactly one template scenario with --floors");
         source =

@@ -60,6 +60,8 @@ nlohmann::ordered_json summary_to_json(const RunResult& r) {
   j["final_pose"] = Json::array({number(r.final_x), number(r.final_y), number(r.final_theta)});
   j["wait_time"] = number(r.wait_time);
   j["safety_time"] = number(r.safety_time);
+  j["stuck_cause"] = r.stuck_cause.empty() ? Json(nullptr) : Json(r.stuck_cause);
+  j["stuck_with"] = r.stuck_with.empty() ? Json(nullptr) : Json(r.stuck_with);
 
   const std::size_t shown = std::min(r.transitions.size(), kSummaryMaxTransitions);
   Json transitions = Json::array();

@@ -20,6 +20,9 @@ constexpr double kParallel = 1e-9;
 constexpr double kStillHorizon = 0.5;
 // m/s: how fast the heading may still close in on a still point at the margin (turn_first).
 constexpr double kCreep = 1e-3;
+// Keep right: rad/s at which a held robot turns its preferred velocity right, and how far.
+constexpr double kBiasRate = 0.5;
+constexpr double kMaxBias = kPi / 2.0;
 
 // The line's permitted side does not hold v: v lies to the right of it.
 bool violates(const OrcaLine& line, const Vec2& v) {
@@ -282,19 +285,28 @@ class OrcaLayer final : public Controller {
                                 r_self + b.radius + p.avoidance_margin, p.avoidance_horizon, obs.dt,
                                 0.5));
     }
-    const Vec2 pref = d.command.u();
+    // Keep right, as at a roundabout: a robot that the others hold back turns its preferred
+    // velocity to the right, the more the longer it is held (and back as it gets free), so that
+    // robots that meet symmetrically (RVO2's Circle: all bound through one point) circle
+    // counter-clockwise round the meeting and leave towards their goals, rather than stand.
+    const Vec2 wanted = d.command.u();
+    const Vec2 pref = rotate(wanted, -bias_);
     Vec2 u = solve_orca(lines, hard, pref, p.v0, scratch_.projected);
-    // Keep right: a robot that the others hold back to under half its speed tries the way to
-    // its right (45 degrees), and takes it if that lets it move faster.
+    // Tries the way to its right (45 degrees) too, and takes it if that lets it move faster.
     if (u.norm() < 0.5 * pref.norm()) {
       const Vec2 right =
           solve_orca(lines, hard, rotate(pref, -kPi / 4.0), p.v0, scratch_.projected);
       if (right.norm() > u.norm()) u = right;
     }
+    const bool held = u.norm() < 0.5 * wanted.norm();
+    bias_ = std::clamp(bias_ + (held ? 1.0 : -1.0) * kBiasRate * obs.dt, 0.0, kMaxBias);
     return {Command::velocity(turn_first(u, obs, {lines.data(), hard})), d.mode, d.guard};
   }
 
-  void reset() override { inner_->reset(); }
+  void reset() override {
+    inner_->reset();
+    bias_ = 0.0;
+  }
   int mode() const override { return inner_->mode(); }
 
  private:
@@ -307,6 +319,7 @@ class OrcaLayer final : public Controller {
   }
 
   std::unique_ptr<Controller> inner_;
+  double bias_{0.0};  ///< rad: how far right the preferred velocity is turned (keep right)
   std::vector<Vec2> points_, sensed_;
   OrcaScratch scratch_;
 };

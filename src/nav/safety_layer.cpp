@@ -6,7 +6,6 @@
 #include <limits>
 
 #include "floornav/geometry/polygon.hpp"
-#include "floornav/kinematics/unicycle.hpp"
 #include "floornav/robot/body_clearance.hpp"
 #include "floornav/world/world.hpp"
 
@@ -27,6 +26,7 @@ constexpr int kBisections = 8;
 // The poses along a stopping path, from the pose (k = 0) to the path's end (k = count - 1).
 struct PathSamples {
   std::array<Pose2, kMaxSamples + 1> pose;
+  std::array<Vec2, kMaxSamples + 1> axis;  ///< (cos, sin) of each pose's heading
   /// s from now at which the robot passes each pose (+infinity on a path that does not move the
   /// centre: it stands, turning at most)
   std::array<double, kMaxSamples + 1> time;
@@ -51,21 +51,35 @@ PathSamples sample_path(const Pose2& pose, const UnicycleCommand& path, double r
                         double drive, double decel) {
   PathSamples s;
   s.pose[0] = pose;
+  s.axis[0] = pose.heading();
   s.time[0] = 0.0;
   const int segments =
       reach > 0.0 ? std::clamp(static_cast<int>(std::ceil(reach / kSampleSpacing)), 1, kMaxSamples)
                   : 0;
+  // Along the arc of length path.v turning by path.omega (the unicycle's exact solution): the
+  // heading turns by the same angle from sample to sample, one sine and cosine for the path.
+  const double turn = segments > 0 ? path.omega / segments : 0.0;
+  const Vec2 step(std::cos(turn), std::sin(turn));
+  const bool straight = std::abs(path.omega) < 1e-9;
+  const double bend = straight ? 0.0 : path.v / path.omega;
+  const Vec2 a0 = s.axis[0];
   for (int k = 1; k <= segments; ++k) {
+    const std::size_t i = static_cast<std::size_t>(k);
+    const Vec2 a = s.axis[i - 1];
+    s.axis[i] = Vec2(a.x() * step.x() - a.y() * step.y(), a.x() * step.y() + a.y() * step.x());
     const double f = static_cast<double>(k) / segments;
-    s.pose[static_cast<std::size_t>(k)] = integrate_unicycle(pose, path, f);
-    s.time[static_cast<std::size_t>(k)] = time_along(f * std::abs(path.v), speed, drive, decel);
+    const Vec2 moved = straight
+                           ? Vec2(f * path.v * a0)
+                           : Vec2(bend * (s.axis[i].y() - a0.y()), bend * (a0.x() - s.axis[i].x()));
+    s.pose[i] = {pose.position + moved, pose.theta + f * path.omega};
+    s.time[i] = time_along(f * std::abs(path.v), speed, drive, decel);
   }
   s.count = segments + 1;
   if (segments > 0) {
     s.spacing = reach / segments;
     s.centre_spacing = std::abs(path.v) / segments;
-    const double turn = std::abs(path.omega) / segments;
-    if (turn > 0.0) s.centre_sagitta = s.centre_spacing / turn * (1.0 - std::cos(0.5 * turn));
+    const double t = std::abs(turn);
+    if (t > 0.0) s.centre_sagitta = s.centre_spacing / t * (1.0 - std::cos(0.5 * t));
   }
   return s;
 }
@@ -76,9 +90,12 @@ double between(double a, double b, double spacing) {
   return 0.5 * (a + b - spacing);
 }
 
-// Signed distance from a point (world frame) to the footprint at `pose`: negative inside.
-double footprint_gap(std::span<const Vec2> footprint, const Pose2& pose, const Vec2& q) {
-  const Vec2 local = rotate(q - pose.position, -pose.theta);
+// Signed distance from a point (world frame) to the footprint at `pose` (heading (cos, sin) =
+// `axis`): negative inside.
+double footprint_gap(std::span<const Vec2> footprint, const Pose2& pose, const Vec2& axis,
+                     const Vec2& q) {
+  const Vec2 d0 = q - pose.position;
+  const Vec2 local(axis.x() * d0.x() + axis.y() * d0.y(), -axis.y() * d0.x() + axis.x() * d0.y());
   const double d = boundary_distance(footprint, local);
   return contains(footprint, local) ? -d : d;
 }
@@ -202,16 +219,28 @@ double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
       continue;
     }
     const PathSamples& s = path_samples();
-    auto gap = [&](const Pose2& at) {
-      return disc ? (q - at.position).norm() - radius : footprint_gap(robot_->footprint, at, q);
+    // The least of the gaps' interval bounds minus `need`, the gaps measured by `gap(k)`.
+    auto path_slack = [&](auto gap, double need, double before) {
+      double least = s.count == 1 ? before - need : kInf;
+      for (int k = 1; k < s.count; ++k) {
+        const double now = gap(static_cast<std::size_t>(k));
+        least = std::min(least, between(before, now, s.spacing) - need);
+        before = now;
+      }
+      return least;
     };
-    double before = gap(pose);
-    const double need = std::min(margin, before);
-    double point_worst = s.count == 1 ? before - need : kInf;
-    for (int k = 1; k < s.count; ++k) {
-      const double now = gap(s.pose[static_cast<std::size_t>(k)]);
-      point_worst = std::min(point_worst, between(before, now, s.spacing) - need);
-      before = now;
+    // The disc round the body first: its gaps are lower bounds, and the need is at most the
+    // margin, so a pass here is a pass (for a disc body it is the exact test).
+    auto disc_gap = [&](std::size_t k) { return (q - s.pose[k].position).norm() - body_bound; };
+    const double disc_before = disc_gap(0);
+    double point_worst =
+        path_slack(disc_gap, disc ? std::min(margin, disc_before) : margin, disc_before);
+    if (!disc && point_worst < 0.0) {
+      auto gap = [&](std::size_t k) {
+        return footprint_gap(robot_->footprint, s.pose[k], s.axis[k], q);
+      };
+      const double before = gap(0);
+      point_worst = path_slack(gap, std::min(margin, before), before);
     }
     if (blocker && point_worst < worst) *blocker = q;
     worst = std::min(worst, point_worst);

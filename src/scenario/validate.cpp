@@ -55,6 +55,8 @@ void validate_sim(const SimConfig& sim, const std::string& file) {
                                  sim.t_max / sim.dt, kMaxSteps));
   if (!(sim.stuck_window > 0.0)) bad("sim.stuck_window", "must be positive");
   if (sim.stuck_radius < 0.0) bad("sim.stuck_radius", "must not be negative");
+  if (!(sim.deadlock_window > 0.0)) bad("sim.deadlock_window", "must be positive");
+  if (!(sim.livelock_window > 0.0)) bad("sim.livelock_window", "must be positive");
   if (sim.record_ranges_every < 0)
     bad("sim.record_ranges_every",
         fmt::format("must not be negative, got {}", sim.record_ranges_every));
@@ -170,6 +172,11 @@ void validate_controller(const NavigationParams& n, const RobotKeys& k) {
   if (!(n.avoidance_margin >= 0.0)) bad("avoidance_margin", "must not be negative");
 }
 
+// m: a robot's protective field (0 with the safety layer off).
+double field_of(const RobotTask& t) {
+  return t.controller.params.safety.enabled ? t.controller.params.safety.margin : 0.0;
+}
+
 void validate_robot(const RobotTask& t, const World& w, const SimConfig& sim, const RobotKeys& k) {
   const RobotSpec& r = t.robot;
   const double v_max = max_forward_speed(r.drive);
@@ -201,11 +208,17 @@ void validate_robot(const RobotTask& t, const World& w, const SimConfig& sim, co
     k.fail(k.robot("start"),
            fmt::format("({}, {}) is outside the map, which spans ({}, {}) to ({}, {}) m", start.x(),
                        start.y(), map_lo.x(), map_lo.y(), map_hi.x(), map_hi.y()));
-  if (w.is_inside_obstacle(start) || body_clearance(w, r, t.start) <= 0.0)
+  const double start_clearance = body_clearance(w, r, t.start);
+  if (w.is_inside_obstacle(start) || start_clearance <= 0.0)
     k.fail(k.robot("start"),
            fmt::format("the robot at ({}, {}) overlaps an obstacle or lies outside the world "
                        "(clearance {:.3g} m, body radius {} m)",
                        start.x(), start.y(), w.clearance(start), r.body_radius));
+  if (start_clearance < field_of(t))
+    k.fail(k.robot("start"),
+           fmt::format("the robot at ({}, {}) is {:.3g} m from an obstacle, inside its protective "
+                       "field of {} m (controller.safety.margin)",
+                       start.x(), start.y(), start_clearance, field_of(t)));
   for (std::size_t i = 0; i < t.goals.size(); ++i) {
     const Vec2 g = t.goals[i];
     const std::string key = k.goal(i, t.goals.size());
@@ -217,27 +230,39 @@ void validate_robot(const RobotTask& t, const World& w, const SimConfig& sim, co
   }
 }
 
-// No two robots may start touching (found through a neighbour grid: O(robots)).
+// No two robots may start touching, nor inside either one's protective field (found through a
+// neighbour grid: O(robots)).
 void validate_starts_apart(const std::vector<RobotTask>& robots, const std::string& file) {
   RobotNeighbourGrid grid;
   std::vector<Vec2> starts;
-  double max_radius = 0.0;
+  double max_radius = 0.0, max_field = 0.0;
   Box2 box{robots[0].start.position, robots[0].start.position};
   for (const RobotTask& t : robots) {
     starts.push_back(t.start.position);
     max_radius = std::max(max_radius, t.robot.body_radius);
+    max_field = std::max(max_field, field_of(t));
     box.min = box.min.cwiseMin(t.start.position);
     box.max = box.max.cwiseMax(t.start.position);
   }
-  grid.reset(box, 2.0 * max_radius, starts.size());
+  const double reach = 2.0 * max_radius + max_field;
+  grid.reset(box, reach, starts.size());
   grid.build(starts, std::vector<std::uint8_t>(starts.size(), 1));
   for (std::size_t i = 0; i < starts.size(); ++i)
-    grid.for_each_near(starts[i], 2.0 * max_radius, [&](std::size_t j) {
-      const double touch = robots[i].robot.body_radius + robots[j].robot.body_radius;
-      if (j > i && (starts[j] - starts[i]).norm() <= touch)
+    grid.for_each_near(starts[i], reach, [&](std::size_t j) {
+      if (j <= i) return;
+      const double gap = (starts[j] - starts[i]).norm() - robots[i].robot.body_radius -
+                         robots[j].robot.body_radius;
+      if (gap <= 0.0)
         throw InputError(file, fmt::format("robots[{}].start", j),
                          fmt::format("touches robot {} ('{}') at ({}, {}): the bodies overlap", i,
                                      robots[i].name, starts[i].x(), starts[i].y()));
+      const double field = std::max(field_of(robots[i]), field_of(robots[j]));
+      if (gap < field)
+        throw InputError(
+            file, fmt::format("robots[{}].start", j),
+            fmt::format("is {:.3g} m from robot {} ('{}'), inside the protective field of {} m "
+                        "(controller.safety.margin): start them further apart",
+                        gap, i, robots[i].name, field));
     });
 }
 
@@ -253,8 +278,14 @@ void validate_crowd(const Scenario& s, const std::string& file) {
   auto clear_of_robots = [&](auto gap_to, const std::string& key) {
     for (std::size_t i = 0; i < s.robots.size(); ++i) {
       const RobotTask& t = s.robots[i];
-      if (gap_to(t.start.position) <= t.robot.body_radius)
+      const double gap = gap_to(t.start.position) - t.robot.body_radius;
+      if (gap <= 0.0)
         throw InputError(file, key, fmt::format("touches robot {} ('{}') at its start", i, t.name));
+      if (gap < field_of(t))
+        throw InputError(file, key,
+                         fmt::format("is {:.3g} m from robot {} ('{}') at its start, inside the "
+                                     "robot's protective field of {} m (controller.safety.margin)",
+                                     gap, i, t.name, field_of(t)));
     }
   };
   const SocialForceParams& sf = s.crowd.social;

@@ -293,6 +293,7 @@ void Crowd::safety_bodies_near(const Vec2& p, double reach, double dt, double pe
     d.approach = sf.max_speed_factor * spec_.people[a].speed * dt;
     d.reciprocal = false;
     d.extra_margin = person_margin;
+    d.who = {BodyRef::Kind::Person, static_cast<std::uint32_t>(a)};
   }
   for (std::size_t k = 0; k < boxes_.size(); ++k) {
     const OrientedBox& b = boxes_[k];
@@ -300,7 +301,8 @@ void Crowd::safety_bodies_near(const Vec2& p, double reach, double dt, double pe
     const double approach =
         std::max(spec_.forklifts[k].speed, kForkliftTurnRate * b.bounding_radius()) * dt;
     if (signed_distance(b, p) >= reach + approach) continue;
-    scratch.safety_boxes[scratch.safety_box_count++] = {b, approach};
+    scratch.safety_boxes[scratch.safety_box_count++] = {
+        b, approach, {BodyRef::Kind::Forklift, static_cast<std::uint32_t>(k)}};
   }
 }
 

@@ -239,6 +239,7 @@ void FleetSimulation::gather_safety_bodies(std::size_t i, SensingScratch& scratc
     d.reciprocal = moving && safety_on_[j];
     d.approach = moving && !safety_on_[j] ? top_step_[j] : 0.0;
     d.extra_margin = 0.0;
+    d.who = {BodyRef::Kind::Robot, static_cast<std::uint32_t>(j)};
   });
   if (crowd_)
     crowd_->safety_bodies_near(p, radius_[i] + gap_reach, sim_.dt,
@@ -478,6 +479,20 @@ FleetResult FleetSimulation::take_result() {
   return make_result(std::move(runs));
 }
 
+std::string FleetSimulation::body_name(const BodyRef& who, const CrowdResult& crowd) const {
+  switch (who.kind) {
+    case BodyRef::Kind::Robot:
+      return tasks_[who.index].name;
+    case BodyRef::Kind::Person:
+      return crowd.people[who.index].name;
+    case BodyRef::Kind::Forklift:
+      return crowd.forklifts[who.index].name;
+    case BodyRef::Kind::None:
+      break;
+  }
+  return {};
+}
+
 FleetResult FleetSimulation::make_result(std::vector<RunResult> runs) const {
   FleetResult f;
   f.scenario = name_;
@@ -490,6 +505,8 @@ FleetResult FleetSimulation::make_result(std::vector<RunResult> runs) const {
     RunResult r = std::move(runs[i]);
     r.mode_names = agents_[i].controller().mode_names();
     r.guard_names = agents_[i].controller().guard_names();
+    if (r.stuck_cause == "deadlock" || r.stuck_cause == "livelock")
+      r.stuck_with = body_name(agents_[i].mover(), f.crowd);
     f.reached += r.reached_goal;
     f.collided += r.collided;
     f.deliveries += r.goals_reached;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "floornav/geometry/angle.hpp"
+#include "floornav/geometry/oriented_box.hpp"
 #include "floornav/kinematics/unicycle.hpp"
 #include "floornav/nav/heading_tracker.hpp"
 #include "floornav/robot/body_clearance.hpp"
@@ -62,6 +63,7 @@ RobotAgent::RobotAgent(AgentSetup setup)
   stuck_radius_ = sim_->stuck_radius > 0.0 ? sim_->stuck_radius : robot_->body_radius;
   stuck_anchor_ = pose_.position;
   if (!goals_.empty()) goal_ = goals_.front();
+  progress_best_ = (goal_ - pose_.position).norm();
   if (const double rate = std::round(1.0 / sim_->dt);
       rate >= 1.0 && rate <= 1e9 && std::abs(rate * sim_->dt - 1.0) < 1e-12)
     steps_per_second_ = rate;
@@ -202,6 +204,55 @@ void RobotAgent::guard(const SensingScratch& scratch, WheelSpeeds& wheels,
   ++result_.safety_steps;
 }
 
+void RobotAgent::note_movers(const SensingScratch& scratch) {
+  // The nearest moving body of the safety scene (robots that run, people, forklifts).
+  double nearest = std::numeric_limits<double>::infinity();
+  const Vec2 p = pose_.position;
+  for (std::size_t k = 0; k < scratch.safety_disc_count; ++k) {
+    const SafetyDisc& d = scratch.safety_discs[k];
+    if (!d.reciprocal && d.approach <= 0.0) continue;  // parked
+    const double gap = (d.position - p).norm() - d.radius;
+    if (gap < nearest) {
+      nearest = gap;
+      mover_ = d.who;
+    }
+  }
+  for (std::size_t k = 0; k < scratch.safety_box_count; ++k) {
+    const SafetyBox& b = scratch.safety_boxes[k];
+    const double gap = signed_distance(b.box, p);
+    if (gap < nearest) {
+      nearest = gap;
+      mover_ = b.who;
+    }
+  }
+  if (nearest < std::numeric_limits<double>::infinity()) mover_time_ = t_;
+}
+
+bool RobotAgent::check_liveness() {
+  RunResult& r = result_;
+  // Among moving bodies: one was near within the last stuck_window.
+  const bool among = t_ - mover_time_ <= sim_->stuck_window;
+  if ((pose_.position - stuck_anchor_).norm() > stuck_radius_) {
+    stuck_anchor_ = pose_.position;
+    stuck_anchor_time_ = t_;
+  } else if (t_ - stuck_anchor_time_ >= (among ? sim_->deadlock_window : sim_->stuck_window)) {
+    r.stuck_cause = among ? "deadlock" : "no_progress";
+    finish(RunStatus::Stuck);
+    return true;
+  }
+  if (goals_.empty()) return false;
+  const double to_goal = (goal_ - pose_.position).norm();
+  if (to_goal < progress_best_ - stuck_radius_) {
+    progress_best_ = to_goal;
+    progress_time_ = t_;
+  } else if (among && t_ - progress_time_ >= sim_->livelock_window) {
+    r.stuck_cause = "livelock";
+    finish(RunStatus::Stuck);
+    return true;
+  }
+  return false;
+}
+
 void RobotAgent::collide_with_robot(double gap) {
   note_robot_gap(gap);
   if (finished_) return;  // already stopped: the other robot drove into it
@@ -293,6 +344,7 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
   if (!command.is_finite())
     throw std::domain_error("the controller's command is not a finite number (NaN or infinity)");
   if (command.kind() == Command::Kind::Stuck) {  // the controller gave up
+    r.stuck_cause = "controller";
     finish(RunStatus::Stuck);
     return false;
   }
@@ -304,6 +356,8 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
       return false;
     }
     goal_ = goals_[goal_index_];
+    progress_best_ = (goal_ - pose_.position).norm();
+    progress_time_ = t_;
     controller_->reset();
     mode_ = controller_->mode();
     pid_ = {};
@@ -337,6 +391,7 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
 
   // 4b. guard: the safety layer lets through only what can stop short of everything it knows.
   if (safety_) guard(scratch, wheels, driven);
+  note_movers(scratch);
 
   // 5. integrate
   // The sensors' cosine and sine of the heading, if they were taken at this heading.
@@ -376,13 +431,7 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
       return false;
     }
   }
-  if ((pose_.position - stuck_anchor_).norm() > stuck_radius_) {
-    stuck_anchor_ = pose_.position;
-    stuck_anchor_time_ = t_;
-  } else if (t_ - stuck_anchor_time_ >= sim_->stuck_window) {
-    finish(RunStatus::Stuck);
-    return false;
-  }
+  if (check_liveness()) return false;
   if (t_ >= sim_->t_max - 1e-9) {
     finish(RunStatus::Timeout);
     return false;

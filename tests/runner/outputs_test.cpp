@@ -124,7 +124,8 @@ TEST(SummaryJson, KeysInContractOrderThenExtras) {
       "scenario",    "status",        "reached_goal",  "collided",         "sim_time",
       "path_length", "min_clearance", "mode_switches", "mode_time",        "steps",
       "wall_time",   "goals_reached", "goal_count",    "chatter_episodes", "first_chatter_time",
-      "final_pose",  "wait_time",     "safety_time",   "transitions"};
+      "final_pose",  "wait_time",     "safety_time",   "stuck_cause",      "stuck_with",
+      "transitions"};
   EXPECT_EQ(keys_of(j), expected);
 }
 

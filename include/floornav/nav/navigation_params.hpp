@@ -64,7 +64,7 @@ struct NavigationParams {
   PlannerParams planner{};
   DwaParams dwa{};  ///< the `dwa` controller kind (nav/dwa_controller.hpp)
   /// Robot-robot avoidance (robot_avoidance.hpp); read by name, not by serialize().
-  RobotAvoidance robot_avoidance{RobotAvoidance::None};
+  RobotAvoidance robot_avoidance{RobotAvoidance::Orca};
   double avoidance_range{1.0};    ///< m between centres: robots told to this one (NearbyRobot)
   double avoidance_horizon{2.0};  ///< s: ORCA's time horizon tau for other robots
   double avoidance_margin{0.02};  ///< m added to the sum of two robots' radii

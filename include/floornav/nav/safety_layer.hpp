@@ -25,6 +25,7 @@
 /// ISO 3691-4's warning fields and Nav2's collision monitor do; the protective field itself grows
 /// with the speed through the braking distance.
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -38,6 +39,14 @@ namespace floornav {
 
 class World;
 
+/// Which body of the floor a SafetyDisc or SafetyBox is (for reports: who held a robot up).
+struct BodyRef {
+  enum class Kind : std::uint8_t { None, Robot, Person, Forklift };
+  Kind kind{Kind::None};
+  std::uint32_t index{0};  ///< in the fleet, the people, or the forklifts
+  bool operator==(const BodyRef&) const = default;
+};
+
 /// A disc body near the robot: another robot or a person, as it stands at the start of the step.
 struct SafetyDisc {
   Vec2 position{Vec2::Zero()};
@@ -47,12 +56,14 @@ struct SafetyDisc {
   /// It runs this layer too: each of the two keeps to its half of the room between them.
   bool reciprocal{false};
   double extra_margin{0.0};  ///< m added to the margin (SafetyParams::person_margin for people)
+  BodyRef who{};
 };
 
 /// A rectangular body near the robot (a forklift), as it stands at the start of the step.
 struct SafetyBox {
   OrientedBox box{};
   double approach{0.0};  ///< m it may come towards any point within one step
+  BodyRef who{};
 };
 
 /// What the robot knows around it at one step.

@@ -103,6 +103,8 @@ class FleetSimulation {
   void tell_nearby(std::size_t i, SensingScratch& scratch) const;
   /// The bodies robot i's safety layer keeps clear of: robots, people and forklifts near it.
   void gather_safety_bodies(std::size_t i, SensingScratch& scratch) const;
+  /// The name of a body of the floor (a robot's, a person's, a forklift's).
+  std::string body_name(const BodyRef& who, const CrowdResult& crowd) const;
   /// The fleet's result from each robot's run (in robot order), names filled in.
   FleetResult make_result(std::vector<RunResult> runs) const;
 

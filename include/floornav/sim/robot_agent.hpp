@@ -124,6 +124,8 @@ class RobotAgent {
   const RobotSpec& robot() const { return *robot_; }
   const NavigationParams& params() const { return *nav_; }
   const Controller& controller() const { return *controller_; }
+  /// The moving body (robot, person, forklift) last near this robot; kind None if none was.
+  const BodyRef& mover() const { return mover_; }
   /// The safety layer under the controller (nullptr with `controller.safety: off`).
   const SafetyLayer* safety() const { return safety_ ? &*safety_ : nullptr; }
   /// The mode the controller reported last.
@@ -145,6 +147,10 @@ class RobotAgent {
   void finish(RunStatus status);
   /// Logs a transition of the controller at time t (mode change or a named guard).
   void log_transition(double t, int to, int guard);
+  /// The nearest moving body of this step's safety scene, and when one was last near.
+  void note_movers(const SensingScratch& scratch);
+  /// Step 6's stuck, deadlock and livelock checks; true when the run ended.
+  bool check_liveness();
   /// Step 4b: the safety layer's verdict on the command about to be driven.
   void guard(const SensingScratch& scratch, WheelSpeeds& wheels, UnicycleCommand& driven);
   /// Appends the extra columns (SimConfig::record) of the row just recorded.
@@ -181,6 +187,12 @@ class RobotAgent {
   bool disc_body_{true};  ///< no footprint polygon: the body is the disc
   Vec2 stuck_anchor_{Vec2::Zero()};
   double stuck_anchor_time_{0.0};
+  // Liveness: the nearest goal distance so far (for this goal) and when it was reached; the
+  // moving body last near, and when.
+  double progress_best_{0.0};
+  double progress_time_{0.0};
+  BodyRef mover_{};
+  double mover_time_{-std::numeric_limits<double>::infinity()};
   double stuck_radius_{0.0};
   /// m: a lower bound on the body's clearance to the world at pose_ (exact right after it is
   /// computed). Disc bodies only; it lets a step skip the clearance query and the inside test.

@@ -47,7 +47,15 @@ struct RunResult {
   double wait_time{0.0};  ///< s the robot's body moved slower than 1 cm/s (waiting, turning)
   /// s during which the safety layer changed the controller's command (slowed, stopped it)
   double safety_time{0.0};
-  int safety_steps{0};        ///< steps at which it did
+  int safety_steps{0};  ///< steps at which it did
+  /// Why a `stuck` run ended: "no_progress" (it stayed put, nothing moving near), "deadlock"
+  /// (held up among moving bodies for sim.deadlock_window), "livelock" (moving among them
+  /// without nearing its goal for sim.livelock_window), "controller" (its controller gave up);
+  /// empty otherwise.
+  std::string stuck_cause;
+  /// The moving body nearest the robot when a deadlock or livelock ended its run: a robot's,
+  /// person's or forklift's name (filled in by the fleet); empty otherwise.
+  std::string stuck_with;
   double min_clearance{0.0};  ///< m between body and obstacles, over the run (<= 0 on collision)
   int mode_switches{0};
   int steps{0};

@@ -22,11 +22,17 @@ struct RecordOptions {
 
 /// How a run is simulated.
 struct SimConfig {
-  double dt{0.01};               ///< s, fixed control and integration step
-  double t_max{120.0};           ///< s, then the run ends as `timeout`
-  std::uint64_t seed{1};         ///< the run's random seed (sensor noise)
-  double stuck_window{10.0};     ///< s: a robot that stays within stuck_radius this long is `stuck`
-  double stuck_radius{0.0};      ///< m; 0 means the robot's body radius
+  double dt{0.01};            ///< s, fixed control and integration step
+  double t_max{120.0};        ///< s, then the run ends as `timeout`
+  std::uint64_t seed{1};      ///< the run's random seed (sensor noise)
+  double stuck_window{10.0};  ///< s: a robot that stays within stuck_radius this long is `stuck`
+  double stuck_radius{0.0};   ///< m; 0 means the robot's body radius
+  /// s: a robot held up among moving bodies (robots, people, forklifts) waits this long before
+  /// its run ends `stuck` as a deadlock (it waits in traffic; stuck_window is for the rest)
+  double deadlock_window{60.0};
+  /// s: a robot that moves among moving bodies without coming nearer its goal (by stuck_radius)
+  /// for this long ends `stuck` as a livelock (circling a parked forklift)
+  double livelock_window{180.0};
   bool record_trajectory{true};  ///< keep every step (for CSV and SVG); off in big batches
   bool park_finished{true};      ///< fleets: a robot that is done stays, an obstacle to others
   /// Steps between two recordings of every sensor's range (RunResult::ranges, for the HTML
@@ -41,6 +47,11 @@ struct SimConfig {
     a("seed", seed, "random seed (sensor noise)");
     a("stuck_window", stuck_window, "a robot that stays within stuck_radius this long is stuck, s");
     a("stuck_radius", stuck_radius, "m; 0 means the body radius");
+    a("deadlock_window", deadlock_window,
+      "a robot held up among moving bodies this long is stuck (deadlock), s");
+    a("livelock_window", livelock_window,
+      "a robot moving among moving bodies without nearing its goal this long is stuck "
+      "(livelock), s");
     a("record_trajectory", record_trajectory, "keep every step for the CSV and SVG outputs");
     a("park_finished", park_finished,
       "fleets: a robot that has finished stays where it stopped, an obstacle to the others");
