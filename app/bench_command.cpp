@@ -223,9 +223,9 @@ int run_bench(const BenchOptions& options) {
   const double budget = options.seconds_per_case;
   const fs::path scenario_dir =
       find_dir({options.scenario_dir, "scenarios", source_tree() / "scenarios"}, "rectangle.yaml");
-  const fs::path maps_dir = find_dir({options.maps_dir, fs::path("..") / "shared" / "maps",
-                                      source_tree().parent_path() / "shared" / "maps"},
-                                     aws_warehouse_map("").relative_path());
+  const fs::path maps_dir =
+      find_dir({options.maps_dir, fs::path("data") / "maps", source_tree() / "data" / "maps"},
+               aws_warehouse_map("").relative_path());
 
   // Shared by the cases that use it; built on first use, outside any timing.
   std::shared_ptr<const World> floor;
@@ -269,7 +269,7 @@ int run_bench(const BenchOptions& options) {
          const std::optional<Scenario> s =
              maps_dir.empty() ? std::nullopt : make_aws_scenario(maps_dir);
          if (!s) {
-           r.skipped = "AWS warehouse map not found (../shared/maps)";
+           r.skipped = "AWS warehouse map not found (data/maps: run from the repository)";
            return;
          }
          time_stepping(*s, budget, r);

@@ -12,7 +12,7 @@ struct BenchOptions {
   double seconds_per_case{1.0};  ///< s of timed work per case (after a short warm-up)
   std::string filter;            ///< run only the cases whose name contains this ("": all)
   std::string scenario_dir;      ///< "": ./scenarios, else the source tree's scenarios/
-  std::string maps_dir;          ///< "": ../shared/maps beside the working directory or the tree
+  std::string maps_dir;          ///< "": data/maps in the working directory or the tree
 };
 
 /// Runs the cases single-threaded and prints the results to stdout. Returns the exit status: 0,

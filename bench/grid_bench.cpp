@@ -1,7 +1,7 @@
 // Ray casting and clearance on a real occupancy map: the AWS RoboMaker small warehouse (ROS
-// map_server, 286 x 423 cells of 0.05 m). items_per_second is rays/s (queries/s). Skipped, with a
-// message, when ../shared/maps is not beside the repository. And a 180-beam lidar's fan at 3.5 m
-// and 8 m on a cave-like map shaped like Stage's (16 x 16 m, 0.032 m cells; cave_map.hpp).
+// map_server, 286 x 423 cells of 0.05 m; data/maps). items_per_second is rays/s (queries/s). And
+// a 180-beam lidar's fan at 3.5 m and 8 m on a cave-like map shaped like Stage's (16 x 16 m,
+// 0.032 m cells; cave_map.hpp).
 //
 //   floornav_bench --benchmark_filter='BM_Grid|BM_Cave'
 
@@ -36,7 +36,7 @@ struct WarehouseMap {
 const WarehouseMap& warehouse() {
   static const WarehouseMap map = [] {
     WarehouseMap m;
-    m.path = aws_warehouse_map(FLOORNAV_SHARED_MAPS_DIR).string();
+    m.path = aws_warehouse_map(FLOORNAV_MAPS_DIR).string();
     std::error_code ec;
     if (!std::filesystem::exists(m.path, ec)) return m;
     m.grid = std::make_shared<const OccupancyGrid>(load_ros_map(m.path));

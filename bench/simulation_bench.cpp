@@ -103,9 +103,9 @@ void BM_Step_Lidar180_50Polygons(benchmark::State& state) {
 BENCHMARK(BM_Step_Lidar180_50Polygons);
 
 void BM_Step_Lidar360_AwsWarehouse(benchmark::State& state) {
-  static const std::optional<Scenario> s = make_aws_scenario(FLOORNAV_SHARED_MAPS_DIR);
+  static const std::optional<Scenario> s = make_aws_scenario(FLOORNAV_MAPS_DIR);
   if (!s) {
-    state.SkipWithError("skipped: AWS warehouse map not found under " FLOORNAV_SHARED_MAPS_DIR);
+    state.SkipWithError("AWS warehouse map not found under " FLOORNAV_MAPS_DIR);
     return;
   }
   step_robot(state, *s);

@@ -52,8 +52,8 @@ install(FILES ${PROJECT_BINARY_DIR}/floornavConfig.cmake
 install(TARGETS floornav RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 # The chapter scenarios, self-contained (no map files): the examples, the README's program and
-# `floornav run` use them. Scenarios that point at ../shared/maps (ros/, the BARN and MovingAI
-# templates) would not load from an install prefix, so they are not installed.
+# `floornav run` use them. Scenarios that point at the repository's data/maps (ros/, the BARN and
+# MovingAI templates) would not load from an install prefix, so they are not installed.
 install(FILES
   scenarios/circle_obstacle.yaml scenarios/concave_obstacle.yaml scenarios/convex_obstacle.yaml
   scenarios/coppeliasim_pioneer.yaml scenarios/factory_delivery.yaml scenarios/fleet_aisles.yaml

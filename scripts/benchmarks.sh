@@ -2,11 +2,11 @@
 # Reproduces the tables of docs/BENCHMARKS.md. Usage:
 #   scripts/benchmarks.sh [chapter|fleet|avoidance|crowd|movingai|ros|barn|all]
 #   scripts/benchmarks.sh [plan-movingai|plan-barn|plan-floors|plan-fleets|plan]   (the planning layer and DWA)
-# Needs ./build (scripts/quickstart.sh) and ../shared/maps beside the repository.
+# Needs ./build (scripts/quickstart.sh); the maps and benchmark data are in data/maps.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 fn=build/floornav
-maps=../shared/maps
+maps=data/maps
 out=${FLOORNAV_BENCH_OUT:-out/benchmarks}
 what=${1:-all}
 kinds=(hybrid hard_switch blended go_to_goal)

@@ -325,19 +325,16 @@ TEST_F(RosMapTest, BadYaml) {
   }
 }
 
-// --- the real maps under shared/maps ---------------------------------------------------------
+// --- the real maps under data/maps -----------------------------------------------------------
 
-fs::path shared_maps() {
-  return fs::path(FLOORNAV_SHARED_MAPS_DIR);
+fs::path data_maps() {
+  return fs::path(FLOORNAV_MAPS_DIR);
 }
 
 /// The few small maps copied into the repository (tests/data/maps/SOURCES.md).
 fs::path test_maps() {
   return fs::path(FLOORNAV_TEST_DATA_DIR) / "maps";
 }
-
-#define SKIP_WITHOUT_SHARED_MAPS() \
-  if (!fs::is_directory(shared_maps())) GTEST_SKIP() << "no " << shared_maps().string()
 
 /// Counts of pixel values in a binary PGM, read independently of the loader (header without
 /// comments after the first line).
@@ -362,8 +359,7 @@ PgmBytes read_pgm_bytes(const fs::path& p) {
 }
 
 TEST(RosMapRealFiles, AwsWarehouse002) {
-  SKIP_WITHOUT_SHARED_MAPS();
-  const fs::path yaml = shared_maps() / "aws-robomaker-small-warehouse/002/map.yaml";
+  const fs::path yaml = data_maps() / "aws-robomaker-small-warehouse/002/map.yaml";
   const OccupancyGrid g = load_ros_map(yaml, {.unknown = UnknownPolicy::Free});
   ASSERT_EQ(g.width(), 1536);
   ASSERT_EQ(g.height(), 1504);
@@ -372,7 +368,7 @@ TEST(RosMapRealFiles, AwsWarehouse002) {
   EXPECT_DOUBLE_EQ(g.origin().position.y(), -20.24);
   // Every cell against the raw bytes: only 0 (black) is occupied when unknown (205) is free;
   // image row y is grid row height - 1 - y.
-  const PgmBytes raw = read_pgm_bytes(shared_maps() / "aws-robomaker-small-warehouse/002/map.pgm");
+  const PgmBytes raw = read_pgm_bytes(data_maps() / "aws-robomaker-small-warehouse/002/map.pgm");
   ASSERT_EQ(raw.width, 1536);
   std::size_t mismatches = 0;
   for (int y = 0; y < raw.height; ++y) {
@@ -415,9 +411,8 @@ TEST(RosMapRealFiles, OtherYamlMaps) {
 }
 
 TEST(RosMapRealFiles, WillowWithoutYaml) {
-  SKIP_WITHOUT_SHARED_MAPS();
   const OccupancyGrid g =
-      load_ros_image_map(shared_maps() / "ros-navigation-tutorials/willow-full.pgm", 0.1);
+      load_ros_image_map(data_maps() / "ros-navigation-tutorials/willow-full.pgm", 0.1);
   EXPECT_EQ(g.width(), 584);
   EXPECT_EQ(g.height(), 526);
   Vec2 lo, hi;
@@ -426,7 +421,7 @@ TEST(RosMapRealFiles, WillowWithoutYaml) {
   EXPECT_NEAR(hi.y(), 52.6, 1e-9);
   EXPECT_GT(g.occupied_count(), 0u);
   const OccupancyGrid fine =
-      load_ros_image_map(shared_maps() / "ros-navigation-tutorials/willow-full-0.05.pgm", 0.05);
+      load_ros_image_map(data_maps() / "ros-navigation-tutorials/willow-full-0.05.pgm", 0.05);
   EXPECT_EQ(fine.width(), 1165);
   EXPECT_EQ(fine.height(), 945);
 }

@@ -169,11 +169,10 @@ TEST_F(SdfWorldTest, BadWorlds) {
 }
 
 fs::path barn() {
-  return fs::path(FLOORNAV_SHARED_MAPS_DIR) / "barn/world_files";
+  return fs::path(FLOORNAV_MAPS_DIR) / "barn/world_files";
 }
 
 TEST(SdfWorldRealFiles, BarnWorlds) {
-  if (!fs::is_directory(barn())) GTEST_SKIP() << "no " << barn().string();
   // Unique unit_cylinder_K models, counted with
   //   grep -o "<model name='unit_cylinder_[0-9]*'" world_N.world | sort -u | wc -l
   // (each appears twice: as a model and again under <state>).
@@ -211,8 +210,7 @@ TEST(SdfWorldRealFiles, BarnWorlds) {
 // BARN's reference paths load strictly: every real path_N.npy is an (n, 2) int64 array of cells
 // inside the 30 x 30 grid.
 TEST(SdfWorldRealFiles, BarnPaths) {
-  const fs::path dir = fs::path(FLOORNAV_SHARED_MAPS_DIR) / "barn/path_files";
-  if (!fs::is_directory(dir)) GTEST_SKIP() << "no " << dir.string();
+  const fs::path dir = fs::path(FLOORNAV_MAPS_DIR) / "barn/path_files";
   int files = 0;
   for (const auto& e : fs::directory_iterator(dir)) {
     const auto cells = load_barn_path(e.path());

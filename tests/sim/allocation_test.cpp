@@ -186,9 +186,6 @@ TEST(Allocation, LidarRobotStepAllocatesNothing) {
 // The same lidar on an occupancy grid (a MovingAI map, 1 m cells): its beams go through
 // OccupancyGrid::cast_fan.
 TEST(Allocation, GridLidarRobotStepAllocatesNothing) {
-  if (!std::filesystem::exists(std::string(FLOORNAV_SCENARIO_DIR) +
-                               "/../../shared/maps/movingai-mapf/room-32-32-4.map"))
-    GTEST_SKIP() << "no MovingAI map";
   const WindowResult r = count_step_allocations(
       "movingai_template.yaml", {"goal=[29.5, 29.5]", "sim.dt=0.01", "sim.t_max=600"});
   EXPECT_EQ(r.allocations, 0);
