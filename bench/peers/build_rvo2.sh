@@ -3,21 +3,19 @@
 # our timing driver (bench/peers/rvo2_driver.cpp) against it, in a scratch directory outside the
 # repository (bench/peers/README.md).
 #
-#   bench/peers/build_rvo2.sh [RVO2_GIT_DIR]
+#   bench/peers/build_rvo2.sh [SOURCE [REF]]
 #
-# RVO2_GIT_DIR is a clone or bare mirror of snape/RVO2 (default: the mirror the session's
-# `fetch github:snape/RVO2` made, /work/.mirror/snape+RVO2/repo). Output:
+# SOURCE is a git URL or a local clone (work tree or bare) of RVO2 (default: its public
+# repository, https://github.com/snape/RVO2.git), REF a revision in it (default: HEAD). Output:
 # $PEERS_DIR/rvo2/rvo2_driver (PEERS_DIR defaults to /tmp/floornav-peers). Dependencies from
-# Debian: g++ (OpenMP is GCC's libgomp).
+# Debian: git, g++ (OpenMP is GCC's libgomp).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-src_git=${1:-/work/.mirror/snape+RVO2/repo}
+source "$here/peer_source.sh"
 peers=${PEERS_DIR:-/tmp/floornav-peers}
 dir=$peers/rvo2
-rm -rf "$dir/src" "$dir/build" "$dir/install"
-mkdir -p "$dir/src"
-git --git-dir="$src_git" archive HEAD | tar -x -C "$dir/src"
-git --git-dir="$src_git" rev-parse HEAD >"$dir/commit"
+rm -rf "$dir/build" "$dir/install"
+peer_source "${1:-https://github.com/snape/RVO2.git}" "${2:-HEAD}" "$dir"
 # RVO2's own CMake wants CMake >= 3.26 (Debian 12 has 3.25), so its five sources are compiled
 # here with the flags of its Release build (-O3 -DNDEBUG) and OpenMP for its doStep loop, without
 # its hardening flags (stack protector, _FORTIFY_SOURCE), so that it runs as fast as it can.
