@@ -21,6 +21,7 @@
 #include "bench_command.hpp"
 #include "demo_scenario.hpp"
 #include "floornav/core/input_error.hpp"
+#include "floornav/core/output_error.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/provenance.hpp"
 #include "floornav/io/scenario_file.hpp"
@@ -126,21 +127,23 @@ struct RunRequest {
   std::string config_out;
   std::string record;
   bool optimum{true};
-  bool html{true};  ///< trajectory.html, the replay
+  bool html{true};   ///< trajectory.html, the replay
+  bool mcap{false};  ///< run.mcap, the ROS 2 bag
 };
 
 int run_one(Scenario scenario, const RunRequest& rq) {
   const fs::path dir =
       rq.out.empty() ? fs::path("out") / safe_file_name(scenario.name) : fs::path(rq.out);
   if (!rq.record.empty()) scenario.sim.record = parse_record(rq.record);
-  check_recording(scenario, rq.file);
-  if (!rq.config_out.empty()) write_file_atomically(rq.config_out, scenario_to_yaml(scenario));
   OutputSelection which;
   which.html = rq.html;
-  // The run records what the replay needs (sensor ranges); the files describe the scenario as
-  // given, so that its provenance is the same with or without --no-html.
+  which.mcap = rq.mcap;
+  // The run records what the replay and the bag need (the trajectory, sensor ranges); the files
+  // describe the scenario as given, so that its provenance is the same with or without them.
   Scenario recorded = scenario;
   prepare_outputs(recorded, which);
+  check_recording(recorded, rq.file);
+  if (!rq.config_out.empty()) write_file_atomically(rq.config_out, scenario_to_yaml(scenario));
   RunContext context;
   context.overrides = rq.sets;
   if (rq.optimum) context.optimum = compute_optimum(scenario);
@@ -191,6 +194,13 @@ double parse_cell_size(const std::string& text) {
   return v;
 }
 
+/// `failed` or `all` of --pictures and --mcap.
+BatchPictures parse_which_cases(const char* option, const std::string& text) {
+  if (text == "failed") return BatchPictures::Failed;
+  if (text == "all") return BatchPictures::All;
+  throw InputError("", option, "expected failed or all, got '" + text.substr(0, 40) + "'");
+}
+
 /// The options batch and sweep share.
 struct BatchRequest {
   std::vector<std::string> sets;
@@ -200,6 +210,7 @@ struct BatchRequest {
   bool no_timing{false}, resume{false}, no_optimum{false};
   std::string shard;
   std::vector<std::string> pictures;  ///< --pictures failed|all DIR
+  std::vector<std::string> mcap;      ///< --mcap failed|all DIR
 };
 
 void add_batch_options(CLI::App* cmd, BatchRequest& rq) {
@@ -220,6 +231,9 @@ void add_batch_options(CLI::App* cmd, BatchRequest& rq) {
                   "K/N: run only shard K of N (every N-th case); join shards with merge");
   cmd->add_option("--pictures", rq.pictures,
                   "failed|all DIR: an SVG and an HTML replay of each failed (or every) case in DIR")
+      ->expected(2);
+  cmd->add_option("--mcap", rq.mcap,
+                  "failed|all DIR: a ROS 2 bag (MCAP) of each failed (or every) case in DIR")
       ->expected(2);
 }
 
@@ -242,13 +256,12 @@ int run_sweep(const CaseSource& source, SweepHasher& hash, const BatchRequest& r
   opt.overrides = rq.sets;
   opt.sweep = {hash.id(), k, n, count};
   if (!rq.pictures.empty()) {
-    if (rq.pictures[0] == "failed")
-      opt.pictures = BatchPictures::Failed;
-    else if (rq.pictures[0] == "all")
-      opt.pictures = BatchPictures::All;
-    else
-      throw InputError("", "--pictures", "expected failed or all, got '" + rq.pictures[0] + "'");
+    opt.pictures = parse_which_cases("--pictures", rq.pictures[0]);
     opt.pictures_dir = rq.pictures[1];
+  }
+  if (!rq.mcap.empty()) {
+    opt.mcap = parse_which_cases("--mcap", rq.mcap[0]);
+    opt.mcap_dir = rq.mcap[1];
   }
   CaseList list{shard_ids(count, k, n), source.make};
   std::signal(SIGINT, on_signal);
@@ -296,6 +309,8 @@ int main(int argc, char** argv) {
   run->add_flag("-q,--quiet", run_rq.quiet, "print nothing on success");
   bool run_no_html = false;
   run->add_flag("--no-html", run_no_html, "do not write trajectory.html (the replay)");
+  run->add_flag("--mcap", run_rq.mcap,
+                "also write run.mcap: the run as a ROS 2 bag (Foxglove, ros2 bag play)");
   run->add_option("--threads", run_rq.threads,
                   "threads stepping a fleet's robots (default: all cores; same result for any)")
       ->check(CLI::Range(1, 1024));
@@ -482,6 +497,9 @@ int main(int argc, char** argv) {
                  100.0 * o.aggregate["success_rate"].get<double>(), merge_out);
       return 0;
     }
+  } catch (const OutputError& e) {  // an output that could not be written
+    fmt::print(stderr, "floornav: error: {}\n", e.what());
+    return 1;
   } catch (const InputError& e) {
     fmt::print(stderr, "floornav: error: {}\n", e.what());
     return 2;

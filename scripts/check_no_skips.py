@@ -6,7 +6,8 @@ clone with nothing beside it, runs every test.
 
 The file is what `ctest --output-junit` wrote. A ctest test counts as skipped when its testcase
 has a <skipped> element or a status other than "run" (GoogleTest's GTEST_SKIP, a test's skip
-exit code or skip message, a test that did not run); the pytest suite inside ctest (python_tests)
+exit code or skip message, a test that did not run) and other than "disabled" (a GoogleTest
+DISABLED_ helper, off by design, is not a skip); the pytest suite inside ctest (python_tests)
 counts its own skips, which ctest does not see, from pytest's closing line in the test's output.
 Exit status 0 when nothing was skipped, 1 otherwise (each skipped test named on stderr).
 """
@@ -21,7 +22,8 @@ def skipped_tests(root: ET.Element) -> list[str]:
     for case in root.iter("testcase"):
         name = case.get("name", "?")
         status = case.get("status", "run")
-        if case.find("skipped") is not None or status not in ("run", "fail"):
+        if status != "disabled" and (case.find("skipped") is not None or
+                                     status not in ("run", "fail")):
             out.append(f"{name} (status {status})")
         # pytest inside one ctest test: its closing line, e.g. "312 passed, 2 skipped in 41.2s".
         text = "".join(e.text or "" for e in case.iter("system-out"))

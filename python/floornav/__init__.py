@@ -127,6 +127,7 @@ def run(
     kind: str = "python",
     threads: int = 0,
     out: Optional[PathLike] = None,
+    mcap: bool = False,
 ) -> RunResult:
     """Simulates ``scenario`` to the end and returns its :class:`RunResult`: ``.summary`` (the
     summary.json keys), ``.trajectory`` (one numpy array per trajectory.csv column),
@@ -136,14 +137,16 @@ def run(
     ``factory`` (``context -> controller``, one per robot) replaces the scenario's controller,
     reported as ``kind``. A fleet runs on ``threads`` threads (0: all cores; a Python controller:
     one). With ``out``, the command line's files are written there once the run has finished
-    (an exception in a controller leaves no file).
+    (an exception in a controller leaves no file). ``mcap=True`` records what a ROS 2 bag needs
+    (the trajectory, the sensor ranges: the same run, bit for bit) and, with ``out``, writes
+    ``run.mcap`` too (``RunResult.write(out, mcap=True)`` later does the same).
     """
     s = _as_scenario(scenario)
     if controller is not None or factory is not None:
         s = s.with_controller(controller, factory=factory, kind=kind)
-    result = _floornav._run(s, threads)
+    result = _floornav._run(s, threads, mcap)
     if out is not None:
-        result.write(os.fspath(out))
+        result.write(os.fspath(out), mcap=mcap)
     return result
 
 

@@ -177,24 +177,32 @@ void check_signals() {
 
 // As run_timed / run_fleet_timed (the same simulation, the same result), in pieces between which
 // a pending Ctrl-C stops the run.
-std::shared_ptr<PyRunResult> run(const ScenarioPtr& s, int threads) {
+std::shared_ptr<PyRunResult> run(const ScenarioPtr& s, int threads, bool mcap) {
   auto r = std::make_shared<PyRunResult>();
   r->scenario = s;
   {
     py::gil_scoped_release nogil;  // a Python controller takes it back per step
+    // For a bag, the run records the trajectory and the sensor ranges (prepare_outputs); the
+    // result keeps the scenario as given.
+    std::optional<Scenario> prepared;
+    if (mcap) {
+      prepared = s->scenario;
+      prepare_outputs(*prepared, OutputSelection{.mcap = true});
+    }
+    const Scenario& scenario = prepared ? *prepared : s->scenario;
     const auto t0 = std::chrono::steady_clock::now();
     const auto elapsed = [&] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     };
-    if (s->scenario.is_fleet()) {
-      FleetSimulation fleet = make_fleet_simulation(s->scenario);
+    if (scenario.is_fleet()) {
+      FleetSimulation fleet = make_fleet_simulation(scenario);
       const int n = s->python_controller ? 1 : threads;
       while (fleet.run_steps(kStepsBetweenSignalChecks / 16, n) > 0 && !fleet.finished())
         check_signals();
       r->fleet = fleet.take_result();
       r->fleet->wall_time = elapsed();
     } else {
-      Simulation sim = make_simulation(s->scenario);
+      Simulation sim = make_simulation(scenario);
       for (int k = 1; sim.step(); ++k)
         if (k % kStepsBetweenSignalChecks == 0) check_signals();
       r->run = sim.result();
@@ -204,13 +212,15 @@ std::shared_ptr<PyRunResult> run(const ScenarioPtr& s, int threads) {
   return r;
 }
 
-void write_outputs(PyRunResult& r, const std::filesystem::path& dir) {
+void write_outputs(PyRunResult& r, const std::filesystem::path& dir, bool mcap) {
   const RunContext& context = context_of(r);
+  OutputSelection which;
+  which.mcap = mcap;
   py::gil_scoped_release nogil;
   if (r.fleet)
-    write_fleet_outputs(dir, r.scenario->scenario, *r.fleet, context);
+    write_fleet_outputs(dir, r.scenario->scenario, *r.fleet, context, which);
   else
-    write_run_outputs(dir, r.scenario->scenario, *r.run, context);
+    write_run_outputs(dir, r.scenario->scenario, *r.run, context, which);
 }
 
 // Cases on `jobs` worker threads (the GIL released); the calling thread watches for Ctrl-C.
@@ -341,15 +351,20 @@ void bind_run(py::module_& m) {
           "The controller's modes, in index order (lone robot).")
       .def_property_readonly("is_fleet", [](const PyRunResult& r) { return r.fleet.has_value(); })
       .def(
-          "write", [](PyRunResult& r, const std::filesystem::path& dir) { write_outputs(r, dir); },
-          py::arg("out"),
-          "Writes the CLI's files (summary.json, trajectory.csv, trajectory.svg) into `out`.")
+          "write",
+          [](PyRunResult& r, const std::filesystem::path& dir, bool mcap) {
+            write_outputs(r, dir, mcap);
+          },
+          py::arg("out"), py::arg("mcap") = false,
+          "Writes the CLI's files (summary.json, trajectory.csv, trajectory.svg, ...) into `out`; "
+          "with mcap=True also run.mcap, the run as a ROS 2 bag (its sensor topics hold the "
+          "ranges the run recorded: run with floornav.run(..., mcap=True) to record them).")
       .def("__repr__", [](const PyRunResult& r) {
         if (r.run) return fmt::format("<floornav.RunResult {}>", describe_run(*r.run));
         return fmt::format("<floornav.RunResult {}>", describe_fleet(*r.fleet));
       });
 
-  m.def("_run", &run, py::arg("scenario"), py::arg("threads") = 0);
+  m.def("_run", &run, py::arg("scenario"), py::arg("threads") = 0, py::arg("mcap") = false);
   m.def("_batch", &batch, py::arg("scenarios"), py::arg("jobs"), py::arg("timing"),
         py::arg("optimum"), py::arg("out"), py::arg("ids") = py::none());
 }

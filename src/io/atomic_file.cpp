@@ -9,7 +9,7 @@
 #include <string>
 #include <system_error>
 
-#include "floornav/core/input_error.hpp"
+#include "floornav/core/output_error.hpp"
 
 namespace floornav {
 
@@ -18,7 +18,7 @@ namespace {
 std::atomic<unsigned long> g_temp_counter{0};
 
 [[noreturn]] void throw_cannot_write(const std::filesystem::path& path, int error) {
-  throw InputError(path.string(), "", std::string("cannot write: ") + std::strerror(error));
+  throw OutputError(path.string(), std::string("cannot write: ") + std::strerror(error));
 }
 
 /// A unique name in the target's directory, so that the final rename stays on one filesystem.
@@ -81,9 +81,9 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 void ensure_directory(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) throw InputError(dir.string(), "", "cannot create directory: " + ec.message());
+  if (ec) throw OutputError(dir.string(), "cannot create directory: " + ec.message());
   if (!std::filesystem::is_directory(dir, ec))
-    throw InputError(dir.string(), "", "cannot create directory: it exists and is not a directory");
+    throw OutputError(dir.string(), "cannot create directory: it exists and is not a directory");
 }
 
 OutputFolder::OutputFolder(std::filesystem::path dir) : dir_(dir.lexically_normal()) {
@@ -116,7 +116,7 @@ void OutputFolder::stage() {
   if (!std::filesystem::create_directory(staging_, ec)) {
     const std::string reason = ec ? ec.message() : "it exists";
     staging_.clear();
-    throw InputError(parent.string(), "", "cannot create a staging folder: " + reason);
+    throw OutputError(parent.string(), "cannot create a staging folder: " + reason);
   }
 }
 
@@ -130,9 +130,9 @@ void OutputFolder::write(
   stage();
   try {
     write_file_atomically(staging_ / name, produce);
-  } catch (const InputError& e) {
+  } catch (const OutputError& e) {
     // Name the file where it was meant to go, not the staging folder.
-    throw InputError((dir_ / name).string(), "", e.detail);
+    throw OutputError((dir_ / name).string(), e.detail);
   }
   names_.push_back(name);
 }
@@ -155,7 +155,7 @@ void OutputFolder::commit() {
   ensure_directory(dir_);
   for (const std::string& name : names_) {
     std::filesystem::rename(staging_ / name, dir_ / name, ec);
-    if (ec) throw InputError((dir_ / name).string(), "", "cannot write: " + ec.message());
+    if (ec) throw OutputError((dir_ / name).string(), "cannot write: " + ec.message());
   }
   std::filesystem::remove_all(staging_, ec);
   staging_.clear();

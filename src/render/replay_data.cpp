@@ -8,6 +8,7 @@
 
 #include "floornav/render/palette.hpp"
 #include "floornav/render/trajectory_html.hpp"
+#include "floornav/sim/goal_rows.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "replay_track.hpp"
 
@@ -127,31 +128,6 @@ Json world_json(const World* world) {
   return w;
 }
 
-/// The row at which each goal was reached: the first row (after the previous goal's) within
-/// epsilon of it, as the STOP guard sees it; -1 from the first goal not reached.
-Json goal_rows(const RobotTask& task, const RunResult& r) {
-  Json out = Json::array();
-  std::size_t row = 0;
-  bool reached = true;
-  for (std::size_t g = 0; g < task.goals.size(); ++g) {
-    if (reached && static_cast<int>(g) < r.goals_reached) {
-      reached = false;
-      for (; row < r.trajectory.size(); ++row) {
-        const TrajectorySample& s = r.trajectory[row];
-        if (std::hypot(s.x - task.goals[g].x(), s.y - task.goals[g].y()) <
-            task.controller.params.epsilon) {
-          reached = true;
-          break;
-        }
-      }
-    } else {
-      reached = false;
-    }
-    out.push_back(reached ? static_cast<std::int64_t>(row) : -1);
-  }
-  return out;
-}
-
 /// The recorded beam frames of `r`, every `stride`-th one.
 Json beams_json(const RobotTask& task, const RunResult& r, std::size_t stride) {
   const std::size_t sensors = task.robot.sensors.size();
@@ -203,7 +179,7 @@ Json robot_json(const Track& t, const SimConfig& sim, std::size_t beam_stride) {
   j["start"] = {micro(task.start.position.x()), micro(task.start.position.y()), task.start.theta};
   j["goals"] = Json::array();
   for (const Vec2& g : task.goals) j["goals"].push_back({micro(g.x()), micro(g.y())});
-  j["goal_rows"] = goal_rows(task, r);
+  j["goal_rows"] = goal_reached_rows(task, r);
   j["status"] = std::string(to_string(r.status));
   j["collided"] = r.collided;
   j["parked"] = sim.park_finished || r.collided;

@@ -7,6 +7,7 @@
 
 #include "floornav/render/palette.hpp"
 #include "floornav/render/replay_assets.hpp"
+#include "floornav/scenario/ranges_interval.hpp"
 #include "replay_data.hpp"
 #include "run_caption.hpp"
 
@@ -102,12 +103,7 @@ double duration_of(std::span<const Track> tracks) {
 }  // namespace
 
 int replay_ranges_interval(const Scenario& s) {
-  double per_step = 0.0;
-  for (const RobotTask& t : s.robots) per_step += static_cast<double>(t.robot.sensors.size());
-  if (per_step <= 0.0 || !(s.sim.dt > 0.0)) return 0;
-  const double steps = std::ceil(s.sim.t_max / s.sim.dt) + 1.0;
-  const double interval = std::ceil(per_step * steps / static_cast<double>(kMaxReplayRangeValues));
-  return static_cast<int>(std::clamp(interval, 1.0, 1e9));
+  return ranges_interval_within(s, static_cast<double>(kMaxReplayRangeValues));
 }
 
 std::string render_trajectory_html(const Scenario& s, const RunResult& r) {

@@ -21,6 +21,7 @@
 #include "floornav/core/input_error.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/provenance.hpp"
+#include "floornav/io/run_mcap.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/render/trajectory_html.hpp"
 #include "floornav/render/trajectory_svg.hpp"
@@ -101,10 +102,16 @@ bool wants_picture(BatchPictures which, RunStatus status) {
 std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
                              const std::atomic<bool>* halt, OptimumCache& optimum_cache) {
   Scenario sc = c.scenario;  // shares the world; copies only small data
-  const bool pictures = o.pictures != BatchPictures::None;
-  sc.sim.record_trajectory = pictures;
-  if (pictures) prepare_outputs(sc);
+  OutputSelection which;
+  which.html = o.pictures != BatchPictures::None;
+  which.mcap = o.mcap != BatchPictures::None;
+  sc.sim.record_trajectory = which.html || which.mcap;
+  if (sc.sim.record_trajectory) prepare_outputs(sc, which);
   const std::string stem = (o.pictures_dir / picture_stem(c)).string();
+  const auto bag = [&](const auto& write) {
+    write_file_atomically(o.mcap_dir / (picture_stem(c) + ".mcap"),
+                          [&](const std::function<void(std::string_view)>& sink) { write(sink); });
+  };
   RunContext ctx = context_of(c, o);
   if (sc.is_fleet()) {
     // A fleet: one thread per case, like every case (the batch is parallel across cases).
@@ -114,6 +121,8 @@ std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
       write_file_atomically(stem + ".svg", render_fleet_svg(sc, *f));
       write_file_atomically(stem + ".html", render_fleet_html(sc, *f));
     }
+    if (wants_picture(o.mcap, f->status))
+      bag([&](const auto& sink) { write_fleet_mcap(sc, *f, sink); });
     // The fleet's line holds the fleet's summary without each robot's (there can be thousands).
     Json summary = fleet_run_summary(c.scenario, *f, ctx);
     summary.erase("robots");
@@ -126,6 +135,8 @@ std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
     write_file_atomically(stem + ".svg", render_trajectory_svg(sc, *r));
     write_file_atomically(stem + ".html", render_trajectory_html(sc, *r));
   }
+  if (wants_picture(o.mcap, r->status))
+    bag([&](const auto& sink) { write_run_mcap(sc, *r, sink); });
   return case_line(c, run_summary(c.scenario, *r, ctx), o.timing);
 }
 
@@ -296,6 +307,7 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
 BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
   ensure_directory(options.out_dir);
   if (options.pictures != BatchPictures::None) ensure_directory(options.pictures_dir);
+  if (options.mcap != BatchPictures::None) ensure_directory(options.mcap_dir);
   const auto results_path = options.out_dir / "results.jsonl";
   const auto sweep_path = options.out_dir / "sweep.json";
   const std::size_t n = cases.ids.size();

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/crowd_csv.hpp"
+#include "floornav/io/run_mcap.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
 #include "floornav/render/trajectory_html.hpp"
@@ -21,6 +23,16 @@ namespace {
 std::string clearance_text(double c) {
   return std::isfinite(c) ? fmt::format("{:.3f} m", c) : std::string("none");
 }
+
+/// run.mcap made on another thread while the other files are written (its zstd and CRC are most
+/// of its cost): the bag's bytes, held until they join the folder.
+std::future<std::string> bag_in_background(std::function<void(const McapWriter::Sink&)> write) {
+  return std::async(std::launch::async, [write = std::move(write)] {
+    std::string bytes;
+    write([&](std::string_view piece) { bytes.append(piece); });
+    return bytes;
+  });
+}
 }  // namespace
 
 void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,
@@ -33,6 +45,10 @@ void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenari
                        const OutputSelection& which) {
   // Every file of the run appears together, or none does (a full disk, a signal).
   OutputFolder out(dir);
+  std::future<std::string> bag;
+  if (which.mcap && !result.trajectory.empty())
+    bag = bag_in_background(
+        [&](const McapWriter::Sink& sink) { write_run_mcap(scenario, result, sink); });
   if (which.summary)
     out.write("summary.json", run_summary(scenario, result, context).dump(2) + "\n");
   if (which.csv)
@@ -44,12 +60,17 @@ void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenari
   if (which.svg) out.write("trajectory.svg", render_trajectory_svg(scenario, result));
   if (which.html && !result.trajectory.empty())
     out.write("trajectory.html", render_trajectory_html(scenario, result));
+  if (bag.valid()) out.write("run.mcap", bag.get());
   out.commit();
 }
 
 void prepare_outputs(Scenario& scenario, const OutputSelection& which) {
-  if (which.html && scenario.sim.record_trajectory && scenario.sim.record_ranges_every == 0)
-    scenario.sim.record_ranges_every = replay_ranges_interval(scenario);
+  if (which.mcap) scenario.sim.record_trajectory = true;
+  if (!scenario.sim.record_trajectory || scenario.sim.record_ranges_every != 0) return;
+  int every = which.html ? replay_ranges_interval(scenario) : 0;
+  if (const int bag = which.mcap ? mcap_ranges_interval(scenario) : 0; bag > 0)
+    every = every > 0 ? std::min(every, bag) : bag;
+  scenario.sim.record_ranges_every = every;
 }
 
 std::string describe_run(const RunResult& r) {
@@ -96,6 +117,12 @@ void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scena
                          const FleetResult& result, const RunContext& context,
                          const OutputSelection& which) {
   OutputFolder out(dir);
+  const bool recorded = std::any_of(result.robots.begin(), result.robots.end(),
+                                    [](const RunResult& r) { return !r.trajectory.empty(); });
+  std::future<std::string> bag;
+  if (which.mcap && recorded)
+    bag = bag_in_background(
+        [&](const McapWriter::Sink& sink) { write_fleet_mcap(scenario, result, sink); });
   if (which.summary)
     out.write("summary.json", fleet_run_summary(scenario, result, context).dump(2) + "\n");
   if (which.csv)
@@ -104,11 +131,10 @@ void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scena
     });
   if (which.transitions) out.write("transitions.csv", transitions_to_csv(result));
   if (which.svg) out.write("trajectory.svg", render_fleet_svg(scenario, result));
-  const bool recorded = std::any_of(result.robots.begin(), result.robots.end(),
-                                    [](const RunResult& r) { return !r.trajectory.empty(); });
   if (which.html && recorded) out.write("trajectory.html", render_fleet_html(scenario, result));
   // People and forklifts: their tracks beside the robots'.
   if (which.csv && !result.crowd.empty()) out.write("crowd.csv", crowd_to_csv(result.crowd));
+  if (bag.valid()) out.write("run.mcap", bag.get());
   out.commit();
 }
 

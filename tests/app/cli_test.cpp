@@ -206,8 +206,8 @@ TEST(Cli, ResumeCompletesAPartialRunIdentically) {
   EXPECT_NE(other.text.find("not shard 1/1 of this sweep"), std::string::npos) << other.text;
 }
 
-// Disk full: a 16 KiB tmpfs (needs root; skipped elsewhere). The run fails with exit 2 and one
-// clear message, and results already in the folder stay intact.
+// Disk full: a 16 KiB tmpfs (needs root; skipped elsewhere). The run fails with exit 1 (an output
+// error, not bad input) and one clear message, and results already in the folder stay intact.
 TEST(Cli, DiskFullIsAClearErrorAndKeepsEarlierResults) {
   const fs::path mnt = temp_dir("tinyfs");
   fs::create_directories(mnt);
@@ -222,7 +222,7 @@ TEST(Cli, DiskFullIsAClearErrorAndKeepsEarlierResults) {
       floornav("run " + scenario("factory_delivery.yaml") + " --out " + (mnt / "run").string());
   const std::string kept = read(mnt / "results.jsonl");
   std::system(("umount " + mnt.string()).c_str());
-  EXPECT_EQ(o.status, 2) << o.text;
+  EXPECT_EQ(o.status, 1) << o.text;
   EXPECT_NE(o.text.find("No space left on device"), std::string::npos) << o.text;
   EXPECT_EQ(std::count(o.text.begin(), o.text.end(), '\n'), 1) << o.text;
   EXPECT_EQ(kept, "{\"case\": 0}\n");

@@ -19,7 +19,7 @@
 
 namespace floornav {
 
-/// Which cases of a batch get pictures (an SVG and an HTML replay).
+/// Which cases of a batch get pictures (an SVG and an HTML replay), or bags (--mcap).
 enum class BatchPictures { None, Failed, All };
 /// Which sweep a batch belongs to. The id is a fingerprint of everything the sweep's lines depend
 /// on (inputs, their content, options, floornav's version; not the shard, the job count or
@@ -50,6 +50,10 @@ struct BatchOptions {
   /// recording moves nothing), so a failure is drawn without running it again.
   BatchPictures pictures{BatchPictures::None};
   std::filesystem::path pictures_dir;
+  /// The same for bags: `case-NNNNN-<name>.mcap` (run.mcap's content) in mcap_dir; those runs
+  /// record their trajectory and ranges too.
+  BatchPictures mcap{BatchPictures::None};
+  std::filesystem::path mcap_dir;
 };
 
 struct BatchCase {

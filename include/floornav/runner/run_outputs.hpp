@@ -22,16 +22,20 @@ struct OutputSelection {
   bool svg{true};
   bool html{true};         ///< trajectory.html, the replay (only when the trajectory was recorded)
   bool transitions{true};  ///< transitions.csv
+  /// run.mcap, the run as a ROS 2 bag (io/run_mcap.hpp; only when the trajectory was recorded).
+  /// Its sensor topics hold the ranges the run recorded (sim.record_ranges_every).
+  bool mcap{false};
 };
 
 /// Makes `scenario` record what the selected files need: with html, the sensor ranges for the
-/// replay's beams (sim.record_ranges_every = replay_ranges_interval, unless already set).
-/// Recording changes no result.
+/// replay's beams (replay_ranges_interval); with mcap, the trajectory and the ranges for the
+/// bag's sensor topics (mcap_ranges_interval; the shorter of the two intervals with both). A
+/// record_ranges_every the scenario sets is kept. Recording changes no result.
 void prepare_outputs(Scenario& scenario, const OutputSelection& which = {});
 
 /// Writes the selected files into `dir` (created if needed), all together or none
 /// (OutputFolder): summary.json (run_summary with `context`), trajectory.csv, transitions.csv,
-/// trajectory.svg and trajectory.html.
+/// trajectory.svg, trajectory.html and run.mcap.
 void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,
                        const RunResult& result, const RunContext& context,
                        const OutputSelection& which = {});
@@ -51,7 +55,8 @@ std::optional<RunResult> run_timed(const Scenario& scenario, const std::atomic<b
 
 /// A fleet's files in `dir`, all together or none: summary.json (fleet_run_summary),
 /// trajectory.csv (with a robot column), transitions.csv, trajectory.svg (every robot's path),
-/// trajectory.html (the replay) and crowd.csv (people and forklifts, when there are any).
+/// trajectory.html (the replay), crowd.csv (people and forklifts, when there are any) and
+/// run.mcap.
 void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scenario,
                          const FleetResult& result, const RunContext& context,
                          const OutputSelection& which = {});

@@ -1,0 +1,52 @@
+#pragma once
+/// @file
+/// The CDR encoding of a ROS 2 message: XCDR1 (PLAIN_CDR), little-endian, as ROS 2's middleware
+/// writes it and as a ROS 2 bag (MCAP profile `ros2`, message encoding `cdr`) stores it: the
+/// 4-byte encapsulation header 00 01 00 00, then each field in order, every primitive aligned to
+/// its own size (at most 8) counted from the end of the header; a string is a uint32 length that
+/// counts its terminating NUL, the bytes, the NUL; a sequence is a uint32 element count, then
+/// the elements; a fixed-size array is its elements alone. Written here (a few dozen lines)
+/// rather than taken from a library: Debian 12 packages no CDR encoder outside a DDS stack.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace floornav {
+
+class CdrWriter {
+ public:
+  /// Starts a message: the buffer is emptied (its memory kept) and gets the header.
+  void begin();
+
+  void u8(std::uint8_t v);
+  void i8(std::int8_t v) { u8(static_cast<std::uint8_t>(v)); }
+  void boolean(bool v) { u8(v ? 1 : 0); }
+  void i32(std::int32_t v);
+  void u32(std::uint32_t v);
+  void f32(float v);
+  void f64(double v);
+  void string(std::string_view s);
+  /// A sequence's element count (the elements follow, each written by the caller).
+  void sequence_size(std::size_t n);
+  /// A sequence of float32 (count, then the values): LaserScan's ranges.
+  void f32_sequence(std::span<const float> values);
+  /// A sequence of int8 (count, then the bytes): OccupancyGrid's data.
+  void i8_sequence(std::span<const std::int8_t> values);
+  /// A fixed-size array of float64 (no count): a covariance.
+  void f64_array(std::span<const double> values);
+
+  /// The message so far, header included.
+  std::string_view data() const { return buffer_; }
+
+ private:
+  /// Pads with zero bytes to a multiple of `n` counted from the end of the header.
+  void align(std::size_t n);
+  template <class T>
+  void put(T v);
+
+  std::string buffer_;
+};
+
+}  // namespace floornav

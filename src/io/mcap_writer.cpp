@@ -1,0 +1,299 @@
+#include "floornav/io/mcap_writer.hpp"
+
+#include <zlib.h>
+#include <zstd.h>
+
+#include <bit>
+#include <stdexcept>
+
+namespace floornav {
+
+namespace {
+
+constexpr std::string_view kMagic{"\x89MCAP0\r\n", 8};
+// Record opcodes (the spec's table).
+enum Opcode : std::uint8_t {
+  kHeader = 0x01,
+  kFooter = 0x02,
+  kSchema = 0x03,
+  kChannel = 0x04,
+  kMessage = 0x05,
+  kChunk = 0x06,
+  kMessageIndex = 0x07,
+  kChunkIndex = 0x08,
+  kStatistics = 0x0B,
+  kSummaryOffset = 0x0E,
+  kDataEnd = 0x0F,
+};
+constexpr std::size_t kOutputPiece = 1u << 20;
+
+// Little-endian fields appended to a byte string (the spec's integer, string and map forms).
+template <class T>
+void le(std::string& out, T v) {
+  if constexpr (std::endian::native == std::endian::little) {
+    out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+  } else {
+    for (std::size_t i = 0; i < sizeof(T); ++i)
+      out.push_back(static_cast<char>((static_cast<std::uint64_t>(v) >> (8 * i)) & 0xFF));
+  }
+}
+void u16(std::string& out, std::uint16_t v) {
+  le(out, v);
+}
+void u32(std::string& out, std::uint32_t v) {
+  le(out, v);
+}
+void u64(std::string& out, std::uint64_t v) {
+  le(out, v);
+}
+void str(std::string& out, std::string_view s) {
+  u32(out, static_cast<std::uint32_t>(s.size()));
+  out.append(s);
+}
+
+/// Appends a record: opcode, content length, content.
+void record(std::string& out, Opcode op, std::string_view content) {
+  out.push_back(static_cast<char>(op));
+  u64(out, content.size());
+  out.append(content);
+}
+
+std::uint32_t crc_update(std::uint32_t crc, std::string_view bytes) {
+  // zlib's crc32 takes at most uInt bytes per call.
+  while (!bytes.empty()) {
+    const std::size_t n = std::min<std::size_t>(bytes.size(), 1u << 30);
+    crc = static_cast<std::uint32_t>(
+        crc32(crc, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(n)));
+    bytes.remove_prefix(n);
+  }
+  return crc;
+}
+
+}  // namespace
+
+struct McapWriter::ZstdContext {
+  ZSTD_CCtx* cctx{ZSTD_createCCtx()};
+  ~ZstdContext() { ZSTD_freeCCtx(cctx); }
+};
+
+McapWriter::McapWriter(Sink sink, McapOptions options)
+    : sink_(std::move(sink)), options_(std::move(options)), zstd_(new ZstdContext) {
+  if (zstd_->cctx == nullptr) throw std::bad_alloc();
+  emit(kMagic, true);
+  std::string header;
+  str(header, options_.profile);
+  str(header, options_.library);
+  std::string rec;
+  record(rec, kHeader, header);
+  emit(rec, true);
+}
+
+McapWriter::~McapWriter() = default;
+
+void McapWriter::emit(std::string_view bytes, bool data_section) {
+  if (data_section) data_crc_ = crc_update(data_crc_, bytes);
+  out_.append(bytes);
+  position_ += bytes.size();
+  if (out_.size() >= kOutputPiece) flush_output();
+}
+
+void McapWriter::flush_output() {
+  if (!out_.empty()) sink_(out_);
+  out_.clear();
+}
+
+std::uint16_t McapWriter::add_schema(std::string_view name, std::string_view encoding,
+                                     std::string_view data) {
+  const auto id = static_cast<std::uint16_t>(++schemas_);
+  std::string content;
+  u16(content, id);
+  str(content, name);
+  str(content, encoding);
+  str(content, data);  // bytes with a uint32 length: the same form as a string
+  std::string rec;
+  record(rec, kSchema, content);
+  emit(rec, true);
+  schema_records_ += rec;
+  return id;
+}
+
+std::uint16_t McapWriter::add_channel(
+    std::uint16_t schema_id, std::string_view topic, std::string_view message_encoding,
+    const std::vector<std::pair<std::string, std::string>>& metadata) {
+  const auto id = channels_++;
+  std::string content;
+  u16(content, id);
+  u16(content, schema_id);
+  str(content, topic);
+  str(content, message_encoding);
+  std::string map;
+  for (const auto& [k, v] : metadata) {
+    str(map, k);
+    str(map, v);
+  }
+  str(content, map);  // a map: its byte length, then the pairs
+  std::string rec;
+  record(rec, kChannel, content);
+  emit(rec, true);
+  channel_records_ += rec;
+  channel_counts_.push_back(0);
+  chunk_index_.emplace_back();
+  return id;
+}
+
+void McapWriter::write(std::uint16_t channel_id, std::uint64_t log_time, std::uint64_t publish_time,
+                       std::string_view data) {
+  if (channel_id >= channels_) throw std::invalid_argument("MCAP: message on an unknown channel");
+  if (message_count_ > 0 && log_time < last_time_)
+    throw std::invalid_argument("MCAP: messages must be written in log-time order");
+  if (chunk_.empty()) chunk_start_ = log_time;
+  chunk_end_ = log_time;
+  chunk_index_[channel_id].push_back({log_time, chunk_.size()});
+  const std::uint32_t sequence = static_cast<std::uint32_t>(channel_counts_[channel_id]++);
+  chunk_.push_back(static_cast<char>(kMessage));
+  u64(chunk_, 2 + 4 + 8 + 8 + data.size());
+  u16(chunk_, channel_id);
+  u32(chunk_, sequence);
+  u64(chunk_, log_time);
+  u64(chunk_, publish_time);
+  chunk_.append(data);
+  if (message_count_ == 0) first_time_ = log_time;
+  last_time_ = log_time;
+  ++message_count_;
+  if (chunk_.size() >= options_.chunk_size) close_chunk();
+}
+
+void McapWriter::close_chunk() {
+  if (chunk_.empty()) return;
+  // Not a std::string: resizing one would zero megabytes that zstd then overwrites.
+  const std::size_t bound = ZSTD_compressBound(chunk_.size());
+  if (bound > compressed_capacity_) {
+    compressed_.reset(new char[bound]);
+    compressed_capacity_ = bound;
+  }
+  const std::size_t n = ZSTD_compressCCtx(zstd_->cctx, compressed_.get(), bound, chunk_.data(),
+                                          chunk_.size(), options_.zstd_level);
+  if (ZSTD_isError(n)) throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(n));
+
+  ChunkIndex index{};
+  index.start_time = chunk_start_;
+  index.end_time = chunk_end_;
+  index.offset = position_;
+  index.compressed_size = n;
+  index.uncompressed_size = chunk_.size();
+  std::string head;  // the chunk record up to its compressed records
+  head.push_back(static_cast<char>(kChunk));
+  const std::uint64_t content = 8 + 8 + 8 + 4 + (4 + 4) + 8 + n;
+  u64(head, content);
+  u64(head, chunk_start_);
+  u64(head, chunk_end_);
+  u64(head, chunk_.size());
+  u32(head, crc_update(0, chunk_));
+  str(head, "zstd");
+  u64(head, n);
+  emit(head, true);
+  emit(std::string_view(compressed_.get(), n), true);
+  index.length = 1 + 8 + content;
+
+  const std::uint64_t indexes_start = position_;
+  for (std::uint16_t channel = 0; channel < channels_; ++channel) {
+    std::vector<IndexEntry>& entries = chunk_index_[channel];
+    if (entries.empty()) continue;
+    index.message_index_offsets[channel] = position_;
+    std::string c;
+    u16(c, channel);
+    u32(c, static_cast<std::uint32_t>(entries.size() * 16));
+    for (const IndexEntry& e : entries) {
+      u64(c, e.time);
+      u64(c, e.offset);
+    }
+    std::string rec;
+    record(rec, kMessageIndex, c);
+    emit(rec, true);
+    entries.clear();
+  }
+  index.message_index_length = position_ - indexes_start;
+  chunk_indexes_.push_back(std::move(index));
+  chunk_.clear();
+}
+
+void McapWriter::finish() {
+  if (finished_) return;
+  finished_ = true;
+  close_chunk();
+  std::string data_end;
+  u32(data_end, data_crc_);
+  std::string rec;
+  record(rec, kDataEnd, data_end);
+  emit(rec, true);
+
+  // The summary: each group's records, and where each group starts.
+  const std::uint64_t summary_start = position_;
+  std::uint32_t summary_crc = 0;
+  std::string offsets;
+  const auto group = [&](Opcode op, std::string_view records) {
+    if (records.empty()) return;
+    std::string c;
+    c.push_back(static_cast<char>(op));
+    u64(c, position_);
+    u64(c, records.size());
+    record(offsets, kSummaryOffset, c);
+    summary_crc = crc_update(summary_crc, records);
+    emit(records, false);
+  };
+  group(kSchema, schema_records_);
+  group(kChannel, channel_records_);
+  std::string stats;
+  u64(stats, message_count_);
+  u16(stats, schemas_);
+  u32(stats, channels_);
+  u32(stats, 0);  // attachments
+  u32(stats, 0);  // metadata
+  u32(stats, static_cast<std::uint32_t>(chunk_indexes_.size()));
+  u64(stats, first_time_);
+  u64(stats, last_time_);
+  std::string counts;
+  for (std::uint16_t channel = 0; channel < channels_; ++channel) {
+    u16(counts, channel);
+    u64(counts, channel_counts_[channel]);
+  }
+  str(stats, counts);
+  std::string stats_record;
+  record(stats_record, kStatistics, stats);
+  group(kStatistics, stats_record);
+  std::string chunk_index_records;
+  for (const ChunkIndex& i : chunk_indexes_) {
+    std::string c;
+    u64(c, i.start_time);
+    u64(c, i.end_time);
+    u64(c, i.offset);
+    u64(c, i.length);
+    u32(c, static_cast<std::uint32_t>(i.message_index_offsets.size() * 10));
+    for (const auto& [channel, offset] : i.message_index_offsets) {
+      u16(c, channel);
+      u64(c, offset);
+    }
+    u64(c, i.message_index_length);
+    str(c, "zstd");
+    u64(c, i.compressed_size);
+    u64(c, i.uncompressed_size);
+    record(chunk_index_records, kChunkIndex, c);
+  }
+  group(kChunkIndex, chunk_index_records);
+
+  const std::uint64_t summary_offset_start = position_;
+  summary_crc = crc_update(summary_crc, offsets);
+  emit(offsets, false);
+  std::string footer;
+  footer.push_back(static_cast<char>(kFooter));
+  u64(footer, 8 + 8 + 4);
+  u64(footer, summary_start);
+  u64(footer, summary_offset_start);
+  summary_crc = crc_update(summary_crc, footer);
+  u32(footer, summary_crc);
+  emit(footer, false);
+  emit(kMagic, false);
+  flush_output();
+}
+
+}  // namespace floornav
