@@ -1,6 +1,7 @@
 #include "floornav/io/scenario_file.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
@@ -16,6 +17,7 @@
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
 #include "floornav/nav/dwa_controller.hpp"
+#include "floornav/scenario/controller_presets.hpp"
 #include "floornav/scenario/presets.hpp"
 #include "floornav/scenario/validate.hpp"
 #include "input_file.hpp"
@@ -390,6 +392,15 @@ void read_robot(const std::string& file, MapReader& r, RobotTask& s) {
 }
 
 void read_controller(const std::string& file, MapReader& r, ControllerConfig& c) {
+  // A preset first: the section's other keys change it.
+  if (r.has("preset")) {
+    const YAML::Node n = r.get("preset");
+    const std::string name = io_detail::read_string(file, n, r.path_of("preset"));
+    if (!apply_controller_preset(name, c))
+      fail(file, n, r.path_of("preset"),
+           fmt::format("unknown controller preset {} (expected {})", quote_input(name),
+                       fmt::join(controller_preset_names(), " or ")));
+  }
   if (r.has("kind")) {
     const YAML::Node n = r.get("kind");
     const std::string kind = io_detail::read_string(file, n, r.path_of("kind"));

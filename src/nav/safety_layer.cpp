@@ -17,7 +17,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // m between two sampled poses of the stopping path, at most (fewer samples on long paths: the
 // slack between samples is then up to half their spacing).
 constexpr double kSampleSpacing = 0.005;
-constexpr int kMaxSamples = 16;
+constexpr int kMaxSamples = 32;
 // m: rounding allowed in a slack (a robot exactly at its margin may move straight away).
 constexpr double kTolerance = 1e-9;
 // Bisection steps of the largest allowed speed: 1/256 of the wanted speed.
@@ -157,7 +157,12 @@ UnicycleCommand SafetyLayer::stopping_path(const UnicycleCommand& c) const {
   const double drive = dt_ + params_.reaction_time;
   const double v = std::abs(c.v), w = std::abs(c.omega);
   const double length = v * drive + v * v / (2.0 * robot_->max_acceleration);
-  const double turn = w * drive + w * w / (2.0 * robot_->max_angular_acceleration);
+  // Braking keeps to the command's arc (V and omega slow together, as a base following an arc
+  // brakes): the turn is the arc's curvature times its length. A turn on the spot stops with the
+  // step: the simulator's bases stop at once, and a field is sized by the travel speed (ISO
+  // 3691-4); braking a fast spin at the presets' modest angular limits would sweep a footprint
+  // round a whole turn.
+  const double turn = w * drive + w * v / (2.0 * robot_->max_acceleration);
   return {std::copysign(length, c.v), std::copysign(turn, c.omega)};
 }
 

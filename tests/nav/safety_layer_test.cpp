@@ -44,17 +44,19 @@ constexpr double kDt = 0.01;
 
 }  // namespace
 
-// Driven for dt, then braked at a: length v dt + v^2 / 2a; the turn w dt + w^2 / 2 alpha.
-// (0.15, 0.5): 0.0015 + 0.01125 = 0.01275 m and 0.005 + 0.0125 = 0.0175 rad.
+// Driven for dt, then braked at a along the same arc: length v dt + v^2 / 2a, and the turn the
+// arc's curvature w / v times that: w dt + w v / 2a. (0.15, 0.5): 0.0015 + 0.01125 = 0.01275 m
+// and 0.005 + 0.0375 = 0.0425 rad. A turn on the spot stops with the step: (0, 2) turns 0.02.
 TEST(SafetyLayer, TheStoppingPathIsOneStepThenBraking) {
   const RobotSpec r = disc_robot();
   const SafetyLayer layer(r, SafetyParams{}, kDt);
   const UnicycleCommand p = layer.stopping_path({0.15, 0.5});
   EXPECT_NEAR(p.v, 0.01275, 1e-15);
-  EXPECT_NEAR(p.omega, 0.0175, 1e-15);
+  EXPECT_NEAR(p.omega, 0.0425, 1e-15);
+  EXPECT_NEAR(layer.stopping_path({0.0, 2.0}).omega, 0.02, 1e-15);
   const UnicycleCommand back = layer.stopping_path({-0.15, -0.5});
   EXPECT_NEAR(back.v, -0.01275, 1e-15);
-  EXPECT_NEAR(back.omega, -0.0175, 1e-15);
+  EXPECT_NEAR(back.omega, -0.0425, 1e-15);
   SafetyParams late;
   late.reaction_time = 0.1;  // 0.15 x 0.11 + 0.01125 = 0.02775
   EXPECT_NEAR(SafetyLayer(r, late, kDt).stopping_path({0.15, 0.0}).v, 0.02775, 1e-15);
@@ -148,21 +150,24 @@ TEST(SafetyLayer, SomethingComingInLetsTheRobotGetAway) {
   EXPECT_GE(layer.slack(Pose2{pose.position, kPi}, at.command, s), -0.013 - 1e-9);
 }
 
-// A 0.5 x 0.4 m footprint whose corner (0.3202 m out) would swing into the wall when turning on
-// the spot 0.3 m from it: the turn is refused, standing is allowed.
+// A 0.5 x 0.4 m footprint 0.02 m from a wall turning on the spot at 10 rad/s: in one step of
+// 0.01 s (0.1 rad) its corner (0.25, -0.2) swings 0.25 cos 0.1 + 0.2 sin 0.1 - 0.25 = 0.0187 m
+// towards the wall, into the field: the turn is slowed (to about half), standing is allowed.
 TEST(SafetyLayer, AFootprintIsNotSwungIntoAWall) {
   RobotSpec r = disc_robot();
   r.body_radius = 0.2;
   r.footprint = {{-0.25, -0.2}, {0.25, -0.2}, {0.25, 0.2}, {-0.25, 0.2}};
   const World w = room();
   const SafetyLayer layer(r, SafetyParams{}, kDt);
-  const Pose2 pose{Vec2(1.0 - 0.3, 0.0), 0.0};  // the front face 0.05 m from the wall
+  const Pose2 pose{Vec2(1.0 - 0.27, 0.0), 0.0};  // the front face 0.02 m from the wall
   SafetyScene s;
   s.world = &w;
-  s.world_clearance = 0.05;
+  s.world_clearance = 0.02;
+  EXPECT_LT(layer.slack(pose, {0.0, 10.0}, s), 0.0);
   const SafetyVerdict v = layer.filter(pose, {0.0, 10.0}, s);
   EXPECT_TRUE(v.limited);
-  EXPECT_LT(std::abs(v.command.omega), 10.0);
+  EXPECT_GT(v.command.omega, 2.0);
+  EXPECT_LT(v.command.omega, 8.0);
   EXPECT_GE(layer.slack(pose, v.command, s), -1e-9);
 }
 

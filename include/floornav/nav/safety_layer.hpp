@@ -9,7 +9,8 @@
 ///
 /// What "could" means: the command's stopping path. The robot drives the command for one
 /// control period (plus SafetyParams::reaction_time) and then brakes along the same arc at its
-/// max_acceleration and max_angular_acceleration; the body swept along that path must keep
+/// max_acceleration (a turn on the spot stops with the step); the body swept along that path
+/// must keep
 ///   - from the world (the map the robot navigates by: walls, obstacles, the occupancy grid) and
 ///     from this step's range returns: the margin, or, when it is nearer already, what it has;
 ///   - from a body that moves on its own (a person, a forklift, a robot without this layer): the
