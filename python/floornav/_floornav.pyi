@@ -92,6 +92,7 @@ class DwaParams:
 class SafetyParams:
     fields: tuple[str, ...]
     enabled: bool
+    map: str
     margin: float
     reaction_time: float
     slowdown_distance: float

@@ -14,7 +14,9 @@ bool apply_controller_preset(std::string_view name, ControllerConfig& config) {
     config.kind = "hybrid";
     p.planner.kind = PlannerKind::AStar;
     p.planner.map = PlannerMap::Known;
-    p.planner.guard_horizon = 0.5;  // docs/BENCHMARKS.md, BARN: the value chosen on a third
+    // The safety layer is every robot's guard: the planner's own footprint guard, which passes
+    // unicycle commands that ORCA cannot bend, stays off (BARN's template turns it on).
+    p.planner.guard_horizon = 0.0;
     p.safety.enabled = true;
     p.robot_avoidance = RobotAvoidance::Orca;
     return true;

@@ -178,12 +178,17 @@ void RobotAgent::record_extras(const SensingScratch* scratch) {
 void RobotAgent::guard(const SensingScratch& scratch, WheelSpeeds& wheels,
                        UnicycleCommand& driven) {
   SafetyScene scene;
-  scene.world = world_;
-  // A disc body's clearance bound is kept up to date every step; a footprint's is exact.
-  scene.world_clearance = clearance_bound_;
   scene.discs = {scratch.safety_discs.data(), scratch.safety_disc_count};
   scene.boxes = {scratch.safety_boxes.data(), scratch.safety_box_count};
-  scene.points = {scratch.sensed.data(), scratch.sensed_count};
+  if (nav_->safety.map == SafetyMap::Known) {
+    scene.world = world_;
+    // A disc body's clearance bound is kept up to date every step; a footprint's is exact.
+    scene.world_clearance = clearance_bound_;
+    scene.points = {scratch.sensed.data(), scratch.sensed_count};
+  } else {  // mapless: what it sensed, and remembers
+    scene.points = use_memory_ ? std::span<const Vec2>(scratch.points.data(), scratch.point_count)
+                               : std::span<const Vec2>(scratch.sensed.data(), scratch.sensed_count);
+  }
   const SafetyVerdict verdict = safety_->filter(pose_, driven, scene);
   if (!verdict.limited) return;
   // What stopped the robot reaches its controller at the next step as one more return (a

@@ -100,16 +100,19 @@ TEST(FootprintClearance, MeasuresFromTheRectangleTurnedWithTheRobot) {
               1e-12);
 }
 
-// BARN world 150: with the template (corridor on) the Jackal gets through; with the chapter's
-// clear shot it follows the cylinders round the arena until the 100 s run out.
+// BARN world 150, the chapter's automaton alone (no planner): with the template's corridor the
+// Jackal gets through; with the chapter's clear shot it follows the cylinders round the arena
+// until the 100 s run out.
 TEST(ClearShotCorridor, BarnWorld150IsReachedOnlyWithTheCorridor) {
   const std::filesystem::path world =
       std::filesystem::path(FLOORNAV_MAPS_DIR) / "barn/world_files/world_150.world";
   const std::string templ = std::string(FLOORNAV_SCENARIO_DIR) + "/barn_template.yaml";
   const std::string map = "world.map=" + std::filesystem::absolute(world).string();
-  const RunResult with = simulate(load_scenario_file(templ, std::vector<std::string>{map}));
-  const RunResult without = simulate(
-      load_scenario_file(templ, std::vector<std::string>{map, "controller.clear_shot_corridor=0"}));
+  const std::string chapter = "controller.preset=chapter";
+  const RunResult with =
+      simulate(load_scenario_file(templ, std::vector<std::string>{map, chapter}));
+  const RunResult without = simulate(load_scenario_file(
+      templ, std::vector<std::string>{map, chapter, "controller.clear_shot_corridor=0"}));
   EXPECT_EQ(with.status, RunStatus::Reached);
   EXPECT_LT(with.sim_time, 20.0);
   EXPECT_EQ(without.status, RunStatus::Timeout);

@@ -206,10 +206,16 @@ TEST(Fleet, RobotsOfOneModelShareOneCopyOfItAndOthersKeepTheirOwn) {
   EXPECT_EQ(&fleet.robot(0).params(), &fleet.robot(3).params());
 }
 
-// Four robots meet in the middle of a hall and go round each other (a roundabout emerges from
-// the clockwise boundary following); everyone arrives and nobody touches.
+// Four robots meet in the middle of a hall and go round each other; everyone arrives and nobody
+// touches, as shipped (the planner stack) and with the chapter's automaton alone under the layer,
+// where a roundabout emerges from the clockwise boundary following.
 TEST(Fleet, FourRobotsCrossingAHallGoRoundEachOther) {
-  const FleetResult f = simulate_fleet(scenario_file("fleet_crossing.yaml"));
+  const FleetResult shipped = simulate_fleet(scenario_file("fleet_crossing.yaml"));
+  EXPECT_EQ(shipped.status, RunStatus::Reached);
+  EXPECT_EQ(shipped.deliveries, 4);
+  EXPECT_TRUE(shipped.collisions.empty());
+  const FleetResult f =
+      simulate_fleet(scenario_file("fleet_crossing.yaml", {"controller.planner.kind=none"}));
   ASSERT_EQ(f.robots.size(), 4u);
   EXPECT_EQ(f.status, RunStatus::Reached);
   EXPECT_EQ(f.reached, 4);

@@ -73,8 +73,9 @@ TEST(RobotAvoidance, GoToGoalRobotsHeadOnPassOnTheRight) {
   EXPECT_GT(y_at_middle(f.robots[1]), 0.05);
 }
 
-// Twenty robots, 60 deliveries through aisles and docks: every delivery, no contact. Without the
-// layer the same floor loses deliveries (robots circling after meeting others).
+// Twenty robots, 60 deliveries through aisles and docks: every delivery, no contact. The chapter's
+// automaton without the layer (and without the planner, which routes round the parked robots)
+// loses deliveries on the same floor (robots circling after meeting others).
 TEST(RobotAvoidance, TwentyRobotWarehouseMakesEveryDelivery) {
   const FleetResult f = simulate_fleet(scenario_file("fleet_warehouse.yaml"));
   EXPECT_EQ(f.robots.size(), 20u);
@@ -82,9 +83,13 @@ TEST(RobotAvoidance, TwentyRobotWarehouseMakesEveryDelivery) {
   EXPECT_EQ(f.deliveries, 60);
   EXPECT_EQ(f.status, RunStatus::Reached);
   EXPECT_TRUE(f.collisions.empty());
-  const FleetResult none =
-      simulate_fleet(scenario_file("fleet_warehouse.yaml", {"controller.robot_avoidance=none"}));
+  const FleetResult none = simulate_fleet(scenario_file(
+      "fleet_warehouse.yaml", {"controller.planner.kind=none", "controller.robot_avoidance=none"}));
   EXPECT_LT(none.deliveries, 60);
+  const FleetResult layer_alone =
+      simulate_fleet(scenario_file("fleet_warehouse.yaml", {"controller.planner.kind=none"}));
+  EXPECT_EQ(layer_alone.deliveries, 60);
+  EXPECT_TRUE(layer_alone.collisions.empty());
 }
 
 // The existing fleets keep every delivery and lose no clearance to contact with the layer on.

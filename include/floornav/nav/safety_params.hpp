@@ -4,10 +4,28 @@
 /// every controller; `controller.safety: off` is the chapter's robot alone, for the teaching
 /// scenes that must show a collision.
 
+#include <array>
+#include <span>
+#include <string_view>
+#include <utility>
+
 namespace floornav {
+
+/// What the safety layer knows of the static world.
+enum class SafetyMap {
+  Known,   ///< the floor plan (the simulator's world, as a robot's map) and this step's returns
+  Sensed,  ///< its own range returns alone, remembered ones included (mapless benchmarks: BARN)
+};
+
+inline std::span<const std::pair<SafetyMap, std::string_view>> enum_names(SafetyMap) {
+  static constexpr std::array<std::pair<SafetyMap, std::string_view>, 2> kNames{
+      {{SafetyMap::Known, "known"}, {SafetyMap::Sensed, "sensed"}}};
+  return kNames;
+}
 
 struct SafetyParams {
   bool enabled{true};
+  SafetyMap map{SafetyMap::Known};
   /// m: the protective field beyond the body. A moving robot never enters it; a robot already
   /// inside (it started there, or something came to it) may only move so as not to come nearer.
   double margin{0.01};
@@ -27,6 +45,7 @@ struct SafetyParams {
   template <class Archive>
   void serialize(Archive& a) {
     a("enabled", enabled, "the safety layer between the controller and the wheels (on|off)");
+    a("map", map, "known (the floor plan and the range returns) | sensed (the returns alone)");
     a("margin", margin, "protective field beyond the body: never entered while moving, m");
     a("reaction_time", reaction_time, "added to the time needed to stop, s");
     a("slowdown_distance", slowdown_distance,

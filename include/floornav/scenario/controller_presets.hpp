@@ -3,7 +3,7 @@
 /// Named controller configurations (`controller.preset`), applied before the section's own keys:
 ///   - `factory`: the product's best navigation for real floors, as shipped in the templates and
 ///     the fleet and crowd scenes: the A* planner stack over the chapter's automaton on the known
-///     floor plan, its footprint guard (0.5 s), the safety layer and reciprocal avoidance (ORCA);
+///     floor plan, the safety layer and reciprocal avoidance (ORCA);
 ///   - `chapter`: the chapter's automaton alone, as the textbook has it: no planner, no safety
 ///     layer, no reciprocal avoidance (the chapter-alone rows of docs/BENCHMARKS.md).
 /// Without a preset a controller section is the chapter's automaton with the safety layer and
