@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reproduces the tables of docs/BENCHMARKS.md. Usage:
-#   scripts/benchmarks.sh [chapter|fleet|avoidance|crowd|movingai|ros|barn|all]
+#   scripts/benchmarks.sh [chapter|fleet|avoidance|crowd|movingai|ros|barn|safety|all]
 #   scripts/benchmarks.sh [plan-movingai|plan-barn|plan-floors|plan-fleets|plan]   (the planning layer and DWA)
 # Needs ./build (scripts/quickstart.sh); the maps and benchmark data are in data/maps.
 set -euo pipefail
@@ -148,6 +148,57 @@ plan_rows=("hybrid|" "hybrid+astar|--set controller.planner.kind=astar"
            "hybrid+rrt_connect|--set controller.planner.kind=rrt_connect"
            "dwa|--set controller.kind=dwa"
            "dwa+astar|--set controller.kind=dwa --set controller.planner.kind=astar")
+if [[ $what == safety || $what == all ]]; then
+  echo "### The chapter's seven scenes at eight cruise speeds (v0 = 0.05 to 0.3 m/s), as shipped"
+  echo "| scene | runs | reached | collided | timeout | stuck |"
+  echo "|---|---|---|---|---|---|"
+  for f in circle_obstacle concave_obstacle convex_obstacle point_obstacle practice2_pillars \
+    rectangle week7_pocket; do
+    $fn sweep scenarios/$f.yaml --grid controller.v0=0.05:0.3:8 --no-timing \
+      --out "$out/speeds-$f" >/dev/null
+    python3 - "$f" "$out/speeds-$f/aggregate.json" <<'PY'
+import json, sys
+a = json.load(open(sys.argv[2]))
+n = a["runs"]
+c = lambda k: round(a[k] * n)
+print(f"| {sys.argv[1]} | {n} | {a['reached']} | {c('collision_rate')} | {c('timeout_rate')} | "
+      f"{c('stuck_rate')} |")
+PY
+  done
+  echo "### RVO2's Circle with QuickBots (scenarios/circle/circle_N.yaml, as written)"
+  echo "| robots | reached | contacts | all home at (s) | min clearance (m) |"
+  echo "|---|---|---|---|---|"
+  for n in 20 100 300 1000; do
+    $fn run scenarios/circle/circle_$n.yaml --no-timing -q --out "$out/circle-$n"
+    python3 - "$out/circle-$n/summary.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+f = s["fleet"]
+print(f"| {f['robots']} | {f['reached']} | {len(s['collisions'])} | {s['sim_time']:.1f} | "
+      f"{s['min_clearance']:.3f} |")
+PY
+  done
+  echo "### Generated shared floors (scenarios/shared_floor_template.yaml, floors 1-1000)"
+  $fn batch scenarios/shared_floor_template.yaml --shared-floors 1000 --no-timing \
+    --out "$out/shared-floors" >/dev/null
+  python3 - "$out/shared-floors/results.jsonl" <<'PY'
+import json, sys
+floors = robots = reached = contacts = deliveries = asked = 0
+for line in open(sys.argv[1]):
+    d = json.loads(line)
+    f = d["fleet"]
+    floors += 1
+    robots += f["robots"]
+    reached += f["reached"]
+    deliveries += f["deliveries"]
+    asked += f["delivery_count"]
+    contacts += len(d["collisions"])
+print("| floors | robots | robots that delivered everything | deliveries | contacts |")
+print("|---|---|---|---|---|")
+print(f"| {floors} | {robots} | {reached} ({100 * reached / robots:.2f} %) | {deliveries} / {asked} "
+      f"| {contacts} |")
+PY
+fi
 if [[ $what == plan-movingai || $what == plan ]]; then
   # Held out: random-3, first 50 rows of every map (rooms, warehouses, game maps); t_max 4000 s so
   # that no run is cut before twice its optimal time. "within 2x" = reached without collision

@@ -217,8 +217,17 @@ double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
 
   // This step's range returns, each like a piece of the world.
   const double body_bound = disc ? radius : body_reach_;
+  // Points clearly beyond the sweep are compared by squared distance, the nearest one's root
+  // taken once (the same value: the root is monotonic and correctly rounded).
+  const double clear = (body_bound + reach + margin) * (1.0 + 1e-9);
+  double nearest_clear = kInf;
   for (const Vec2& q : scene.points) {
-    const double lower = (q - p).norm() - body_bound;  // a lower bound on the gap now
+    const double d2 = (q - p).squaredNorm();
+    if (d2 >= clear * clear) {
+      nearest_clear = std::min(nearest_clear, d2);
+      continue;
+    }
+    const double lower = std::sqrt(d2) - body_bound;  // a lower bound on the gap now
     if (lower - reach - margin >= 0.0) {
       worst = std::min(worst, lower - reach - margin);
       continue;
@@ -250,6 +259,8 @@ double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
     if (blocker && point_worst < worst) *blocker = q;
     worst = std::min(worst, point_worst);
   }
+  if (nearest_clear < kInf)
+    worst = std::min(worst, std::sqrt(nearest_clear) - body_bound - reach - margin);
 
   // Bodies that move: half-planes across the line between the centres. The robot's own body
   // counts as its disc here, as the simulator measures contacts between bodies.
@@ -338,11 +349,14 @@ SafetyVerdict SafetyLayer::filter(const Pose2& pose, const UnicycleCommand& want
   // What standing still keeps: normally a slack >= 0; below 0 when a body that moves on its own
   // is coming in and the robot can no longer keep its field by standing. Then any command that
   // keeps no less than standing does is allowed (the controller's own way out among them).
+  // A command that keeps its field passes whatever standing keeps (the floor is at most
+  // -kTolerance): the common case costs one measure.
+  Vec2 blocker = pose.position;
+  const double wanted_slack = measure(pose, c, scene, &blocker);
+  if (wanted_slack >= -kTolerance) return {c, c.v != wanted.v || c.omega != wanted.omega};
   const double floor = std::min(0.0, slack(pose, UnicycleCommand{}, scene)) - kTolerance;
   auto allowed = [&](const UnicycleCommand& u) { return slack(pose, u, scene) >= floor; };
-  Vec2 blocker = pose.position;
-  if (measure(pose, c, scene, &blocker) >= floor)
-    return {c, c.v != wanted.v || c.omega != wanted.omega};
+  if (wanted_slack >= floor) return {c, c.v != wanted.v || c.omega != wanted.omega};
   SafetyVerdict verdict;
   verdict.limited = true;
   verdict.blocker = blocker;
