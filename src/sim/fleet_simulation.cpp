@@ -367,7 +367,8 @@ std::size_t FleetSimulation::threads_for(int requested) const {
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t wanted = requested > 0 ? static_cast<std::size_t>(requested) : hw;
   // A step must hold enough work to pay for two barriers (a few microseconds each): about 2,000
-  // rays per thread (100 QuickBots are 500 rays, a step of ~50 us: one thread is faster).
+  // rays per thread (100 QuickBots are 500 rays: one thread is faster). BM_Fleet_QuickBotWarehouse
+  // on 1 and 2 threads (bench/fleet_bench.cpp) decides the threshold.
   return std::min(wanted, std::max<std::size_t>(1, rays_per_step_ / kRaysPerThread));
 }
 
@@ -395,11 +396,11 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
   events_.resize(std::max(events_.size(), n_threads));
   // Each thread steps its own slice of the robots, in chunks taken from the slice's counter,
   // then helps with what is left of the others' slices: robots stay on their thread's core from
-  // step to step (its caches hold their state; fully shared chunks measured 0.75x of this), and
-  // a slice whose robots have finished leaves no thread waiting. A robot's result does not
-  // depend on which thread steps it. Two phases per step: move, then measure the gaps between
-  // bodies; the serial parts (filing positions, applying contacts) run as the barrier's
-  // completion (one thread, once per phase) between them.
+  // step to step (its caches hold their state; BM_Fleet_QuickBotWarehouse/1000/2 decides this
+  // against chunks from one shared counter), and a slice whose robots have finished leaves no
+  // thread waiting. A robot's result does not depend on which thread steps it. Two phases per
+  // step: move, then measure the gaps between bodies; the serial parts (filing positions,
+  // applying contacts) run as the barrier's completion (one thread, once per phase) between them.
   const std::size_t n = agents_.size();
   const auto slice_begin = [&](std::size_t t) { return n * t / n_threads; };
   struct alignas(64) Cursor {  // one cache line each: the threads take from them at once

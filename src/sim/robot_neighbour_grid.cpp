@@ -45,8 +45,9 @@ void RobotNeighbourGrid::refile(std::span<const std::uint32_t> cells,
       moved_.push_back(static_cast<std::uint32_t>(i));
   // A move shifts the starts and the items between its two cells, a vertical one a whole row
   // of them; the counting sort passes three times over the robots and twice over the cells. Take
-  // the cheaper. Always moving in place ran 0.82x of the sort for 100,000 robots (rows of 632
-  // cells), while it gains 4-30 % for 1,000 (benchmark BM_Fleet_QuickBotWarehouse).
+  // the cheaper: moving in place loses to the sort when many robots cross long rows (100,000
+  // robots: rows of 632 cells) and wins for 1,000. BM_Fleet_QuickBotWarehouse/1000 and /100000
+  // (bench/fleet_bench.cpp) decide this.
   const std::size_t sort_cost = 3 * cells.size() + 2 * start_.size();
   std::size_t move_cost = 0;
   for (const std::uint32_t i : moved_) {

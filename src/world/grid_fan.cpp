@@ -24,9 +24,9 @@ namespace floornav {
 using cell_detail::clamp_cell;
 using grid_detail::kInf;
 
-// The side of the square tiles (cells) the runs are kept by. Robot steps per second on Stage's
-// cave (one robot, 180 beams, x86-64-v3 clone, interleaved runs): 64 cells 1.06x those of 32 at
-// 8 m and 1.04x at 3.5 m, 1.11x with 100 robots; 128 cells 0.99x (docs/PERFORMANCE.md).
+// The side of the square tiles (cells) the runs are kept by: smaller tiles cut more runs at
+// their borders and cost more to pass over, larger ones cull less. BM_CaveGridCastFanHalfTurn180
+// and BM_GridCastFan360 (bench/grid_bench.cpp) and the peer harness's cave (bench/peers) decide it.
 constexpr int kTile = OccupancyGrid::kFanTile;
 
 namespace {
@@ -198,8 +198,8 @@ void OccupancyGrid::compute_boundary() {
                      [](const Run& a, const Run& b) { return a.component < b.component; });
 }
 
-// The fan's work is the bulk of a lidar robot's step: x86-64-v3's clone is ~5 % faster on
-// Stage's cave (docs/PERFORMANCE.md), with the same results.
+// The fan's work is the bulk of a lidar robot's step, so it gets an x86-64-v3 clone with the
+// same results; BM_CaveGridCastFan180 (bench/grid_bench.cpp) decides whether the clone pays.
 FLOORNAV_ISA_CLONES
 void OccupancyGrid::cast_fan(const Vec2& origin_world, std::span<const Vec2> dirs,
                              std::span<const double> angles, double max_range,

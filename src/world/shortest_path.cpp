@@ -410,8 +410,8 @@ struct OpenEntry {
 /// larger g (u's g plus a step), so it is better than u, which was the best of all: it goes on top,
 /// or below the few entries pushed just before it from the same u. Only the odd entry a rounding
 /// puts an ulp off scans further down. Pushes and pops are therefore O(1) where a binary heap of
-/// the hundreds of entries that tie on f would sift through its levels (measured: a third less
-/// time for the octile A* of the batch's floors, the same paths).
+/// the hundreds of entries that tie on f would sift through its levels, with the same paths
+/// (BM_FloorOptimumAstar in bench/optimum_bench.cpp decides this).
 class OpenList {
  public:
   void clear() {
@@ -584,8 +584,8 @@ class OctileNeighbours {
                                                  Relax& relax) const {
     // Neighbour u + step_[k] (k < 4 straight, else diagonal) of length kLength[k] (a load, not a
     // branch on the direction); the order of the relaxations does not matter (each pair once).
-    // Tables in the function, not static members: indexing those took two of the search loop's
-    // registers (callgrind: 3 % more instructions).
+    // Tables in the function, not static members: indexing those takes two of the search loop's
+    // registers (BM_FloorOptimumAstar's instructions under callgrind decide this).
     constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
     constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
     constexpr double kLength[8] = {1.0, 1.0, 1.0, 1.0, kSqrt2, kSqrt2, kSqrt2, kSqrt2};

@@ -23,8 +23,8 @@ inline double diamond_angle(double x, double y) {
 
 // Diamond angles [4 j / kDiamondBins, 4 (j + 1) / kDiamondBins) make bin j. A bin spans at most
 // 8 / kDiamondBins rad (0.0039 rad: a fifth of a 1-degree beam spacing), and the table takes
-// 8 KB. Instructions per 180-beam fan on Stage's cave (callgrind, a 8,605-step run): 59.4 k with
-// 1,024 bins, 58.2 k with 2,048, 57.5 k with 4,096 (a table twice the size).
+// 8 KB: more bins cull a little more for a table twice the size. The instructions of
+// BM_CaveGridCastFanHalfTurn180 (bench/grid_bench.cpp) under callgrind decide the size.
 constexpr int kDiamondBins = 2048;
 
 // diamond_bounds()[j]: the angle (rad, in [0, 2 pi]) of diamond angle 4 j / kDiamondBins, so bin j

@@ -150,8 +150,8 @@ class FleetSimulation {
   std::size_t rays_per_step_{0};  ///< over all robots: the work of a step, to size the threads
   RobotNeighbourGrid grid_;
   // Per thread, each on cache lines of its own: a step writes the counts and vector ends in them
-  // for every robot, and two threads' std::vector headers side by side shared a line (padded:
-  // two threads at 1,000 robots 1.085x faster).
+  // for every robot, and two threads' std::vector headers side by side would share a line
+  // (BM_Fleet_QuickBotWarehouse/1000/2 in bench/fleet_bench.cpp decides this).
   struct alignas(64) ThreadScratch {
     explicit ThreadScratch(std::size_t sensors) : sensing(sensors) {}
     SensingScratch sensing;
