@@ -144,10 +144,13 @@ fi
 
 # --- The planning layer (docs/BENCHMARKS.md#planning-layer): the chapter alone, the planner
 # stack and DWA on the same worlds. Rows: hybrid (the chapter), hybrid + astar, dwa, dwa + astar.
-plan_rows=("hybrid|" "hybrid+astar|--set controller.planner.kind=astar"
-           "hybrid+rrt_connect|--set controller.planner.kind=rrt_connect"
-           "dwa|--set controller.kind=dwa"
-           "dwa+astar|--set controller.kind=dwa --set controller.planner.kind=astar")
+# The templates ship `controller.preset: factory` (A* planner stack, safety layer, ORCA); the
+# chapter's automaton alone is `controller.preset=chapter`.
+plan_rows=("chapter|--set controller.preset=chapter"
+           "factory|"
+           "factory+rrt_connect|--set controller.planner.kind=rrt_connect"
+           "dwa|--set controller.kind=dwa --set controller.planner.kind=none"
+           "dwa+astar|--set controller.kind=dwa")
 if [[ $what == safety || $what == all ]]; then
   echo "### The chapter's seven scenes at eight cruise speeds (v0 = 0.05 to 0.3 m/s), as shipped"
   echo "| scene | runs | reached | collided | timeout | stuck |"
@@ -169,7 +172,7 @@ PY
   echo "| robots | reached | contacts | all home at (s) | min clearance (m) |"
   echo "|---|---|---|---|---|"
   for n in 20 100 300 1000; do
-    $fn run scenarios/circle/circle_$n.yaml --no-timing -q --out "$out/circle-$n"
+    $fn run scenarios/circle/circle_$n.yaml --no-html -q --out "$out/circle-$n"
     python3 - "$out/circle-$n/summary.json" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))
@@ -228,19 +231,18 @@ fi
 if [[ $what == plan-barn || $what == plan ]]; then
   barn_worlds
   echo "### BARN, 300 worlds, mapless (lidar only; the planner on its rolling grid)"; header
-  # The last row adds the footprint guard (controller.planner.guard_horizon, docs/SCENARIOS.md);
-  # its 0.5 s was chosen on every third world (0, 3, ..., 297): the split is printed after it.
-  for row in "${plan_rows[@]}" \
-      "hybrid+astar+guard|--set controller.planner.kind=astar --set controller.planner.guard_horizon=0.5"; do
+  # The template (the factory row) has the planner's footprint guard (guard_horizon 0.5 s, chosen
+  # on every third world: 0, 3, ..., 297; the split is printed after the rows); the last row is
+  # without it.
+  for row in "${plan_rows[@]}" "factory-guard|--set controller.planner.guard_horizon=0"; do
     label=${row%%|*}; sets=${row#*|}
-    [[ $sets == *planner* ]] && sets="$sets --set controller.planner.map=sensed"
     start=$(date +%s.%N)
     $fn batch scenarios/barn_template.yaml --worlds "$worlds" --barn-paths "$maps/barn/path_files" \
       $sets --no-timing --out "$out/plan-barn-$label" >/dev/null
     echo "$label: $(python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.1f}')" "$start" "$(date +%s.%N)") s wall" >&2
     row "$label" "$out/plan-barn-$label/aggregate.json"
   done
-  python3 - "$out/plan-barn-hybrid+astar+guard/results.jsonl" <<'PY'
+  python3 - "$out/plan-barn-factory/results.jsonl" <<'PY'
 import json, sys
 rs = [json.loads(l) for l in open(sys.argv[1])]
 world = lambda r: int(r["scenario"].rsplit("_", 1)[1])
@@ -255,7 +257,7 @@ fi
 if [[ $what == plan-floors || $what == plan ]]; then
   # Held out: floors 1001-1200 (the planner was tried on floors 1-200).
   echo "### Generated factory floors: 200 floors (seeds 1001-1200), QuickBot with 5 IR, a tour of 4 goals each"; header
-  for row in "${plan_rows[@]}" "hybrid+astar+memory|--set controller.planner.kind=astar --set controller.planner.memory_range=0.2"; do
+  for row in "${plan_rows[@]}" "factory+memory|--set controller.planner.memory_range=0.2"; do
     label=${row%%|*}; sets=${row#*|}
     $fn batch scenarios/floor_template.yaml --floors 200 --floor-seed 1001 $sets --no-timing \
       --no-optimum --out "$out/plan-floors-$label" >/dev/null
