@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reproduces the tables of docs/BENCHMARKS.md. Usage:
-#   scripts/benchmarks.sh [chapter|fleet|avoidance|crowd|movingai|ros|barn|safety|all]
+#   scripts/benchmarks.sh [chapter|fleet|avoidance|crowd|density|movingai|ros|barn|safety|all]
 #   scripts/benchmarks.sh [plan-movingai|plan-barn|plan-floors|plan-fleets|plan]   (the planning layer and DWA)
 # Needs ./build (scripts/quickstart.sh); the maps and benchmark data are in data/maps.
 set -euo pipefail
@@ -115,6 +115,38 @@ if [[ $what == crowd || $what == all ]]; then
   echo "|---|---|---|---|---|---|---|---|"
   python3 scripts/fleet_variants.py factory "$out/factories"
   avoidance_rows factories variants_row "$out"/factories/*.yaml
+fi
+if [[ $what == density || $what == all ]]; then
+  # factory-people's floor and robots with walkers at 0.1 to 0.5 people per m² of free floor,
+  # ten crowds (seeds) each (scenarios/factory_density_template.yaml).
+  echo "### People density (scenarios/factory_density_template.yaml, seeds 1-10)"
+  echo "| density (people/m²) | people | runs | deliveries | all delivered | stuck robots | robot-person contacts | other contacts | intrusions per robot-minute | intrusion time share | path irregularity (rad) | time not moving share | min person gap (m) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  $fn sweep scenarios/factory_density_template.yaml --grid random_people.density=0.1,0.2,0.3,0.4,0.5 \
+    --grid sim.seed=1:10:10 --no-timing --out "$out/density" >/dev/null
+  python3 - "$out/density/results.jsonl" <<'PY'
+import json, sys
+rows = {}
+for line in open(sys.argv[1]):
+    r = json.loads(line)
+    rows.setdefault(r["swept"]["random_people.density"], []).append(r)
+for density, rs in sorted(rows.items()):
+    f = [r["fleet"] for r in rs]; c = [r["crowd"] for r in rs]
+    dt = rs[0]["config"]["sim"]["dt"]
+    driving = sum(x["robot_steps"] for x in f) * dt             # s robots ran (before finishing)
+    on_floor = sum(x["robots"] * r["sim_time"] for x, r in zip(f, rs))  # s robots were on the floor
+    steps = sum(x["robot_steps"] for x in f)
+    irregular = sum(x["path_irregularity"] * x["robot_steps"] for x in f) / steps
+    d = sum(x["deliveries"] for x in f); n = sum(x["delivery_count"] for x in f)
+    other = sum(x["forklift_contacts"] for x in c) + sum(x["robot_collisions"] + x["world_collisions"] for x in f)
+    gap = min(x["min_person_gap"] for x in c if x["min_person_gap"] is not None)
+    print(f"| {density:g} | {c[0]['people']} | {len(rs)} | {d}/{n} ({100 * d / n:.1f} %) | "
+          f"{sum(x['deliveries'] == x['delivery_count'] for x in f)} | {sum(x['stuck'] for x in f)} | "
+          f"{sum(x['person_contacts'] for x in c)} | {other} | "
+          f"{sum(x['intrusions'] for x in c) / (on_floor / 60):.2f} | "
+          f"{sum(x['intrusion_time'] for x in c) / on_floor:.3f} | {irregular:.3f} | "
+          f"{sum(x['wait_time'] for x in f) / driving:.3f} | {gap:.3f} |")
+PY
 fi
 if [[ $what == movingai || $what == all ]]; then
   echo "### MovingAI (TurtleBot3 Burger, 1 m cells, first 100 rows of random-1)"; header

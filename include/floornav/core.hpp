@@ -52,6 +52,7 @@
 #include "floornav/robot/robot_spec.hpp"
 #include "floornav/scenario/controller_presets.hpp"
 #include "floornav/scenario/presets.hpp"
+#include "floornav/scenario/random_people.hpp"
 #include "floornav/scenario/ranges_interval.hpp"
 #include "floornav/scenario/scenario.hpp"
 #include "floornav/scenario/shared_floor.hpp"

@@ -188,4 +188,77 @@ void read_crowd(const std::string& file, MapReader& top, const std::filesystem::
     fail(file, top.node(), "people", fmt::format("at most {} people", kMaxMovers));
 }
 
+std::optional<RandomPeopleSpec> read_random_people(const std::string& file, MapReader& top) {
+  if (!top.has("random_people")) return std::nullopt;
+  MapReader r = top.sub("random_people");
+  RandomPeopleSpec spec;
+  const YAML::Node density = r.require("density", "people per m² of free floor, in (0, 2]");
+  spec.density = read_double(file, density, r.path_of("density"));
+  if (!(spec.density > 0.0 && spec.density <= 2.0))
+    fail(file, density, r.path_of("density"),
+         fmt::format("must be in (0, 2] people per m², got {}", spec.density));
+  if (r.has("region")) {
+    const YAML::Node n = r.get("region");
+    const auto b = read_numbers(file, n, r.path_of("region"), 4);
+    if (!(b[0] < b[2] && b[1] < b[3]))
+      fail(file, n, r.path_of("region"), "expected [xmin, ymin, xmax, ymax] with min < max");
+    spec.region = Box2{Vec2(b[0], b[1]), Vec2(b[2], b[3])};
+  }
+  if (r.has("speed")) {
+    const YAML::Node n = r.get("speed");
+    const auto v = read_numbers(file, n, r.path_of("speed"), 2);
+    if (!(v[0] > 0.0 && v[0] <= v[1] && v[1] <= 10.0))
+      fail(file, n, r.path_of("speed"),
+           fmt::format("expected [min, max] m/s with 0 < min <= max <= 10, got [{}, {}]", v[0],
+                       v[1]));
+    spec.min_speed = v[0];
+    spec.max_speed = v[1];
+  }
+  if (r.has("radius")) {
+    const YAML::Node n = r.get("radius");
+    spec.radius = read_double(file, n, r.path_of("radius"));
+    if (!(spec.radius > 0.0 && spec.radius <= 5.0))
+      fail(file, n, r.path_of("radius"), fmt::format("must be in (0, 5] m, got {}", spec.radius));
+  }
+  if (r.has("waypoints")) {
+    const YAML::Node n = r.get("waypoints");
+    const std::int64_t k = read_int(file, n, r.path_of("waypoints"));
+    if (k < 1 || k > static_cast<std::int64_t>(kMaxRoutePoints))
+      fail(file, n, r.path_of("waypoints"),
+           fmt::format("must be a whole number in [1, {}], got {}", kMaxRoutePoints, k));
+    spec.waypoints = static_cast<int>(k);
+  }
+  r.finish();
+  return spec;
+}
+
+void add_random_people(const std::string& file, const YAML::Node& root,
+                       const RandomPeopleSpec& spec, Scenario& s) {
+  const YAML::Node density = root["random_people"]["density"];
+  const Box2 region = random_people_region(*s.world, spec);
+  if (spec.region &&
+      !(s.world->extent().contains(region.min) && s.world->extent().contains(region.max)))
+    fail(file, root["random_people"]["region"], "random_people.region",
+         "reaches outside the world");
+  RandomPeople placed =
+      place_random_people(*s.world, spec, s.robots, s.crowd.people, s.crowd.forklifts, s.sim.seed);
+  if (placed.asked == 0)
+    fail(file, density, "random_people.density",
+         fmt::format("{} people per m² of {:.3g} m² of free floor is no one: raise the density "
+                     "or widen random_people.region",
+                     spec.density, placed.free_area));
+  if (placed.people.size() < placed.asked)
+    fail(file, density, "random_people.density",
+         fmt::format("the floor holds only {} of the {} people asked for ({} per m² of {:.3g} m² "
+                     "of free floor, each {} m in radius, 0.1 m apart and outside the robots' "
+                     "personal space): lower the density",
+                     placed.people.size(), placed.asked, spec.density, placed.free_area,
+                     spec.radius));
+  if (s.crowd.people.size() + placed.people.size() > kMaxMovers)
+    fail(file, density, "random_people.density",
+         fmt::format("at most {} people in all, got {}", kMaxMovers,
+                     s.crowd.people.size() + placed.people.size()));
+  for (PersonSpec& p : placed.people) s.crowd.people.push_back(std::move(p));
+}
+
 }  // namespace floornav::io_detail

@@ -4,6 +4,10 @@
 
 #include <filesystem>
 
+#include <optional>
+
+#include "floornav/scenario/random_people.hpp"
+#include "floornav/scenario/scenario.hpp"
 #include "floornav/sim/crowd.hpp"
 #include "yaml_reader.hpp"
 
@@ -13,6 +17,15 @@ namespace floornav::io_detail {
 /// the scenario file `origin`.
 void read_crowd(const std::string& file, MapReader& top, const std::filesystem::path& origin,
                 CrowdSpec& crowd);
+
+/// The `random_people:` section, if given: its keys read and checked (ranges, units).
+std::optional<RandomPeopleSpec> read_random_people(const std::string& file, MapReader& top);
+
+/// Places the people `spec` asks for on the scenario's world (which must be built) from its
+/// sim.seed, after the people it already has; an error on `random_people.density` when the floor
+/// cannot hold them.
+void add_random_people(const std::string& file, const YAML::Node& root,
+                       const RandomPeopleSpec& spec, Scenario& s);
 
 /// The people of a HuNavSim agent file (a ROS 2 parameter file, `hunav_loader:
 /// ros__parameters: agents: [...]`): each agent's init_pose, goals (in order), max_vel as the

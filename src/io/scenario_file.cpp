@@ -609,7 +609,7 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
   MapReader top(file, root, "");
   // Every top-level key, so that a misspelling anywhere gets its "did you mean".
   for (const char* key : {"name", "world", "robot", "robots", "goal", "goals", "controller", "sim",
-                          "people", "people_file", "forklifts"})
+                          "people", "people_file", "random_people", "forklifts"})
     top.has(key);
   Scenario s;
   s.name = origin.stem().string();
@@ -646,8 +646,10 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
   top.require("world", "a section world: {bounds: [xmin, ymin, xmax, ymax]}");
   read_world(file, top, origin, s, desc);
   io_detail::read_crowd(file, top, origin, s.crowd);
+  const std::optional<RandomPeopleSpec> random_people = io_detail::read_random_people(file, top);
   top.finish();
   s.world = std::make_shared<const World>(std::move(desc));
+  if (random_people) io_detail::add_random_people(file, root, *random_people, s);
   validate_scenario(s, file);
   return s;
 }

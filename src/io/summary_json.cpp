@@ -62,6 +62,7 @@ nlohmann::ordered_json summary_to_json(const RunResult& r) {
   j["safety_time"] = number(r.safety_time);
   j["stuck_cause"] = r.stuck_cause.empty() ? Json(nullptr) : Json(r.stuck_cause);
   j["stuck_with"] = r.stuck_with.empty() ? Json(nullptr) : Json(r.stuck_with);
+  j["path_irregularity"] = number(r.path_irregularity);
 
   const std::size_t shown = std::min(r.transitions.size(), kSummaryMaxTransitions);
   Json transitions = Json::array();
@@ -161,6 +162,15 @@ nlohmann::ordered_json fleet_summary_to_json(const FleetResult& f) {
   double safety = 0.0;
   for (const RunResult& r : f.robots) safety += r.safety_time;
   fleet["safety_time"] = number(safety);
+  // Each robot's mean over its steps, weighted by its steps: the mean over every robot step.
+  double heading_error = 0.0;
+  long long driven = 0;
+  for (const RunResult& r : f.robots) {
+    heading_error += r.path_irregularity * static_cast<double>(r.steps);
+    driven += r.steps;
+  }
+  fleet["path_irregularity"] =
+      number(driven > 0 ? heading_error / static_cast<double>(driven) : 0.0);
   j["fleet"] = std::move(fleet);
   if (!f.crowd.empty()) {
     const CrowdMetrics& m = f.crowd.metrics;

@@ -402,13 +402,21 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
   // The sensors' cosine and sine of the heading, if they were taken at this heading.
   const bool sensed_here =
       std::bit_cast<std::uint64_t>(heading_theta_) == std::bit_cast<std::uint64_t>(pose_.theta);
-  const Pose2 next = integrate_unicycle(
-      pose_, driven, dt,
-      sensed_here ? heading_ : Vec2(std::cos(pose_.theta), std::sin(pose_.theta)));
+  const Vec2 heading = sensed_here ? heading_ : Vec2(std::cos(pose_.theta), std::sin(pose_.theta));
+  const Pose2 next = integrate_unicycle(pose_, driven, dt, heading);
   const double moved = (next.position - pose_.position).norm();
   velocity_ = (next.position - pose_.position) / dt;
   r.path_length += moved;
   if (moved < kStillSpeed * dt) r.wait_time += dt;
+  // Path irregularity as SocNavBench computes it (metrics/cost_functions.py, path_irregularity:
+  // "the per step angle away from straight line to goal", its absolute value averaged over the
+  // trajectory's samples), here over the poses the robot drove each step from, towards the goal
+  // it was driving to. SEAN 2.0 names the same idea "rotations beyond the direct path's". A pose
+  // on the goal itself adds atan2(0, 0) = 0. The metric only observes: nothing here feeds back.
+  const Vec2 to_goal = goal_ - pose_.position;
+  heading_error_sum_ += std::abs(
+      std::atan2(heading.x() * to_goal.y() - heading.y() * to_goal.x(), heading.dot(to_goal)));
+  r.path_irregularity = heading_error_sum_ / static_cast<double>(r.steps + 1);
   pose_ = next;
   t_ += dt;
   ++r.steps;

@@ -120,12 +120,14 @@ class TempDir {
 
 TEST(SummaryJson, KeysInContractOrderThenExtras) {
   const auto j = summary_to_json(small_run());
-  const std::vector<std::string> expected{
-      "scenario",    "status",        "reached_goal",  "collided",         "sim_time",
-      "path_length", "min_clearance", "mode_switches", "mode_time",        "steps",
-      "wall_time",   "goals_reached", "goal_count",    "chatter_episodes", "first_chatter_time",
-      "final_pose",  "wait_time",     "safety_time",   "stuck_cause",      "stuck_with",
-      "transitions"};
+  const std::vector<std::string> expected{"scenario",      "status",           "reached_goal",
+                                          "collided",      "sim_time",         "path_length",
+                                          "min_clearance", "mode_switches",    "mode_time",
+                                          "steps",         "wall_time",        "goals_reached",
+                                          "goal_count",    "chatter_episodes", "first_chatter_time",
+                                          "final_pose",    "wait_time",        "safety_time",
+                                          "stuck_cause",   "stuck_with",       "path_irregularity",
+                                          "transitions"};
   EXPECT_EQ(keys_of(j), expected);
 }
 

@@ -179,6 +179,8 @@ class RobotAgent {
   Vec2 goal_{Vec2::Zero()};
   Vec2 velocity_{Vec2::Zero()};
   double t_{0.0};
+  /// rad: the heading errors to the goal summed over the steps driven (path_irregularity).
+  double heading_error_sum_{0.0};
   double steps_per_second_{0.0};  ///< 1/dt when that is a whole number, else 0: recorded_time
   std::size_t goal_index_{0};
   bool finished_{false};

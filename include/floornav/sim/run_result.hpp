@@ -44,7 +44,13 @@ struct RunResult {
   int goal_count{0};
   double sim_time{0.0};
   double path_length{0.0};
-  double wait_time{0.0};  ///< s the robot's body moved slower than 1 cm/s (waiting, turning)
+  /// s the robot's body moved slower than 1 cm/s before its run ended (waiting, turning on the
+  /// spot): SEAN 2.0's and SocNavBench's "time not moving".
+  double wait_time{0.0};
+  /// rad: path irregularity, the mean over steps of the angle between the robot's heading and
+  /// the straight line to the goal it drives to (SocNavBench; 0 for a robot driving straight at
+  /// its goal). See RobotAgent::act.
+  double path_irregularity{0.0};
   /// s during which the safety layer changed the controller's command (slowed, stopped it)
   double safety_time{0.0};
   int safety_steps{0};  ///< steps at which it did
