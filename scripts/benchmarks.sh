@@ -122,14 +122,19 @@ if [[ $what == density || $what == all ]]; then
   echo "### People density (scenarios/factory_density_template.yaml, seeds 1-10)"
   echo "| density (people/m²) | people | runs | deliveries | all delivered | stuck robots | robot-person contacts | other contacts | intrusions per robot-minute | intrusion time share | path irregularity (rad) | time not moving share | min person gap (m) |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  # The first row: the same floor without people (the robots draw nothing from the seed: one run).
+  mkdir -p "$out"
+  grep -v -e '^random_people:' -e '^  density:' scenarios/factory_density_template.yaml \
+    > "$out/factory_no_people.yaml"
+  $fn batch "$out/factory_no_people.yaml" --no-timing --out "$out/density-none" >/dev/null
   $fn sweep scenarios/factory_density_template.yaml --grid random_people.density=0.1,0.2,0.3,0.4,0.5 \
     --grid sim.seed=1:10:10 --no-timing --out "$out/density" >/dev/null
-  python3 - "$out/density/results.jsonl" <<'PY'
+  python3 - "$out/density-none/results.jsonl" "$out/density/results.jsonl" <<'PY'
 import json, sys
 rows = {}
-for line in open(sys.argv[1]):
+for line in open(sys.argv[1]).readlines() + open(sys.argv[2]).readlines():
     r = json.loads(line)
-    rows.setdefault(r["swept"]["random_people.density"], []).append(r)
+    rows.setdefault(r.get("swept", {}).get("random_people.density", 0), []).append(r)
 for density, rs in sorted(rows.items()):
     f = [r["fleet"] for r in rs]; c = [r["crowd"] for r in rs]
     dt = rs[0]["config"]["sim"]["dt"]
@@ -139,13 +144,14 @@ for density, rs in sorted(rows.items()):
     irregular = sum(x["path_irregularity"] * x["robot_steps"] for x in f) / steps
     d = sum(x["deliveries"] for x in f); n = sum(x["delivery_count"] for x in f)
     other = sum(x["forklift_contacts"] for x in c) + sum(x["robot_collisions"] + x["world_collisions"] for x in f)
-    gap = min(x["min_person_gap"] for x in c if x["min_person_gap"] is not None)
+    gaps = [x["min_person_gap"] for x in c if x["min_person_gap"] is not None]
+    gap = f"{min(gaps):.3f}" if gaps else "–"
     print(f"| {density:g} | {c[0]['people']} | {len(rs)} | {d}/{n} ({100 * d / n:.1f} %) | "
           f"{sum(x['deliveries'] == x['delivery_count'] for x in f)} | {sum(x['stuck'] for x in f)} | "
           f"{sum(x['person_contacts'] for x in c)} | {other} | "
           f"{sum(x['intrusions'] for x in c) / (on_floor / 60):.2f} | "
           f"{sum(x['intrusion_time'] for x in c) / on_floor:.3f} | {irregular:.3f} | "
-          f"{sum(x['wait_time'] for x in f) / driving:.3f} | {gap:.3f} |")
+          f"{sum(x['wait_time'] for x in f) / driving:.3f} | {gap} |")
 PY
 fi
 if [[ $what == movingai || $what == all ]]; then
