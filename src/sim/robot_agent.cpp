@@ -407,7 +407,8 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
   const double moved = (next.position - pose_.position).norm();
   velocity_ = (next.position - pose_.position) / dt;
   r.path_length += moved;
-  if (moved < kStillSpeed * dt) r.wait_time += dt;
+  // Counted in steps, like the clock: 200 steps of 0.01 s are 2 s, not 2.0000000000000013.
+  if (moved < kStillSpeed * dt) r.wait_time = recorded_time(++wait_steps_);
   // Path irregularity as SocNavBench computes it (metrics/cost_functions.py, path_irregularity:
   // "the per step angle away from straight line to goal", its absolute value averaged over the
   // trajectory's samples), here over the poses the robot drove each step from, towards the goal

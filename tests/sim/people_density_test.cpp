@@ -45,13 +45,13 @@ TEST(SocialMetrics, AWaitIsTimeNotMovingAndAStraightRunIsRegular) {
   const Scenario s = lone_robot("0");
   Simulation sim = make_simulation(s);
   for (int k = 0; k < 200; ++k) ASSERT_TRUE(sim.step(Command::unicycle(0.0, 0.0)));
-  EXPECT_NEAR(sim.result().wait_time, 2.0, 1e-9);
+  EXPECT_EQ(sim.result().wait_time, 2.0);
   while (sim.step(Command::unicycle(0.1, 0.0))) {
   }
   const RunResult& r = sim.result();
   EXPECT_EQ(r.status, RunStatus::Reached);
   EXPECT_GT(r.path_length, 0.9);
-  EXPECT_NEAR(r.wait_time, 2.0, 1e-9);  // driving at 0.1 m/s is moving
+  EXPECT_EQ(r.wait_time, 2.0);  // driving at 0.1 m/s is moving
   EXPECT_EQ(r.path_irregularity, 0.0);
   const auto j = summary_to_json(r);
   EXPECT_EQ(j["path_irregularity"].get<double>(), 0.0);
@@ -69,7 +69,7 @@ TEST(SocialMetrics, PathIrregularityIsTheMeanAngleOffTheLineToTheGoal) {
     Simulation sim = make_simulation(s);
     for (int k = 0; k < 100; ++k) ASSERT_TRUE(sim.step(Command::unicycle(0.0, 0.0)));
     EXPECT_NEAR(sim.result().path_irregularity, angle, 1e-12);
-    EXPECT_NEAR(sim.result().wait_time, 1.0, 1e-9);
+    EXPECT_EQ(sim.result().wait_time, 1.0);
   }
 }
 

@@ -181,6 +181,7 @@ class RobotAgent {
   double t_{0.0};
   /// rad: the heading errors to the goal summed over the steps driven (path_irregularity).
   double heading_error_sum_{0.0};
+  long long wait_steps_{0};       ///< steps the body moved slower than kStillSpeed: wait_time
   double steps_per_second_{0.0};  ///< 1/dt when that is a whole number, else 0: recorded_time
   std::size_t goal_index_{0};
   bool finished_{false};
