@@ -3,6 +3,7 @@ vector environment (without depending on Gymnasium)."""
 
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping, Sequence
 from typing import Any, Callable, Optional, Union
 
@@ -10,11 +11,15 @@ import numpy as np
 
 from . import _floornav
 from ._floornav import RewardParams, Scenario
+from ._spaces import Box, Dict, batch_space
 
 #: The codes of ``info["status"]``: index -> name.
 STATUS_NAMES: tuple = ("running", "reached", "collision", "timeout", "stuck")
 
 RewardFn = Callable[[dict, Optional[np.ndarray], dict], Any]
+
+#: The render modes of VecEnv and ParallelEnv.
+RENDER_MODES: tuple = ("rgb_array",)
 
 
 class VecEnv:
@@ -68,18 +73,23 @@ class VecEnv:
     length), all with the same number of sensors.
     """
 
-    metadata: dict = {"autoreset_mode": "same-step", "render_modes": []}
+    metadata: dict = {"autoreset_mode": "same-step", "render_modes": list(RENDER_MODES)}
 
     def __init__(
         self,
-        scenario: Union[Scenario, Sequence[Scenario]],
+        scenario: Union[Scenario, str, "os.PathLike[str]", Sequence[Scenario]],
         n_envs: Optional[int] = None,
         seed: int = 0,
+        randomize: Optional[Mapping[str, Any]] = None,
+        render_mode: Optional[str] = None,
         *,
         threads: Optional[int] = None,
         reward: Union[None, RewardParams, Mapping[str, float], RewardFn] = None,
         copy: bool = True,
+        render_shape: Sequence[int] = (256, 256),
     ) -> None:
+        if isinstance(scenario, (str, os.PathLike)):
+            scenario = _floornav_module().load_scenario(scenario)
         if isinstance(scenario, Scenario):
             if n_envs is None:
                 raise ValueError("VecEnv(scenario, n_envs): how many copies?")
@@ -104,9 +114,14 @@ class VecEnv:
             self._reward_fn = reward
         else:
             raise ValueError(f"reward is RewardParams, a dict of its weights or a callable, got {reward!r}")
+        self.render_mode: Optional[str] = _render_mode(render_mode)
+        self.render_shape: tuple = _render_shape(render_shape)
+        #: What each reset draws anew (None: nothing; every episode starts as the scenario says).
+        self.randomize: Optional[dict] = None if randomize is None else dict(randomize)
+        draw = episode_draw(randomize)
         self.reward_params: RewardParams = params
         self.scenarios: list = scenarios
-        self._core = _floornav._VecCore(scenarios, threads or 0, copy, params)
+        self._core = _floornav._VecCore(scenarios, threads or 0, copy, params, draw)
         self.num_envs: int = self._core.n_envs
         self.seed: int = _seed(seed)
         self._started = False
@@ -116,13 +131,15 @@ class VecEnv:
         #: Per-copy action bounds: |v| <= the robot's top speed, |omega| <= its top turn rate.
         self.action_low: np.ndarray = np.array([-robot["max_speed"], -robot["max_turn_rate"]])
         self.action_high: np.ndarray = np.array([robot["max_speed"], robot["max_turn_rate"]])
+        self.single_action_space: Box = Box(self.action_low, self.action_high, (2,), np.float64)
+        self.action_space: Box = batch_space(self.single_action_space, self.num_envs)
+        self.single_observation_space: Dict = observation_space(scenarios)
+        self.observation_space: Dict = batch_space(self.single_observation_space, self.num_envs)
         #: Shapes of one copy's observation entries (without the leading n_envs).
-        beams = self._core.beam_count
         self.single_observation_shapes: dict = {
-            "t": (), "pose": (3,), "goal": (2,), "goal_index": (), "ranges": (beams,),
-            "points": (beams, 2),
-        }
+            k: s.shape for k, s in self.single_observation_space.spaces.items()}
         self.robot_name: str = robot["name"]
+        self.metadata = dict(VecEnv.metadata, render_fps=int(round(1.0 / scenarios[0].dt)))
 
     @property
     def n_envs(self) -> int:
@@ -173,6 +190,17 @@ class VecEnv:
             self._steps[ended] = 0
         return obs, reward, terminated, truncated, info
 
+    def render(self, env_ids: Optional[Sequence[int]] = None) -> np.ndarray:
+        """Frames of every copy (or of ``env_ids``) as they stand now, drawn in C++: uint8
+        ``(n, height, width, 3)`` (``render_shape`` is (height, width)): the world, the robot
+        (its body, heading, goal as a cross, this step's sensor returns as dots), people and
+        forklifts. Needs ``render_mode="rgb_array"``."""
+        if self.render_mode != "rgb_array":
+            raise ValueError("render() needs VecEnv(..., render_mode='rgb_array')")
+        if not self._started:
+            raise ValueError("call reset() before render()")
+        return self._core.render(None if env_ids is None else list(env_ids), *self.render_shape)
+
     def close(self) -> None:
         """Nothing to release (Gymnasium's signature)."""
 
@@ -191,3 +219,117 @@ def _seed(seed: Any) -> int:
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise ValueError(f"seed must be a non-negative integer, got {seed!r}")
     return int(seed)
+
+
+def _floornav_module() -> Any:
+    import floornav  # the package, for load_scenario (imported late: it imports this module)
+
+    return floornav
+
+
+def _render_mode(mode: Optional[str]) -> Optional[str]:
+    if mode is not None and mode not in RENDER_MODES:
+        raise ValueError(f"render_mode is None or one of {list(RENDER_MODES)}, got {mode!r}")
+    return mode
+
+
+def _render_shape(shape: Sequence[int]) -> tuple:
+    try:
+        h, w = (int(v) for v in shape)
+    except (TypeError, ValueError):
+        raise ValueError(f"render_shape is (height, width) in pixels, got {shape!r}") from None
+    if not (8 <= h <= 8192 and 8 <= w <= 8192):
+        raise ValueError(f"render_shape: 8 to 8192 pixels on each side, got {shape!r}")
+    return (h, w)
+
+
+_RANDOMIZE_KEYS = ("start", "goal", "clearance", "goal_distance", "max_tries")
+
+
+def episode_draw(randomize: Optional[Mapping[str, Any]]) -> Any:
+    """``randomize`` (VecEnv, ParallelEnv) checked and turned into the C++ draw settings:
+    ``start`` and ``goal``: ``"free"`` (uniform over the collision-free poses inside the world's
+    bounds) or a region ``[x_min, y_min, x_max, y_max]`` (the free poses in it); ``clearance``
+    (m the body keeps from everything at both, default 0); ``goal_distance`` ``(min, max)`` m
+    between the start and a drawn goal; ``max_tries`` (draws before a reset gives up)."""
+    draw = _floornav._EpisodeDraw()
+    if randomize is None:
+        return draw
+    if not isinstance(randomize, Mapping):
+        raise ValueError(f"randomize is a dict such as {{'start': 'free', 'goal': 'free'}}, got {randomize!r}")
+    for key in randomize:
+        if key not in _RANDOMIZE_KEYS:
+            raise ValueError(f"randomize: unknown key {key!r} (known: {', '.join(_RANDOMIZE_KEYS)})")
+    for key in ("start", "goal"):
+        value = randomize.get(key)
+        if value is None or value is False:
+            continue
+        if isinstance(value, str):
+            if value != "free":
+                raise ValueError(f"randomize[{key!r}] is 'free' or a region [x_min, y_min, x_max, y_max], got {value!r}")
+        else:
+            region = _region(value, key)
+            setattr(draw, f"{key}_region", region)
+        setattr(draw, key, True)
+    if "clearance" in randomize:
+        c = _number(randomize["clearance"], "clearance")
+        if c < 0:
+            raise ValueError(f"randomize['clearance'] must be >= 0 m, got {c}")
+        draw.clearance = c
+    if "goal_distance" in randomize:
+        value = randomize["goal_distance"]
+        try:
+            lo, hi = value
+        except (TypeError, ValueError):
+            raise ValueError(f"randomize['goal_distance'] is (min, max) in m, got {value!r}") from None
+        lo, hi = _number(lo, "goal_distance"), float(hi) if hi is not None else np.inf
+        if not (0 <= lo <= hi) or np.isnan(hi):
+            raise ValueError(f"randomize['goal_distance']: 0 <= min <= max, got {value!r}")
+        draw.min_goal_distance, draw.max_goal_distance = lo, hi
+    if "max_tries" in randomize:
+        draw.max_tries = _positive(randomize["max_tries"], "randomize['max_tries']")
+    return draw
+
+
+def _number(value: Any, key: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
+            or not np.isfinite(value):
+        raise ValueError(f"randomize[{key!r}] must be a finite number, got {value!r}")
+    return float(value)
+
+
+def _region(value: Any, key: str) -> list:
+    try:
+        box = [float(v) for v in value]
+    except (TypeError, ValueError):
+        box = []
+    if len(box) != 4 or not np.all(np.isfinite(box)) or box[0] >= box[2] or box[1] >= box[3]:
+        raise ValueError(f"randomize[{key!r}]: a region is [x_min, y_min, x_max, y_max] with "
+                         f"x_min < x_max and y_min < y_max, got {value!r}")
+    return box
+
+
+def observation_space(scenarios: Sequence[Scenario], robot: int = 0) -> Dict:
+    """The space of one robot's observation (robot ``robot`` of the scenarios; VecEnv's copies
+    may have different scenarios with as many beams): the fields every observation has."""
+    first = scenarios[0].robots[robot]
+    beams = first["sensor_count"]
+    sensors = first["sensors"]
+    low = np.array([s[3] for s in sensors], dtype=np.float64)
+    high = np.array([s[4] for s in sensors], dtype=np.float64)
+    goals = 0
+    for s in scenarios:
+        r = s.robots[robot]
+        lo = np.array([x[3] for x in r["sensors"]])
+        hi = np.array([x[4] for x in r["sensors"]])
+        low, high = np.minimum(low, lo), np.maximum(high, hi)
+        goals = max(goals, len(r["goals"]), 1)
+    inf = np.inf
+    return Dict({
+        "t": Box(0.0, inf, (), np.float64),
+        "pose": Box([-inf, -inf, -np.pi], [inf, inf, np.pi], (3,), np.float64),
+        "goal": Box(-inf, inf, (2,), np.float64),
+        "goal_index": Box(0, goals, (), np.int32),
+        "ranges": Box(low, high, (beams,), np.float64),
+        "points": Box(-inf, inf, (beams, 2), np.float64),
+    })

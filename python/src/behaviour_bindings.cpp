@@ -294,16 +294,19 @@ void bind_behaviours(py::module_& m) {
         const py::object robot = obs["robot"];
         const NavigationParams& p = obs["params"].cast<const NavigationParams&>();
         std::vector<Vec2> storage, fp_storage;
-        const auto pts = to_points(obs["points"], storage, "points");
+        const auto pts = to_points(obs["obstacles"], storage, "obstacles");
         const auto fp = to_points(robot.attr("footprint"), fp_storage, "footprint");
-        const py::tuple pose = obs["pose"];
-        const BodyShape shape{fp, pose[2].cast<double>()};
-        return make_navigation_input(
-            Vec2(pose[0].cast<double>(), pose[1].cast<double>()), to_vec2(obs["goal"], "goal"), pts,
-            robot.attr("body_radius").cast<double>(), p, fp.empty() ? nullptr : &shape);
+        const auto pose =
+            py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obs["pose"]);
+        if (!pose || pose.size() != 3)
+          throw py::value_error("observation['pose'] must hold (x, y, theta)");
+        const BodyShape shape{fp, pose.at(2)};
+        return make_navigation_input(Vec2(pose.at(0), pose.at(1)), to_vec2(obs["goal"], "goal"),
+                                     pts, robot.attr("body_radius").cast<double>(), p,
+                                     fp.empty() ? nullptr : &shape);
       },
       py::arg("observation"),
-      "make_navigation_input from an observation dict (its pose, goal, points, robot and "
+      "make_navigation_input from an observation dict (its pose, goal, obstacles, robot and "
       "params), exactly as the built-in controllers call it.");
 }
 

@@ -86,7 +86,13 @@ py::array new_float_array(std::initializer_list<py::ssize_t> shape);
 py::array_t<double> make_array(std::span<const double> values);
 py::array_t<double> make_points(std::span<const Vec2> points);
 
-/// The observation dict of Simulation.observe() and of Python controllers.
+/// Where each beam of `obs` ends in the world frame, (x, y) per beam into `out`: its return, or
+/// the end of its range when it saw nothing (observations' `points`).
+void beam_points(const Observation& obs, double* out);
+
+/// The observation dict of Simulation.observe() and of Python controllers: the fields every
+/// observation has (t, pose, goal, goal_index, ranges, points) and the extras (dt, goal_count,
+/// obstacles, sensed, status, robot, params).
 py::dict observation_dict(const Observation& obs, std::string_view status, py::handle robot,
                           py::handle params);
 
@@ -105,5 +111,6 @@ void bind_scenario(py::module_& m);
 void bind_run(py::module_& m);
 void bind_simulation(py::module_& m);
 void bind_vec_env(py::module_& m);
+void bind_parallel_env(py::module_& m);
 
 }  // namespace floornav::python

@@ -228,6 +228,7 @@ struct Keys {
   PyObject* goal_count = PyUnicode_InternFromString("goal_count");
   PyObject* ranges = PyUnicode_InternFromString("ranges");
   PyObject* points = PyUnicode_InternFromString("points");
+  PyObject* obstacles = PyUnicode_InternFromString("obstacles");
   PyObject* sensed = PyUnicode_InternFromString("sensed");
   PyObject* status = PyUnicode_InternFromString("status");
   PyObject* robot = PyUnicode_InternFromString("robot");
@@ -246,6 +247,14 @@ void set(PyObject* dict, PyObject* key, PyObject* value) {  // steals `value`
 }
 }  // namespace
 
+void beam_points(const Observation& obs, double* out) {
+  for (std::size_t j = 0; j < obs.beams.size(); ++j) {
+    const Vec2 p = obs.beams[j].origin + obs.ranges[j] * obs.beams[j].dir;
+    out[2 * j] = p.x();
+    out[2 * j + 1] = p.y();
+  }
+}
+
 py::dict observation_dict(const Observation& obs, std::string_view status, py::handle robot,
                           py::handle params) {
   const Keys& k = keys();
@@ -253,13 +262,24 @@ py::dict observation_dict(const Observation& obs, std::string_view status, py::h
   PyObject* p = d.ptr();
   set(p, k.t, PyFloat_FromDouble(obs.t));
   set(p, k.dt, PyFloat_FromDouble(obs.dt));
-  set(p, k.pose,
-      py::make_tuple(obs.pose.position.x(), obs.pose.position.y(), obs.pose.theta).release().ptr());
-  set(p, k.goal, vec2_tuple(obs.goal).release().ptr());
+  py::array pose = new_float_array({3});
+  auto* x = static_cast<double*>(pose.mutable_data());
+  x[0] = obs.pose.position.x();
+  x[1] = obs.pose.position.y();
+  x[2] = obs.pose.theta;
+  set(p, k.pose, pose.release().ptr());
+  py::array goal = new_float_array({2});
+  auto* g = static_cast<double*>(goal.mutable_data());
+  g[0] = obs.goal.x();
+  g[1] = obs.goal.y();
+  set(p, k.goal, goal.release().ptr());
   set(p, k.goal_index, PyLong_FromLong(obs.goal_index));
   set(p, k.goal_count, PyLong_FromLong(obs.goal_count));
   set(p, k.ranges, make_array(obs.ranges).release().ptr());
-  set(p, k.points, make_points(obs.points).release().ptr());
+  py::array points = new_float_array({static_cast<py::ssize_t>(obs.beams.size()), 2});
+  beam_points(obs, static_cast<double*>(points.mutable_data()));
+  set(p, k.points, points.release().ptr());
+  set(p, k.obstacles, make_points(obs.points).release().ptr());
   set(p, k.sensed, make_points(obs.sensed).release().ptr());
   set(p, k.status,
       PyUnicode_FromStringAndSize(status.data(), static_cast<Py_ssize_t>(status.size())));

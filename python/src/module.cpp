@@ -14,4 +14,5 @@ PYBIND11_MODULE(_floornav, m) {
   bind_run(m);
   bind_simulation(m);
   bind_vec_env(m);
+  bind_parallel_env(m);
 }

@@ -123,14 +123,23 @@ Decision PyController::decide(const Observation& obs) {
   py::gil_scoped_acquire gil;
   const py::dict o = observation_dict(obs, "running", robot_, params_);
   const py::object result = decide_(o);
+  Decision decision{Command::goal_reached()};
   if (py::isinstance<PyDecision>(result)) {
     const auto& d = result.cast<const PyDecision&>();
     last_mode_ = d.mode.is_none() ? mode() : mode_index(d.mode);
-    return {d.command, last_mode_, guard_index(d.guard)};
+    decision = {d.command, last_mode_, guard_index(d.guard)};
+  } else {
+    const Command c = to_command(result);
+    if (has_mode_) last_mode_ = mode();
+    decision = {c, last_mode_, -1};
   }
-  const Command c = to_command(result);
-  if (has_mode_) last_mode_ = mode();
-  return {c, last_mode_, -1};
+  // Within controller.epsilon of the goal, the goal is reached, whatever motion the controller
+  // still asks for: as the built-in kinds' STOP, and as a command given to Simulation.step.
+  const Command::Kind kind = decision.command.kind();
+  if (kind != Command::Kind::GoalReached && kind != Command::Kind::Stuck && obs.params &&
+      obs.goal_distance() < obs.params->epsilon)
+    decision.command = Command::goal_reached();
+  return decision;
 }
 
 void PyController::reset() {

@@ -79,6 +79,11 @@ py::dict robot_dict(const RobotTask& t) {
   d["sensor_count"] = t.robot.sensors.size();
   std::vector<Vec2> fp(t.robot.footprint.begin(), t.robot.footprint.end());
   d["footprint"] = fp.empty() ? py::object(py::none()) : py::object(make_points(fp));
+  py::list mounts;
+  for (const RangeSensorSpec& s : t.robot.sensors)
+    mounts.append(py::make_tuple(s.mount.position.x(), s.mount.position.y(), s.mount.theta,
+                                 s.min_range, s.max_range));
+  d["sensors"] = mounts;
   return d;
 }
 
@@ -172,7 +177,8 @@ void bind_scenario(py::module_& m) {
             return out;
           },
           "Each robot: name, preset, start, goals, controller, body_radius, "
-          "max_speed, max_turn_rate, sensor_count, footprint.")
+          "max_speed, max_turn_rate, sensor_count, footprint, sensors (x, y, theta, min "
+          "range, max range per beam).")
       .def_property_readonly(
           "params", [](const PyScenario& s) { return s.scenario.robot().controller.params; },
           "The first robot's controller parameters (a copy).")

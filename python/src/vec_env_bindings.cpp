@@ -12,6 +12,9 @@
 #include <limits>
 
 #include "bindings.hpp"
+#include "floornav/core/input_error.hpp"
+#include "floornav/render/frame_raster.hpp"
+#include "floornav/render/palette.hpp"
 #include "floornav/sim/vec_simulation.hpp"
 
 namespace floornav::python {
@@ -68,13 +71,15 @@ T* data_of(py::array& a) {
 
 class VecCore {
  public:
-  VecCore(std::vector<ScenarioPtr> scenarios, int threads, bool copy, RewardParams reward)
+  VecCore(std::vector<ScenarioPtr> scenarios, int threads, bool copy, RewardParams reward,
+          EpisodeDraw draw)
       : scenarios_(std::move(scenarios)),
-        vec_(copies_of(scenarios_), python_controller(scenarios_) ? 1 : threads),
+        vec_(copies_of(scenarios_), python_controller(scenarios_) ? 1 : threads, draw),
         copy_(copy),
         reward_(reward) {
     const std::size_t n = scenarios_.size();
     episode_.assign(n, 0);
+    started_.assign(n, 0);
     distance_.assign(n, 0.0);
     goals_.assign(n, 0);
     step_goal_.assign(n, 0);
@@ -101,8 +106,9 @@ class VecCore {
     last_ = b;
     {
       py::gil_scoped_release nogil;
-      vec_.reset(which, seeds, [&](std::size_t i) { after_reset(i, b); });
+      reset_copies(which, seeds, b);
     }
+    std::fill(started_.begin(), started_.end(), 1);
     return b.dict();
   }
 
@@ -132,7 +138,7 @@ class VecCore {
       py::gil_scoped_release nogil;
       vec_.step(commands_, [&](std::size_t i) {
         const RobotAgent& a = vec_.agent(i);
-        const auto& goal_list = scenario_task(i).goals;
+        const auto& goal_list = vec_.task(i).goals;
         // Progress towards the goal that was current when the step began.
         const Vec2 goal_before = goal_list[std::min(step_goal_[i], goal_list.size() - 1)];
         const double d_after = (goal_before - a.pose().position).norm();
@@ -219,7 +225,7 @@ class VecCore {
     }
     {
       py::gil_scoped_release nogil;
-      vec_.reset(which, seeds, [&](std::size_t i) { after_reset(i, b); });
+      reset_copies(which, seeds, b);
     }
     return final_obs;
   }
@@ -291,7 +297,6 @@ class VecCore {
     return b;
   }
 
-  const RobotTask& scenario_task(std::size_t i) const { return scenarios_[i]->scenario.robot(); }
   double dt_of(std::size_t i) const { return scenarios_[i]->scenario.sim.dt; }
 
   // Copy i's observation into row i of the arrays, and what the next step's reward starts from.
@@ -306,22 +311,8 @@ class VecCore {
     b.goal_[2 * i] = obs.goal.x();
     b.goal_[2 * i + 1] = obs.goal.y();
     b.goal_index_[i] = obs.goal_index;
-    const auto& sensors = a.robot().sensors;
-    double* ranges = b.ranges_ + i * beams_;
-    double* points = b.points_ + 2 * i * beams_;
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    for (std::size_t j = 0; j < beams_; ++j) {
-      const double range = s.ranges[j];
-      ranges[j] = range;
-      if (range < sensors[j].max_range) {  // as ranges_to_points
-        const Vec2 p = s.beams[j].origin + range * s.beams[j].dir;
-        points[2 * j] = p.x();
-        points[2 * j + 1] = p.y();
-      } else {
-        points[2 * j] = nan;
-        points[2 * j + 1] = nan;
-      }
-    }
+    std::memcpy(b.ranges_ + i * beams_, s.ranges.data(), beams_ * sizeof(double));
+    beam_points(obs, b.points_ + 2 * i * beams_);
     distance_[i] = (obs.goal - obs.pose.position).norm();
     goals_[i] = a.result().goals_reached;
     step_goal_[i] = a.goal_index();
@@ -329,6 +320,17 @@ class VecCore {
   }
 
   void after_reset(std::size_t i, Buffers& b) { write_observation(i, b); }
+
+  // vec_.reset, a draw that found no free pose raised as the InputError of the copy's scenario.
+  void reset_copies(std::span<const std::size_t> which, std::span<const std::uint64_t> seeds,
+                    Buffers& b) {
+    try {
+      vec_.reset(which, seeds, [&](std::size_t i) { after_reset(i, b); });
+    } catch (const DrawError& e) {
+      const std::string source = scenarios_.front()->source;
+      throw InputError(source, "randomize", e.what());
+    }
+  }
 
   void read_actions(py::handle actions) {
     commands_.clear();
@@ -373,16 +375,88 @@ class VecCore {
     std::vector<VecCopy> out;
     for (const auto& s : scenarios) {
       if (!s) throw py::value_error("a VecEnv scenario is None");
-      if (s->scenario.is_fleet())
-        throw py::value_error(fmt::format(
-            "'{}' is a fleet scenario; a VecEnv steps copies of one robot (its first robot would "
-            "be taken alone: use a scenario with a `robot:` section)",
-            s->scenario.name));
-      out.push_back(
-          {s->scenario.world.get(), &s->scenario.robot(), &s->scenario.sim, s->scenario.name});
+      if (s->scenario.robots.size() != 1)
+        throw InputError(s->source, "robots",
+                         fmt::format("{} robots: a VecEnv steps copies of one robot (use "
+                                     "floornav.ParallelEnv to step a fleet)",
+                                     s->scenario.robots.size()));
+      out.push_back({s->scenario.world.get(), &s->scenario.robot(), &s->scenario.sim,
+                     s->scenario.name, &s->scenario.crowd});
     }
     return out;
   }
+
+ public:
+  /// Frames of the copies `which` (all: None) as uint8 (k, height, width, 3), drawn on the
+  /// stepping threads with the GIL released.
+  py::array render(py::object which, int height, int width) {
+    const Busy busy(busy_);
+    std::vector<std::size_t> ids;
+    if (which.is_none()) {
+      for (std::size_t i = 0; i < size(); ++i) ids.push_back(i);
+    } else {
+      for (py::handle h : which) {
+        const long long i = h.cast<long long>();
+        if (i < 0 || static_cast<std::size_t>(i) >= size())
+          throw py::value_error(fmt::format("render: copy {} of {}", i, size()));
+        ids.push_back(static_cast<std::size_t>(i));
+      }
+    }
+    for (std::size_t i : ids)
+      if (!started_[i]) throw py::value_error("render: call reset() first");
+    std::vector<const FrameRaster*> rasters(ids.size());
+    for (std::size_t k = 0; k < ids.size(); ++k)
+      rasters[k] = &raster_for(*scenarios_[ids[k]]->scenario.world, height, width);
+    const std::size_t bytes = rasters.empty() ? 0 : rasters.front()->bytes();
+    py::array_t<std::uint8_t> frames({static_cast<py::ssize_t>(ids.size()),
+                                      static_cast<py::ssize_t>(height),
+                                      static_cast<py::ssize_t>(width), py::ssize_t{3}});
+    std::uint8_t* out = frames.mutable_data();
+    {
+      py::gil_scoped_release nogil;
+      vec_.pool().run(ids.size(), 8, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k)
+          draw_copy(ids[k], *rasters[k], std::span<std::uint8_t>(out + k * bytes, bytes));
+      });
+    }
+    return frames;
+  }
+
+ private:
+  const FrameRaster& raster_for(const World& world, int height, int width) {
+    for (const auto& r : rasters_)
+      if (r.world == &world && r.raster->height() == height && r.raster->width() == width)
+        return *r.raster;
+    std::unique_ptr<FrameRaster> raster;
+    {
+      py::gil_scoped_release nogil;
+      raster = std::make_unique<FrameRaster>(world, height, width);
+    }
+    rasters_.push_back({&world, std::move(raster)});
+    return *rasters_.back().raster;
+  }
+
+  void draw_copy(std::size_t i, const FrameRaster& raster, std::span<std::uint8_t> rgb) const {
+    const RobotAgent& a = vec_.agent(i);
+    const Observation obs = vec_.observe(i);
+    FrameRobot robot;
+    robot.pose = a.pose();
+    robot.radius = a.robot().body_radius;
+    robot.footprint = a.robot().footprint;
+    if (obs.goal_index < obs.goal_count) robot.goal = obs.goal;
+    robot.returns = obs.sensed;
+    robot.colour = colour_;
+    const Crowd* crowd = vec_.crowd(i);
+    raster.draw(rgb, {&robot, 1}, crowd ? crowd->people() : std::span<const Circle>{},
+                crowd ? crowd->forklifts() : std::span<const OrientedBox>{});
+  }
+
+  struct Raster {
+    const World* world;
+    std::unique_ptr<FrameRaster> raster;
+  };
+  std::vector<Raster> rasters_;
+  Rgb colour_{rgb_of(robot_color(0))};
 
   std::vector<ScenarioPtr> scenarios_;
   VecSimulation vec_;
@@ -391,6 +465,7 @@ class VecCore {
   std::size_t beams_{0};
   std::uint64_t base_seed_{0};
   std::vector<std::uint64_t> episode_;
+  std::vector<std::uint8_t> started_;   ///< reset at least once
   std::vector<double> distance_;        ///< to the current goal, at the current observation
   std::vector<int> goals_;              ///< goals reached, at the current observation
   std::vector<std::size_t> step_goal_;  ///< the goal index when the step began
@@ -422,9 +497,30 @@ void bind_vec_env(py::module_& m) {
                            r.goal, r.collision, r.time);
       });
 
+  py::class_<EpisodeDraw>(m, "_EpisodeDraw")
+      .def(py::init<>())
+      .def_readwrite("start", &EpisodeDraw::start)
+      .def_readwrite("goal", &EpisodeDraw::goal)
+      .def_property(
+          "start_region", [](const EpisodeDraw&) { return py::none(); },
+          [](EpisodeDraw& d, const std::vector<double>& b) {
+            d.start_region = Box2{{b.at(0), b.at(1)}, {b.at(2), b.at(3)}};
+          })
+      .def_property(
+          "goal_region", [](const EpisodeDraw&) { return py::none(); },
+          [](EpisodeDraw& d, const std::vector<double>& b) {
+            d.goal_region = Box2{{b.at(0), b.at(1)}, {b.at(2), b.at(3)}};
+          })
+      .def_readwrite("clearance", &EpisodeDraw::clearance)
+      .def_readwrite("min_goal_distance", &EpisodeDraw::min_goal_distance)
+      .def_readwrite("max_goal_distance", &EpisodeDraw::max_goal_distance)
+      .def_readwrite("max_tries", &EpisodeDraw::max_tries);
+
   py::class_<VecCore>(m, "_VecCore")
-      .def(py::init<std::vector<ScenarioPtr>, int, bool, RewardParams>(), py::arg("scenarios"),
-           py::arg("threads"), py::arg("copy"), py::arg("reward"))
+      .def(py::init<std::vector<ScenarioPtr>, int, bool, RewardParams, EpisodeDraw>(),
+           py::arg("scenarios"), py::arg("threads"), py::arg("copy"), py::arg("reward"),
+           py::arg("draw"))
+      .def("render", &VecCore::render, py::arg("which"), py::arg("height"), py::arg("width"))
       .def("reset", &VecCore::reset, py::arg("seed") = py::none())
       .def("step", &VecCore::step, py::arg("actions"), py::arg("autoreset") = true)
       .def("reset_ended", &VecCore::reset_ended, py::arg("obs"), py::arg("terminated"),

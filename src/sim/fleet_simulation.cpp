@@ -6,6 +6,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 #include <utility>
 
@@ -178,22 +179,12 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
       moved_to_[i] = positions_[i];
       continue;
     }
-    // The bodies this robot's sensors could reach, as they stood at the start of the step.
-    others.clear();
-    const Vec2 p = positions_[i];
-    const double reach = reach_[i];
-    grid_.for_each_near(p, reach + max_radius_, [&](std::size_t j) {
-      if (j == i) return;
-      const double r = reach + radius_[j];
-      if ((positions_[j] - p).squaredNorm() < r * r) others.push_back({positions_[j], radius_[j]});
-    });
-    if (!tell_range_.empty()) tell_nearby(i, scratch);
-    if (!safety_on_.empty()) gather_safety_bodies(i, scratch);
-    if (crowd_) {
-      crowd_->people_near(p, reach, others);
-      agents_[i].step(scratch, others, crowd_->forklifts());
-    } else {
-      agents_[i].step(scratch, others);
+    if (robot_scratch_.empty()) {
+      sense_robot(i, scratch, others);
+      agents_[i].act(scratch);
+    } else {  // sensed at the end of the last step (keep_sensing)
+      const bool commanded = !commands_.empty() && commands_[i].has_value();
+      agents_[i].act(robot_scratch_[i], commanded ? &*commands_[i] : nullptr);
     }
     // What the serial part needs of the robot, written while its state is in this core's cache.
     moved_to_[i] = agents_[i].pose().position;
@@ -201,6 +192,60 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
     note_status(i);
     if (status_[i] != 0) events_[thread].any = true;
   }
+}
+
+void FleetSimulation::sense_robot(std::size_t i, SensingScratch& scratch,
+                                  std::vector<Circle>& others) {
+  // The bodies this robot's sensors could reach, as they stood at the start of the step.
+  others.clear();
+  const Vec2 p = positions_[i];
+  const double reach = reach_[i];
+  grid_.for_each_near(p, reach + max_radius_, [&](std::size_t j) {
+    if (j == i) return;
+    const double r = reach + radius_[j];
+    if ((positions_[j] - p).squaredNorm() < r * r) others.push_back({positions_[j], radius_[j]});
+  });
+  if (!tell_range_.empty()) tell_nearby(i, scratch);
+  if (!safety_on_.empty()) gather_safety_bodies(i, scratch);
+  if (crowd_) {
+    crowd_->people_near(p, reach, others);
+    agents_[i].sense(scratch, others, crowd_->forklifts());
+  } else {
+    agents_[i].sense(scratch, others);
+  }
+}
+
+void FleetSimulation::keep_sensing() {
+  if (!robot_scratch_.empty()) return;
+  const SensingScratch& first = thread_scratch_.front().sensing;
+  robot_scratch_.reserve(agents_.size());
+  for (std::size_t i = 0; i < agents_.size(); ++i) {
+    SensingScratch& s = robot_scratch_.emplace_back(tasks_[i].robot.sensors.size());
+    s.robots.resize(first.robots.size());
+    s.safety_discs.resize(first.safety_discs.size());
+    s.safety_boxes.resize(first.safety_boxes.size());
+    if (moving_[i]) sense_robot(i, s, thread_scratch_.front().others);
+  }
+}
+
+bool FleetSimulation::step(std::span<const std::optional<Command>> commands) {
+  if (!commands.empty() && commands.size() != agents_.size())
+    throw std::invalid_argument("step: one command (or none) per robot");
+  keep_sensing();
+  if (running_ == 0) return false;
+  ran_.assign(moving_.begin(), moving_.end());
+  commands_ = commands;
+  try {
+    step_robots(0, agents_.size(), 0);
+  } catch (...) {
+    commands_ = {};
+    throw;
+  }
+  commands_ = {};
+  after_step();
+  for (std::size_t i = 0; i < agents_.size(); ++i)
+    if (ran_[i]) sense_robot(i, robot_scratch_[i], thread_scratch_.front().others);
+  return running_ > 0;
 }
 
 void FleetSimulation::note_status(std::size_t i) {
@@ -347,6 +392,7 @@ void FleetSimulation::after_step() {
 }
 
 bool FleetSimulation::step() {
+  if (!robot_scratch_.empty()) return step({});
   if (running_ == 0) return false;
   step_robots(0, agents_.size(), 0);
   after_step();
@@ -374,7 +420,8 @@ std::size_t FleetSimulation::threads_for(int requested) const {
 
 long long FleetSimulation::run_steps(long long max_steps, int threads) {
   const long long first = steps_;
-  const std::size_t n_threads = threads_for(threads);
+  // Kept sensing is taken at the end of each step(commands), on the calling thread.
+  const std::size_t n_threads = robot_scratch_.empty() ? threads_for(threads) : 1;
   if (n_threads <= 1) {
     while (steps_ - first < max_steps && step()) {
     }

@@ -1,6 +1,7 @@
 #include "floornav/sim/vec_simulation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -102,12 +103,13 @@ std::size_t chunk_for(std::size_t n, std::size_t threads) {
 }
 }  // namespace
 
-VecSimulation::VecSimulation(std::vector<VecCopy> copies, int threads)
-    : copies_(std::move(copies)), pool_(threads) {
+VecSimulation::VecSimulation(std::vector<VecCopy> copies, int threads, EpisodeDraw draw)
+    : copies_(std::move(copies)), draw_(std::move(draw)), pool_(threads) {
   if (copies_.empty()) throw std::invalid_argument("a vector simulation needs at least one copy");
   beams_ = copies_.front().task->robot.sensors.size();
   sims_.reserve(copies_.size());
   models_.reserve(copies_.size());
+  tasks_.reserve(copies_.size());
   RobotModels models;  // copies of one kind share one robot model
   for (const VecCopy& c : copies_) {
     if (!c.world || !c.task || !c.sim)
@@ -120,23 +122,47 @@ VecSimulation::VecSimulation(std::vector<VecCopy> copies, int threads)
     s.record_trajectory = false;  // a learner keeps what it needs; a run here is not written out
     sims_.push_back(s);
     models_.push_back(models.find(*c.task));
+    tasks_.push_back(*c.task);
   }
   agents_.resize(copies_.size());
+  fleets_.resize(copies_.size());
+  fleet_command_.resize(copies_.size());
+  keep_discs_.resize(copies_.size());
+  keep_boxes_.resize(copies_.size());
+  for (std::size_t i = 0; i < copies_.size(); ++i)
+    if (copies_[i].crowd && !copies_[i].crowd->empty())
+      crowd_starts(*copies_[i].crowd, keep_discs_[i], keep_boxes_[i]);
   scratch_.assign(copies_.size(), SensingScratch(beams_));
 }
 
 void VecSimulation::reset(std::size_t i, std::uint64_t seed) {
   const VecCopy& c = copies_.at(i);
   sims_[i].seed = seed;
+  RobotTask& task = tasks_[i];
+  if (draw_.any()) {
+    task.start = c.task->start;
+    task.goals.assign(c.task->goals.begin(), c.task->goals.end());
+    Rng rng(episode_draw_seed(seed));
+    draw_episode(draw_, *c.world, task, {keep_discs_[i], keep_boxes_[i]}, rng);
+  }
+  // The old episode's controller goes before the new one is made.
+  agents_[i].reset();
+  fleets_[i].reset();
+  if (c.crowd && !c.crowd->empty()) {
+    fleets_[i] = std::make_unique<FleetSimulation>(*c.world, std::span<const RobotTask>(&task, 1),
+                                                   sims_[i], c.name, c.crowd);
+    fleets_[i]->keep_sensing();
+    return;
+  }
   AgentSetup setup;
   setup.world = c.world;
-  setup.task = c.task;
+  setup.task = &task;
   setup.sim = &sims_[i];
   setup.model = models_[i];
   {
     std::lock_guard lock(maker_mutex_);
-    setup.controller = maker_.make(c.task->controller, {c.task->robot, c.task->controller.params,
-                                                        c.task->name, 0, nullptr, seed});
+    setup.controller = maker_.make(
+        task.controller, {task.robot, task.controller.params, task.name, 0, nullptr, seed});
   }
   setup.seed = seed;
   setup.name = c.name;
@@ -164,13 +190,21 @@ void VecSimulation::step(std::span<const Command> commands,
                          const std::function<void(std::size_t)>& after) {
   if (!commands.empty() && commands.size() != copies_.size())
     throw std::invalid_argument("step: one command per copy, or none");
-  for (const auto& a : agents_)
-    if (!a) throw std::logic_error("step: every copy must be reset first");
+  for (std::size_t i = 0; i < copies_.size(); ++i)
+    if (!agents_[i] && !fleets_[i]) throw std::logic_error("step: every copy must be reset first");
   pool_.run(copies_.size(), chunk_for(copies_.size(), pool_.size()),
             [&](std::size_t begin, std::size_t end) {
               for (std::size_t i = begin; i < end; ++i) {
-                RobotAgent& a = *agents_[i];
-                if (!a.finished()) {
+                if (FleetSimulation* fleet = fleets_[i].get()) {
+                  if (!fleet->finished()) {
+                    if (commands.empty()) {
+                      fleet->step({});
+                    } else {
+                      fleet_command_[i] = commands[i];
+                      fleet->step({&fleet_command_[i], 1});
+                    }
+                  }
+                } else if (RobotAgent& a = *agents_[i]; !a.finished()) {
                   a.act(scratch_[i], commands.empty() ? nullptr : &commands[i]);
                   a.sense(scratch_[i]);  // the next observation; at the final pose if it ended
                 }

@@ -29,12 +29,13 @@ def test_a_plain_function_drives_the_robot():
     assert r.summary["mode_time"] == {"circler": pytest.approx(1.0)}
     assert [o["t"] for o in seen[:3]] == pytest.approx([0.0, 0.01, 0.02])
     o = seen[-1]
-    assert set(o) >= {"t", "dt", "pose", "goal", "ranges", "points", "sensed", "status", "robot",
+    assert set(o) >= {"t", "dt", "pose", "goal", "ranges", "points", "obstacles", "sensed",
+                      "status", "robot",
                       "params", "goal_index", "goal_count"}
-    assert o["status"] == "running" and o["goal"] == (2.4, 0.0)
+    assert o["status"] == "running" and tuple(o["goal"]) == (2.4, 0.0)
     # the last observation is of the pose before the last step
     t = r.trajectory
-    assert o["pose"] == (t["x"][-2], t["y"][-2], t["theta"][-2])
+    assert tuple(o["pose"]) == (t["x"][-2], t["y"][-2], t["theta"][-2])
     assert np.allclose(t["omega"][1:], 0.5) and np.allclose(t["v"][1:], 0.1)
 
 

@@ -22,13 +22,13 @@ def test_the_observation_holds_the_contract_keys():
     sim = floornav.Simulation(load())
     obs = sim.reset()
     assert obs["t"] == 0.0 and obs["dt"] == 0.01
-    assert obs["pose"] == (0.0, 0.0, 0.0)
-    assert obs["goal"] == (2.4, 0.0)
+    assert obs["pose"].tolist() == [0.0, 0.0, 0.0] and obs["pose"].dtype == np.float64
+    assert obs["goal"].tolist() == [2.4, 0.0]
     assert obs["status"] == "running"
     assert obs["ranges"].shape == (5,) and obs["ranges"].dtype == np.float64
-    assert obs["points"].ndim == 2 and obs["points"].shape[1] == 2
+    assert obs["points"].shape == (5, 2)  # one row per beam, as in VecEnv and ParallelEnv
     assert np.all(obs["ranges"] == 0.3)  # nothing within the QuickBot's IR range at the start
-    assert obs["points"].shape == (0, 2)
+    assert obs["obstacles"].shape == (0, 2) and obs["sensed"].shape == (0, 2)
     assert obs["robot"].body_radius == 0.075 and obs["params"].epsilon == 0.05
 
 
@@ -39,6 +39,9 @@ def test_points_are_the_beams_returns_in_the_world_frame():
     assert len(obs["points"]) > 0 and obs["ranges"][2] == pytest.approx(1.0 - 0.72 - 0.0664)
     hits = obs["ranges"] < 0.3
     assert len(obs["sensed"]) == hits.sum()
+    # Per-beam points: the returns in beam order, the end of the range where nothing was seen.
+    assert np.array_equal(obs["points"][hits], obs["sensed"])
+    assert np.all(np.isfinite(obs["points"]))
     # Every sensed point lies on the rectangle's face x = 1.0 (|y| <= 0.5).
     assert np.allclose(obs["sensed"][:, 0], 1.0, atol=1e-9)
     # ... at its beam's range from the robot's sensor.
@@ -76,7 +79,7 @@ def poses(sim, steps, observe_times=0, command=None):
     for _ in range(steps):
         for _ in range(observe_times):
             sim.observe()
-        out.append(sim.step(command)["pose"])
+        out.append(tuple(sim.step(command)["pose"]))
     return out
 
 
@@ -119,7 +122,7 @@ def test_commands_equal_a_python_controller_giving_them():
     cmds = [(0.1, 0.5 * math.sin(k / 50)) for k in range(600)]
     sim = floornav.Simulation(load())
     sim.reset()
-    stepped = [sim.step(c)["pose"] for c in cmds]
+    stepped = [tuple(sim.step(c)["pose"]) for c in cmds]
     it = iter(cmds)
     r = floornav.run(load(**{"sim.t_max": 6.0}), lambda obs: next(it))
     t = r.trajectory
@@ -139,7 +142,7 @@ def test_every_command_form():
         sa, sb = floornav.Simulation(s), floornav.Simulation(s)
         pa = [sa.step(a)["pose"] for _ in range(50)]
         pb = [sb.step(b)["pose"] for _ in range(50)]
-        assert pa == pb, a
+        assert np.array_equal(pa, pb), a
     sim = floornav.Simulation(s)
     obs = sim.step({"goal_reached": True})  # the only goal: the run ends reached
     assert obs["status"] == "reached" and sim.finished
@@ -155,7 +158,7 @@ def test_bad_commands_are_value_errors_and_change_nothing(bad):
     before = sim.reset()
     with pytest.raises(ValueError):
         sim.step(bad)
-    assert sim.observe()["pose"] == before["pose"] and sim.steps == 0
+    assert np.array_equal(sim.observe()["pose"], before["pose"]) and sim.steps == 0
     sim.step((0.1, 0.0))  # still usable
     assert sim.steps == 1
 
@@ -190,7 +193,7 @@ def test_reset_with_a_seed_and_the_mode_property():
     sim = floornav.Simulation(s)
     a = poses(sim, 800)
     sim.reset(seed=7)
-    b = [sim.step()["pose"] for _ in range(800)]
+    b = [tuple(sim.step()["pose"]) for _ in range(800)]
     c = poses(floornav.Simulation(s.with_seed(7)), 800)
     assert b == c and a != b
     assert sim.mode in ("go_to_goal", "follow_boundary_cw", "follow_boundary_ccw", "avoid_obstacle")

@@ -14,6 +14,8 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -67,6 +69,25 @@ class FleetSimulation {
 
   /// Advances every running robot one step on the calling thread; false once all have ended.
   bool step();
+
+  /// Stepping from outside, one step at a time (an environment that reads every robot's
+  /// observation between steps): from now on each robot keeps its own sensing, taken at the end
+  /// of every step (now, for the first), which its next step acts on. The run is the same, bit
+  /// for bit: a robot sensed at the end of a step senses what it would at the start of the next.
+  void keep_sensing();
+  /// One step of every running robot on the calling thread (keep_sensing() first, if not yet):
+  /// commands[i], when set, drives robot i instead of its controller (RobotAgent::act), the
+  /// others' controllers decide; an empty span lets every controller decide. Then every robot
+  /// that ran in the step senses anew (one that ended: where it stopped). False once all ended.
+  bool step(std::span<const std::optional<Command>> commands);
+  /// Robot i's sensing after keep_sensing(): what its observation is made of.
+  const SensingScratch& sensing(std::size_t i) const { return robot_scratch_[i]; }
+  /// What robot i's controller sees now (after keep_sensing()).
+  Observation observe(std::size_t i) const { return agents_[i].observe(robot_scratch_[i]); }
+  /// The people and forklifts (nullptr: none).
+  const Crowd* crowd() const { return crowd_.get(); }
+  /// World steps taken so far.
+  long long steps() const { return steps_; }
   /// Steps until every robot has ended, on `threads` threads (0: all cores).
   void run(int threads = 1);
   /// At most `max_steps` world steps (fewer if every robot ends), on `threads` threads (0: all
@@ -91,6 +112,8 @@ class FleetSimulation {
 
  private:
   void step_robots(std::size_t begin, std::size_t end, std::size_t thread);
+  /// Robot i senses the world, the bodies near it and what it is told, into `scratch`.
+  void sense_robot(std::size_t i, SensingScratch& scratch, std::vector<Circle>& others);
   // The serial and parallel parts of a step after the robots moved: file the new positions,
   // measure each robot's gap to the nearest other body (parallel), apply contacts and gaps.
   void prepare_contacts();
@@ -166,6 +189,10 @@ class FleetSimulation {
   void apply_crowd_contacts();
   std::size_t running_{0};
   long long steps_{0};
+  // keep_sensing(): each robot's own sensing, and the commands of the step under way.
+  std::vector<SensingScratch> robot_scratch_;
+  std::span<const std::optional<Command>> commands_;
+  std::vector<std::uint8_t> ran_;  ///< moving_ at the start of the step under way
 };
 
 }  // namespace floornav

@@ -6,6 +6,11 @@
 /// each by its own command (or by its controller), restarts the ones that ended, and lets the
 /// caller read every copy's observation in the same parallel pass.
 ///
+/// A copy whose scenario has people or forklifts runs as a fleet of one (FleetSimulation, with its
+/// own crowd), so that it senses and meets them as `floornav run` does; the others are a lone
+/// RobotAgent each. Each reset may draw the copy's start pose and goal anew (EpisodeDraw), from a
+/// stream of its seed.
+///
 /// Step of one copy: act on the observation sensed at the end of the previous step (or at reset),
 /// then sense the next observation at the new pose, exactly as Simulation::step + observe do:
 /// the sensors are cast once per step, so a copy's run equals a Simulation's with the same seed,
@@ -26,6 +31,9 @@
 
 #include "floornav/nav/controller.hpp"
 #include "floornav/nav/navigation_controller.hpp"
+#include "floornav/sim/crowd.hpp"
+#include "floornav/sim/episode_draw.hpp"
+#include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/robot_agent.hpp"
 #include "floornav/sim/robot_task.hpp"
 #include "floornav/sim/sim_config.hpp"
@@ -73,22 +81,26 @@ class WorkerPool {
 struct VecCopy {
   const World* world{nullptr};
   const RobotTask* task{nullptr};
-  const SimConfig* sim{nullptr};  ///< the seed is the copy's own (reset); nothing is recorded
-  std::string name;               ///< RunResult::scenario
+  const SimConfig* sim{nullptr};    ///< the seed is the copy's own (reset); nothing is recorded
+  std::string name;                 ///< RunResult::scenario
+  const CrowdSpec* crowd{nullptr};  ///< people and forklifts (none or empty: the robot alone)
 };
 
 class VecSimulation {
  public:
   /// Every copy must have the same number of sensors (observations of one shape). The copies
-  /// start unset: reset() each before stepping. `threads` in all (0: all cores).
-  VecSimulation(std::vector<VecCopy> copies, int threads = 0);
+  /// start unset: reset() each before stepping. `threads` in all (0: all cores). `draw`: what
+  /// each reset draws anew.
+  VecSimulation(std::vector<VecCopy> copies, int threads = 0, EpisodeDraw draw = {});
 
   std::size_t size() const { return copies_.size(); }
   /// Range readings per copy (every sensor's beam).
   std::size_t beam_count() const { return beams_; }
   std::size_t thread_count() const { return pool_.size(); }
 
-  /// Starts copy `i` afresh with sensor-noise seed `seed`, and senses its first observation.
+  /// Starts copy `i` afresh with sensor-noise seed `seed` (its start and goal drawn from
+  /// episode_draw_seed(seed) when the simulation draws them), and senses its first observation.
+  /// Throws DrawError when no free start or goal could be drawn.
   void reset(std::size_t i, std::uint64_t seed);
   /// reset(which[k], seeds[k]) for every k, in parallel; then after(which[k]) on the thread that
   /// reset it.
@@ -104,15 +116,35 @@ class VecSimulation {
   void step(std::span<const Command> commands, const std::function<void(std::size_t)>& after = {});
 
   /// What copy i's controller sees now (valid until the copy is stepped or reset).
-  Observation observe(std::size_t i) const { return agent(i).observe(scratch_[i]); }
-  const RobotAgent& agent(std::size_t i) const { return *agents_[i]; }
+  Observation observe(std::size_t i) const { return agent(i).observe(sensing(i)); }
+  const RobotAgent& agent(std::size_t i) const {
+    return fleets_[i] ? fleets_[i]->robot(0) : *agents_[i];
+  }
   /// The sensing behind observe(i): ranges, beams and points.
-  const SensingScratch& sensing(std::size_t i) const { return scratch_[i]; }
+  const SensingScratch& sensing(std::size_t i) const {
+    return fleets_[i] ? fleets_[i]->sensing(0) : scratch_[i];
+  }
+  /// Copy i's task in its current episode: the scenario's, with the start and goal drawn.
+  const RobotTask& task(std::size_t i) const { return tasks_[i]; }
+  const VecCopy& copy(std::size_t i) const { return copies_[i]; }
+  /// Copy i's people and forklifts now (nullptr: none).
+  const Crowd* crowd(std::size_t i) const { return fleets_[i] ? fleets_[i]->crowd() : nullptr; }
+  const EpisodeDraw& draw() const { return draw_; }
+  /// The threads that step the copies, for other per-copy work (rendering frames).
+  WorkerPool& pool() { return pool_; }
 
  private:
   std::vector<VecCopy> copies_;
-  std::vector<SimConfig> sims_;  ///< per copy: its seed, nothing recorded
+  EpisodeDraw draw_;
+  std::vector<RobotTask> tasks_;  ///< per copy: the scenario's task, start and goal drawn
+  std::vector<SimConfig> sims_;   ///< per copy: its seed, nothing recorded
   std::vector<std::optional<RobotAgent>> agents_;
+  /// Copies among people or forklifts: a fleet of one each (the others: null).
+  std::vector<std::unique_ptr<FleetSimulation>> fleets_;
+  std::vector<std::optional<Command>> fleet_command_;  ///< per copy, for a fleet's step
+  /// Per copy: where the crowd starts (drawn starts and goals keep clear of it).
+  std::vector<std::vector<Circle>> keep_discs_;
+  std::vector<std::vector<OrientedBox>> keep_boxes_;
   std::vector<RobotModel> models_;  ///< per copy, shared by copies of one kind
   std::vector<SensingScratch> scratch_;
   std::size_t beams_{0};
