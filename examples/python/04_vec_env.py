@@ -31,7 +31,7 @@ def policy(obs, v_max=0.2, k_heading=3.0, reach=0.25):
     x, y, theta = obs["pose"].T
     to_goal = obs["goal"] - obs["pose"][:, :2]
     u = to_goal / np.maximum(np.linalg.norm(to_goal, axis=1, keepdims=True), 1e-9)
-    away = obs["pose"][:, None, :2] - obs["points"]  # (n, beams, 2), NaN for no return
+    away = obs["pose"][:, None, :2] - obs["points"]  # (n, beams, 2): beam ends, max range if no return
     dist = np.linalg.norm(away, axis=2)
     weight = np.where(dist < reach, (reach - dist) / (reach * np.maximum(dist, 1e-3)), 0.0)
     weight = np.nan_to_num(weight)

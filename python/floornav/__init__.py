@@ -6,7 +6,10 @@ The C++ library and its simulator behind a small Python interface:
 - :func:`run` simulates it (summary dict, trajectory as numpy arrays, the transition log);
 - :func:`batch` runs many scenarios on all cores (the command line's ``results.jsonl`` lines);
 - :class:`Simulation` steps one robot from Python (``reset`` / ``step`` / ``observe``);
-- :class:`VecEnv` steps many copies together in C++, shaped like a Gymnasium vector env;
+- :class:`VecEnv` steps many copies together in C++, shaped like a Gymnasium vector env, with
+  spaces (:class:`Box`, :class:`Dict`), randomized episodes and frames;
+- :class:`ParallelEnv` steps a fleet among people and forklifts, shaped like PettingZoo's
+  Parallel API;
 - controllers written in Python (a callable ``observation -> command``, or an object with
   ``decide``) drive robots in all of the above: :meth:`Scenario.with_controller`;
 - the chapter's behaviours and the hybrid-automaton engine to build them from
@@ -52,7 +55,10 @@ from ._floornav import (
     navigation_input,
 )
 from ._overrides import render_overrides, render_value
+from ._parallel_env import ParallelEnv
+from ._spaces import Box, Dict
 from ._vec_env import STATUS_NAMES, VecEnv
+from . import chapter  # noqa: E402  (floornav.chapter as an attribute, as the docs use it)
 
 __version__: str = _floornav.__version__
 
@@ -60,12 +66,15 @@ __all__ = [
     "AutomatonBuilder",
     "AutomatonState",
     "BatchResults",
+    "Box",
     "Command",
     "Decision",
+    "Dict",
     "HybridAutomaton",
     "InputError",
     "NavigationInput",
     "NavigationParams",
+    "ParallelEnv",
     "PidGains",
     "RewardParams",
     "RunResult",
@@ -81,6 +90,7 @@ __all__ = [
     "batch",
     "blend_velocities",
     "blend_weight",
+    "chapter",
     "choose_turn",
     "follow_boundary_tangent",
     "follow_boundary_velocity",

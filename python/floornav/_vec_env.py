@@ -153,7 +153,9 @@ class VecEnv:
     def reset(self, seed: Optional[int] = None, options: Optional[dict] = None) -> tuple:
         """Starts every copy afresh (episode 0 of copy i: seed ``seed + i``; without ``seed``,
         the one given before) and returns ``(obs, info)``."""
-        del options  # Gymnasium's signature
+        if options:
+            raise ValueError(f"reset(options=...): VecEnv takes no options, got {options!r} "
+                             "(randomize is set when the env is made)")
         if seed is not None:
             self.seed = _seed(seed)
         obs = self._core.reset(self.seed)

@@ -33,6 +33,10 @@ struct PyScenario {
   std::string source;
   std::vector<std::string> overrides;  ///< as given, "key=value"
   bool python_controller{false};
+  // What pickle keeps: the YAML text as read and where it was read from (an absolute path, which
+  // anchors the relative paths in it), from which load_scenario_text rebuilds the scenario.
+  std::string text;
+  std::string origin;
 };
 using ScenarioPtr = std::shared_ptr<PyScenario>;  // never changed once made
 

@@ -5,6 +5,10 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
 #include "bindings.hpp"
 #include "floornav/core/input_error.hpp"
 #include "floornav/io/scenario_file.hpp"
@@ -95,6 +99,10 @@ ScenarioPtr load(const std::string& path, const std::vector<std::string>& overri
   }
   s->source = path;
   s->overrides = overrides;
+  // The text as loaded, for pickle (read again: load_scenario_file does not hand it out).
+  std::ifstream in(path, std::ios::binary);
+  s->text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  s->origin = std::filesystem::absolute(path).string();
   return s;
 }
 
@@ -104,6 +112,28 @@ ScenarioPtr parse(const std::string& text, const std::string& origin,
   s->scenario = load_scenario_text(text, origin, overrides);
   s->source = origin;
   s->overrides = overrides;
+  s->text = text;
+  s->origin = std::filesystem::absolute(origin).string();
+  return s;
+}
+
+// pickle: (text, origin, source, overrides, seed); a Python controller is not kept.
+py::tuple scenario_state(const PyScenario& s) {
+  if (s.python_controller)
+    throw py::type_error(fmt::format(
+        "cannot pickle scenario '{}': it has a Python controller (pickle the scenario before "
+        "with_controller, and call with_controller again after loading it)",
+        s.scenario.name));
+  return py::make_tuple(s.text, s.origin, s.source, s.overrides, s.scenario.sim.seed);
+}
+
+ScenarioPtr scenario_of_state(const py::tuple& t) {
+  if (t.size() != 5)
+    throw py::value_error("a pickled Scenario is (text, origin, source, overrides, seed)");
+  auto s = parse(t[0].cast<std::string>(), t[1].cast<std::string>(),
+                 t[3].cast<std::vector<std::string>>());
+  s->source = t[2].cast<std::string>();
+  s->scenario.sim.seed = t[4].cast<std::uint64_t>();
   return s;
 }
 
@@ -204,6 +234,9 @@ void bind_scenario(py::module_& m) {
             return c;
           },
           py::arg("seed"), "A copy with another sim.seed (sensor noise).")
+      .def(py::pickle(&scenario_state, &scenario_of_state))
+      .def("__copy__", [](const ScenarioPtr& s) { return s; })  // immutable: itself
+      .def("__deepcopy__", [](const ScenarioPtr& s, py::handle) { return s; })
       .def("__repr__", [](const PyScenario& s) {
         return fmt::format("<floornav.Scenario '{}': {} robot{}, controller {}, dt {} s>",
                            s.scenario.name, s.scenario.robots.size(),

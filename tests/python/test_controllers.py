@@ -201,3 +201,29 @@ def test_navigation_input_equals_what_the_builtin_sees():
     assert i.goal_distance == pytest.approx(math.dist(i.x, i.goal))
     p = floornav.NavigationParams()
     assert i.u_gtg == floornav.go_to_goal_velocity(i.x, i.goal, p.v0, p.gtg_a)
+
+
+def test_a_python_controller_run_ends_reached_on_the_goal():
+    # The docs' `steer`: it never asks to stop, yet within controller.epsilon the goal is
+    # reached, as with the built-in kinds and with commands given to Simulation.step.
+    s = floornav.parse_scenario("""
+name: open
+world: {bounds: [-1, -1, 2, 1]}
+robot: {preset: quickbot, start: [0, 0, 0]}
+goal: [1.0, 0.3]
+controller: {kind: hybrid}
+sim: {dt: 0.01, t_max: 30}
+""")
+
+    def steer(obs):
+        gx, gy = obs["goal"]
+        x, y, th = obs["pose"]
+        err = math.atan2(gy - y, gx - x) - th
+        return (0.1, 2.0 * math.atan2(math.sin(err), math.cos(err)))
+
+    r = floornav.run(s, steer, kind="p-steer")
+    assert r.status == "reached" and r.summary["sim_time"] < 15.0
+    end = np.array([r.trajectory["x"][-1], r.trajectory["y"][-1]])
+    assert np.linalg.norm(end - [1.0, 0.3]) < s.params.epsilon + 0.1 * 0.01
+    obs = floornav.Simulation(s.with_controller(steer)).reset()
+    assert obs["status"] == "running"  # it does not start reached

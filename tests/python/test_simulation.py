@@ -210,3 +210,34 @@ def test_the_safety_layer_stops_a_command_short_of_the_rectangle():
     assert obs["pose"][0] + 0.075 == pytest.approx(1.0 - 0.01, abs=2e-3)
     assert sim.result.summary["min_clearance"] >= 0.01 - 1e-9
     assert sim.result.summary["safety_time"] > 0
+
+
+def test_a_copy_and_a_pickle_step_exactly_as_the_original():
+    import copy
+    import pickle
+
+    s = load(**NOISY)
+    sim = floornav.Simulation(s)
+    sim.reset(seed=4)
+    for k in range(300):
+        sim.step() if k % 2 else sim.step((0.1, 0.3))
+    twins = [sim.copy(), copy.copy(sim), copy.deepcopy(sim), pickle.loads(pickle.dumps(sim))]
+    for twin in twins:
+        assert twin.steps == sim.steps == 300 and twin.seed == 4
+        assert np.array_equal(twin.observe()["ranges"], sim.observe()["ranges"])
+    mine = [tuple(sim.step()["pose"]) for _ in range(400)]
+    for twin in twins:
+        assert [tuple(twin.step()["pose"]) for _ in range(400)] == mine
+    # Independent: stepping a copy moves only the copy.
+    c = sim.copy()
+    c.step((0.2, 0.0))
+    assert c.steps == sim.steps + 1
+
+
+def test_simulation_takes_a_path_and_refuses_fleets():
+    sim = floornav.Simulation(SCENARIOS / "rectangle.yaml")
+    assert sim.reset()["goal"].tolist() == [2.4, 0.0]
+    with pytest.raises(floornav.InputError, match="ParallelEnv"):
+        floornav.Simulation(SCENARIOS / "crowd" / "factory_people.yaml")
+    with pytest.raises(floornav.InputError, match="ParallelEnv"):
+        floornav.VecEnv(SCENARIOS / "crowd" / "factory_people.yaml", 2)
