@@ -9,6 +9,12 @@ Cases (robot-steps/s unless said otherwise):
   vec_quickbot     VecEnv, 1,024 QuickBots on that floor, actions (n, 2) from numpy, numpy
                    observations and rewards every step, all cores
   vec_lidar180     the same with 180-beam lidars (TurtleBot3 Burger, 3.5 m)
+  vec_quickbot_rand, vec_lidar180_rand
+                   the same with randomize={"start": "free", "goal": "free"} (draws at every
+                   autoreset; episodes of 20 s so that copies reset often)
+  render           VecEnv.render() of 1,024 QuickBot copies at 128 x 128 pixels: frames/s
+  parallel100      ParallelEnv of 100 QuickBots on a 30 x 30 m floor, a dict of (v, omega) per
+                   agent built by a Python loop every step
   cpp_reference    `floornav bench` (C++, one thread) on its QuickBot and 180-beam lidar cases,
                    run between the others: the machine's state at the time
   batch            floornav.batch against `floornav batch` on the same files and jobs: runs/s
@@ -146,6 +152,67 @@ def case_vec(robot, seconds, n=1024):
     return timed(burst, seconds)
 
 
+def case_vec_rand(robot, seconds, n=1024):
+    s = floornav.parse_scenario(bench_floor_yaml(robot), {"sim.t_max": 20},
+                                origin=f"bench_floor_{robot}.yaml")
+    env = floornav.VecEnv(s, n, seed=1, randomize={"start": "free", "goal": "free"})
+    env.reset()
+    rng = np.random.default_rng(1)
+    actions = np.column_stack([np.full(n, 0.1), rng.uniform(-0.5, 0.5, n)])
+
+    def burst():
+        for _ in range(10):
+            env.step(actions)
+        return 10 * n
+
+    burst()
+    return timed(burst, seconds)
+
+
+def case_render(seconds, n=1024):
+    env = floornav.VecEnv(floor("quickbot"), n, seed=1, render_mode="rgb_array",
+                          render_shape=(128, 128))
+    env.reset()
+    env.render()  # the world's raster, drawn once
+
+    def burst():
+        env.render()
+        return n
+
+    return timed(burst, seconds)
+
+
+def parallel_floor_yaml(n=100, side=30.0):
+    k = int(math.ceil(math.sqrt(n)))
+    gap = side / (k + 1)
+    robots = []
+    for i in range(n):
+        x, y = gap * (1 + i % k), gap * (1 + i // k)
+        robots.append(f"  - {{name: r{i}, start: [{x}, {y}, 0], goals: [[{side - x}, {side - y}]]}}")
+    return (f"name: parallel{n}\nworld: {{bounds: [0, 0, {side}, {side}]}}\n"
+            "robot: {preset: quickbot}\nrobots:\n" + "\n".join(robots) +
+            "\ncontroller: {kind: hybrid}\nsim: {dt: 0.01, t_max: 600}\n")
+
+
+def case_parallel(seconds, n=100):
+    env = floornav.ParallelEnv(floornav.parse_scenario(parallel_floor_yaml(n)))
+    env.reset(seed=1)
+    rng = np.random.default_rng(1)
+    turn = {a: float(w) for a, w in zip(env.possible_agents, rng.uniform(-0.5, 0.5, n))}
+
+    def burst():
+        steps = 0
+        for _ in range(20):
+            if not env.agents:
+                env.reset()
+            steps += len(env.agents)
+            env.step({a: (0.1, turn[a]) for a in env.agents})
+        return steps
+
+    burst()
+    return timed(burst, seconds)
+
+
 def cpp_reference(cli, seconds):
     out = {}
     for case in ["quickbot_5ir_50_polygons", "lidar180_50_polygons"]:
@@ -187,7 +254,8 @@ def main(argv=None):
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--seconds", type=float, default=2.0, help="per repetition")
     ap.add_argument("--cases", default="cpp_reference,step_builtin,step_command,vec_quickbot,"
-                                       "vec_lidar180,batch")
+                                       "vec_lidar180,vec_quickbot_rand,vec_lidar180_rand,render,"
+                                       "parallel100,batch")
     ap.add_argument("--cli", default=str(ROOT / "build" / "floornav"))
     ap.add_argument("--batch-copies", type=int, default=40, help="copies of the 8 scenarios")
     ap.add_argument("--json", help="write the results here")
@@ -235,11 +303,19 @@ def main(argv=None):
                 w, c = case_vec("quickbot", args.seconds)
             elif name == "vec_lidar180":
                 w, c = case_vec("lidar180", args.seconds)
+            elif name == "vec_quickbot_rand":
+                w, c = case_vec_rand("quickbot", args.seconds)
+            elif name == "vec_lidar180_rand":
+                w, c = case_vec_rand("lidar180", args.seconds)
+            elif name == "render":
+                w, c = case_render(args.seconds)
+            elif name == "parallel100":
+                w, c = case_parallel(args.seconds)
             else:
                 raise SystemExit(f"unknown case {name}")
             walls.append(w)
             cpus.append(c)
-        record(name, walls, cpus)
+        record(name, walls, cpus, unit="frames/s" if name == "render" else "robot-steps/s")
     results["load_after"] = os.getloadavg()[0]
     print(f"load average after: {results['load_after']:.1f}")
     if args.json:
