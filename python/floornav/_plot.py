@@ -22,6 +22,54 @@ OBSTACLE_EDGE = "#6b7079"
 WALL = "#37474f"
 GOAL_FILL = "#f4b400"
 GOAL_EDGE = "#8a6d00"
+PERSON = "#7b3fa0"
+FORKLIFT = "#b35900"
+
+
+def robot_colour(index: int) -> str:
+    """Robot ``index``'s colour in trajectory.svg (a fleet's picture colours by robot)."""
+    from . import _floornav
+
+    return _floornav._robot_colour(index)
+
+
+def _switch_rows(mode: np.ndarray) -> np.ndarray:
+    """Rows where the mode changes (the state after the first step of the new mode)."""
+    return np.flatnonzero(mode[1:] != mode[:-1]) + 1 if len(mode) else np.array([], int)
+
+
+def draw_crowd(ax: Any, crowd: dict) -> list:
+    """The people's tracks and where they ended (discs), the forklifts' tracks and where they
+    ended (rectangles); returns legend handles for what was drawn."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Circle, Polygon
+
+    handles = []
+    for p in crowd["people"]:
+        xy = p["samples"]
+        if len(xy) == 0:
+            continue
+        ax.plot(xy[:, 1], xy[:, 2], color=PERSON, linewidth=0.8, alpha=0.45, zorder=2)
+        ax.add_patch(Circle((xy[-1, 1], xy[-1, 2]), p["size"][0] / 2, facecolor=PERSON,
+                            edgecolor="white", linewidth=0.6, alpha=0.9, zorder=5))
+    if crowd["people"]:
+        handles.append(Line2D([0], [0], marker="o", linestyle="-", color=PERSON, markersize=7,
+                              label="person (track, last position)"))
+    for f in crowd["forklifts"]:
+        xy = f["samples"]
+        if len(xy) == 0:
+            continue
+        ax.plot(xy[:, 1], xy[:, 2], color=FORKLIFT, linewidth=0.8, alpha=0.45, zorder=2)
+        (length, width), th = f["size"], xy[-1, 3]
+        c, s = np.cos(th), np.sin(th)
+        corners = [(sx * length / 2, sy * width / 2) for sx, sy in ((1, 1), (-1, 1), (-1, -1), (1, -1))]
+        ax.add_patch(Polygon([(xy[-1, 1] + c * a - s * b, xy[-1, 2] + s * a + c * b) for a, b in corners],
+                             closed=True, facecolor=FORKLIFT, edgecolor="white", linewidth=0.6,
+                             alpha=0.9, zorder=5))
+    if crowd["forklifts"]:
+        handles.append(Line2D([0], [0], marker="s", linestyle="-", color=FORKLIFT, markersize=7,
+                              label="forklift (track, last position)"))
+    return handles
 
 
 def mode_colours(names) -> dict:
@@ -91,8 +139,10 @@ def _segments_by_mode(t: dict):
 def plot(result: Any, ax: Any = None, *, title: Optional[str] = None, legend: bool = True,
          switches: bool = True) -> Any:
     """Draws ``result`` (a floornav.RunResult with its trajectory recorded) on ``ax`` (a new
-    figure if None): the world, each robot's path coloured by mode, a circle at every mode
-    switch, the start pose and the goals. Returns the Axes."""
+    figure if None): the world, a lone robot's path coloured by mode (a fleet's: a colour per
+    robot, trajectory.svg's), a circle at every mode switch, the start poses and the goals, the
+    people's and forklifts' tracks and where they ended; the legend beside the axes. Returns the
+    Axes."""
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
 
@@ -101,17 +151,45 @@ def plot(result: Any, ax: Any = None, *, title: Optional[str] = None, legend: bo
     scenario = result.scenario
     draw_world(ax, scenario.world)
     runs = _runs(result)
+    fleet = result.is_fleet and len(scenario.robots) > 1
     names = []
-    for _, t in runs:
-        names.extend(n for n in dict.fromkeys(t["mode"].tolist()) if n not in names)
-    colours = mode_colours(names)
-    for _, t in runs:
-        for mode, xs, ys in _segments_by_mode(t):
-            ax.plot(xs, ys, color=colours[mode], linewidth=1.8, solid_capstyle="round", zorder=3)
-    if switches:
-        for tr in result.transitions:
-            ax.plot(tr["x"], tr["y"], "o", markersize=5, markerfacecolor="white",
-                    markeredgecolor="#222222", markeredgewidth=0.9, zorder=4)
+    handles = []
+    if fleet:  # a colour per robot; mode switches as dots in the robot's colour
+        index = {r["name"]: i for i, r in enumerate(scenario.robots)}
+        for name, t in runs:
+            colour = robot_colour(index.get(name, 0))
+            ax.plot(t["x"], t["y"], color=colour, linewidth=1.6, solid_capstyle="round", zorder=3)
+            if switches:
+                rows = _switch_rows(t["mode"])
+                ax.plot(t["x"][rows], t["y"][rows], "o", markersize=4, markerfacecolor="white",
+                        markeredgecolor=colour, markeredgewidth=1.0, zorder=4)
+            handles.append(Line2D([0], [0], color=colour, linewidth=2.5, label=name))
+        if len(handles) > 12:  # a legend of 100 robots covers everything: say how many
+            handles = [Line2D([0], [0], color="#555555", linewidth=2.5,
+                              label=f"{len(runs)} robots, a colour each")]
+        if switches and any(len(_switch_rows(t["mode"])) for _, t in runs):
+            handles.append(Line2D([0], [0], marker="o", linestyle="", markerfacecolor="white",
+                                  markeredgecolor="#222222", label="mode switch"))
+    else:
+        for _, t in runs:
+            names.extend(n for n in dict.fromkeys(t["mode"].tolist()) if n not in names)
+        colours = mode_colours(names)
+        for _, t in runs:
+            for mode, xs, ys in _segments_by_mode(t):
+                ax.plot(xs, ys, color=colours[mode], linewidth=1.8, solid_capstyle="round", zorder=3)
+        if switches:
+            if result.transitions:
+                points = [(tr["x"], tr["y"]) for tr in result.transitions]
+            else:  # a robot among people runs as a fleet of one: switches from the mode column
+                points = [(t["x"][k], t["y"][k]) for _, t in runs for k in _switch_rows(t["mode"])]
+            for x, y in points:
+                ax.plot(x, y, "o", markersize=5, markerfacecolor="white",
+                        markeredgecolor="#222222", markeredgewidth=0.9, zorder=4)
+        handles = [Line2D([0], [0], color=colours[n], linewidth=2.5, label=n) for n in names]
+        if switches and (result.transitions or any(len(_switch_rows(t["mode"])) for _, t in runs)):
+            handles.append(Line2D([0], [0], marker="o", linestyle="", markerfacecolor="white",
+                                  markeredgecolor="#222222", label="mode switch"))
+    handles += draw_crowd(ax, result.crowd)
     for robot in scenario.robots:
         x, y, th = robot["start"]
         r = robot["body_radius"]
@@ -137,12 +215,10 @@ def plot(result: Any, ax: Any = None, *, title: Optional[str] = None, legend: bo
     ax.set_title(title if title is not None else
                  f"{s['scenario']}: {s['status']} in {s['sim_time']:.1f} s, "
                  f"{s['mode_switches']} switches")
-    if legend and names:
-        handles = [Line2D([0], [0], color=colours[n], linewidth=2.5, label=n) for n in names]
-        if switches and result.transitions:
-            handles.append(Line2D([0], [0], marker="o", linestyle="", markerfacecolor="white",
-                                  markeredgecolor="#222222", label="mode switch"))
-        ax.legend(handles=handles, loc="best", fontsize=8, framealpha=0.9)
+    if legend and handles:
+        # Beside the scene, not on it: a legend over a floor hides robots and people.
+        ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8,
+                  framealpha=0.9, borderaxespad=0.0)
     ax.autoscale_view()
     return ax
 

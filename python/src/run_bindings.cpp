@@ -15,6 +15,7 @@
 #include "bindings.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/summary_json.hpp"
+#include "floornav/render/palette.hpp"
 #include "floornav/runner/batch.hpp"
 #include "floornav/runner/run_outputs.hpp"
 #include "floornav/runner/run_summary.hpp"
@@ -317,6 +318,9 @@ py::tuple batch(const std::vector<ScenarioPtr>& scenarios, int jobs, bool timing
 }  // namespace
 
 void bind_run(py::module_& m) {
+  m.def(
+      "_robot_colour", [](std::size_t i) { return robot_color(i); }, py::arg("index"),
+      "Robot `index`'s colour in trajectory.svg (#rrggbb).");
   py::class_<PyRunResult, std::shared_ptr<PyRunResult>>(
       m, "RunResult",
       "A finished run: `summary` (summary.json as a dict), `trajectory` (trajectory.csv as "
@@ -350,6 +354,40 @@ void bind_run(py::module_& m) {
           },
           "The controller's modes, in index order (lone robot).")
       .def_property_readonly("is_fleet", [](const PyRunResult& r) { return r.fleet.has_value(); })
+      .def_property_readonly(
+          "crowd",
+          [](const PyRunResult& r) {
+            py::dict out;
+            py::list people, forklifts;
+            if (r.fleet) {
+              for (const auto& [tracks, list] :
+                   {std::pair{&r.fleet->crowd.people, &people},
+                    std::pair{&r.fleet->crowd.forklifts, &forklifts}}) {
+                for (const CrowdTrack& track : *tracks) {
+                  const auto n = static_cast<py::ssize_t>(track.samples.size());
+                  py::array_t<double> samples({n, py::ssize_t{4}});
+                  double* x = samples.mutable_data();
+                  for (const CrowdSample& c : track.samples) {
+                    *x++ = c.t;
+                    *x++ = c.x;
+                    *x++ = c.y;
+                    *x++ = c.theta;
+                  }
+                  py::dict d;
+                  d["name"] = track.name;
+                  d["size"] = py::make_tuple(track.size.x(), track.size.y());
+                  d["samples"] = samples;
+                  list->append(d);
+                }
+              }
+            }
+            out["people"] = people;
+            out["forklifts"] = forklifts;
+            return out;
+          },
+          "The people's and forklifts' tracks (a fleet among them): {'people': [...], "
+          "'forklifts': [...]}, each {name, size (length, width; a person's diameter twice), "
+          "samples (k, 4): t, x, y, theta} (every step while the trajectory is recorded).")
       .def(
           "write",
           [](PyRunResult& r, const std::filesystem::path& dir, bool mcap) {

@@ -49,6 +49,42 @@ def test_plot_a_fleet_on_given_axes():
     plt.close("all")
 
 
+def test_plot_a_fleet_among_people_and_forklifts():
+    s = floornav.load_scenario(SCENARIOS / "crowd" / "factory_people.yaml", {"sim.t_max": 6})
+    r = floornav.run(s)
+    ax = floornav.plot(r)
+    colours = [floornav._plot.robot_colour(i) for i in range(6)]
+    assert len(set(colours)) == 6
+    paths = [l for l in ax.lines if l.get_linewidth() == 1.6]
+    assert [l.get_color() for l in paths] == colours  # a colour per robot, not per mode
+    for name, line in zip([f"amr{i}" for i in range(6)], paths):
+        keep = r.trajectory["robot"] == name
+        assert np.array_equal(line.get_xdata(), r.trajectory["x"][keep])
+    # Mode switches, from each robot's mode column, as dots edged in its colour.
+    switches = [l for l in ax.lines if l.get_marker() == "o" and l.get_markerfacecolor() == "white"
+                and l.get_markeredgecolor() in colours]
+    expected = sum(int(np.count_nonzero(m[1:] != m[:-1])) for m in
+                   (r.trajectory["mode"][r.trajectory["robot"] == f"amr{i}"] for i in range(6)))
+    assert expected > 0 and sum(len(l.get_xdata()) for l in switches) == expected
+    # People and forklifts: a track each and where they ended.
+    crowd = r.crowd
+    assert len(crowd["people"]) == 10 and len(crowd["forklifts"]) == 2
+    assert crowd["people"][0]["samples"].shape[1] == 4
+    purple = [l for l in ax.lines if l.get_color() == "#7b3fa0"]
+    orange = [l for l in ax.lines if l.get_color() == "#b35900"]
+    assert len(purple) == 10 and len(orange) == 2
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels[:6] == [f"amr{i}" for i in range(6)]
+    assert "mode switch" in labels and any("person" in l for l in labels)
+    assert any("forklift" in l for l in labels)
+    # The legend sits beside the axes, not over the floor.
+    fig = ax.figure
+    fig.canvas.draw()
+    legend_box = ax.get_legend().get_window_extent()
+    assert legend_box.x0 >= ax.get_window_extent().x1
+    plt.close("all")
+
+
 def test_animate_writes_a_gif(tmp_path):
     r = floornav.run(floornav.load_scenario(SCENARIOS / "week7_pocket.yaml"))
     from floornav._plot import frame_times
