@@ -28,7 +28,8 @@ fi
 # The test suite's own tools, so that the README's test command skips nothing: Debian's chromium
 # (the replay in a real browser), Node.js and npm (Debian's only when the commands are missing:
 # a vendor nodejs bundles its own npm), and the npm packages pinned by the lock files of
-# tests/browser (puppeteer-core) and tests/mcap (the reference MCAP and ROS 2 readers), and Dask.
+# tests/browser (puppeteer-core) and tests/mcap (the reference MCAP and ROS 2 readers), Dask and
+# PyTorch.
 # FLOORNAV_NO_TEST_TOOLS=1 leaves them out (the tests that need them are then skipped).
 if [ "${FLOORNAV_NO_TEST_TOOLS:-0}" != 1 ]; then
   tools=()
@@ -38,6 +39,9 @@ if [ "${FLOORNAV_NO_TEST_TOOLS:-0}" != 1 ]; then
   # Dask's scheduler, for the test of docs/PYTHON.md's sharding pattern.
   dpkg-query -W -f='${Status}' python3-distributed 2>/dev/null | grep -q "install ok installed" ||
     tools+=(python3-distributed)
+  # PyTorch, for the smoke test of examples/python/05_train_ppo.py (a few PPO iterations).
+  dpkg-query -W -f='${Status}' python3-torch 2>/dev/null | grep -q "install ok installed" ||
+    tools+=(python3-torch)
   if ((${#tools[@]})); then
     echo "Installing the test tools: ${tools[*]}"
     apt_install "${tools[@]}"

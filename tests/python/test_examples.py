@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import json
 import os
 import subprocess
 import sys
@@ -23,7 +24,7 @@ def run_example(name, tmp_path):
 def test_examples_are_numbered():
     names = sorted(p.name for p in EXAMPLES.glob("*.py"))
     assert names == ["01_chapter_simulation.py", "02_week7_supervisor.py",
-                     "03_parameter_sweep.py", "04_vec_env.py"]
+                     "03_parameter_sweep.py", "04_vec_env.py", "05_train_ppo.py"]
 
 
 def test_01_the_chapter_simulation(tmp_path):
@@ -60,3 +61,19 @@ def test_04_the_vec_env_loop(tmp_path):
     out = run_example("04_vec_env.py", tmp_path)
     assert "32 copies x 400 steps = 12,800 robot-steps" in out
     assert "episodes ended" in out
+
+
+def test_05_ppo_trains_a_few_iterations(tmp_path):
+    # The smoke test: three small PPO iterations on randomized VecEnv episodes, the held-out
+    # evaluation, the curve and the policy written (the full training is the example's, not a
+    # test's). Debian's python3-torch (scripts/quickstart.sh installs it with the test tools).
+    out = run_example("05_train_ppo.py", tmp_path)
+    rows = [json.loads(l) for l in out.splitlines() if l.startswith("{")]
+    assert [r["iteration"] for r in rows] == [1, 2, 3]
+    assert all(r["steps"] == r["iteration"] * 16 * 32 for r in rows)
+    assert 0.0 <= rows[-1]["held_out_success"] <= 1.0
+    assert "held-out success" in out.splitlines()[-1]
+    curve = json.loads((tmp_path / "05_train_ppo.json").read_text())
+    assert curve == rows
+    assert (tmp_path / "05_train_ppo.png").stat().st_size > 5_000
+    assert (tmp_path / "05_train_ppo.pt").stat().st_size > 1_000
