@@ -96,7 +96,11 @@ def train(args):
     optim = torch.optim.Adam(policy.parameters(), lr=3e-4)
     obs, _ = env.reset()
     x = features(obs, max_range)
-    curve, t0 = [], time.perf_counter()
+    # Before training: the untrained policy on the held-out floors (the curve's first point).
+    curve = [{"iteration": 0, "minutes": 0.0, "steps": 0, "train_success": 0.0, "episodes": 0,
+              "held_out_success": evaluate(policy, n=args.eval_envs)}]
+    print(json.dumps(curve[0]), flush=True)
+    t0 = time.perf_counter()
     it = 0
     while True:
         it += 1

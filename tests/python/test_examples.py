@@ -69,8 +69,9 @@ def test_05_ppo_trains_a_few_iterations(tmp_path):
     # test's). Debian's python3-torch (scripts/quickstart.sh installs it with the test tools).
     out = run_example("05_train_ppo.py", tmp_path)
     rows = [json.loads(l) for l in out.splitlines() if l.startswith("{")]
-    assert [r["iteration"] for r in rows] == [1, 2, 3]
+    assert [r["iteration"] for r in rows] == [0, 1, 2, 3]  # 0: the untrained policy
     assert all(r["steps"] == r["iteration"] * 16 * 32 for r in rows)
+    assert "held_out_success" in rows[0]
     assert 0.0 <= rows[-1]["held_out_success"] <= 1.0
     assert "held-out success" in out.splitlines()[-1]
     curve = json.loads((tmp_path / "05_train_ppo.json").read_text())
