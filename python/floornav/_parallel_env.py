@@ -13,7 +13,7 @@ from . import _floornav
 from ._floornav import RewardParams, Scenario
 from ._spaces import Box, Dict
 from ._vec_env import (RENDER_MODES, _floornav_module, _render_mode, _render_shape, _seed,
-                       episode_draw, observation_space)
+                       episode_draw, observation_space, reward_params)
 
 
 class ParallelEnv:
@@ -63,14 +63,7 @@ class ParallelEnv:
             scenario = _floornav_module().load_scenario(scenario)
         if not isinstance(scenario, Scenario):
             raise ValueError(f"ParallelEnv needs a Scenario or a path to one, got {scenario!r}")
-        if reward is None:
-            params = RewardParams()
-        elif isinstance(reward, RewardParams):
-            params = reward
-        elif isinstance(reward, Mapping):
-            params = RewardParams(**reward)
-        else:
-            raise ValueError(f"reward is RewardParams or a dict of its weights, got {reward!r}")
+        params = reward_params(reward)
         self.scenario: Scenario = scenario
         self.reward_params: RewardParams = params
         self.render_mode: Optional[str] = _render_mode(render_mode)

@@ -103,17 +103,11 @@ class VecEnv:
         if threads is not None:
             _positive(threads, "threads")
         self._reward_fn: Optional[RewardFn] = None
-        if reward is None:
-            params = RewardParams()
-        elif isinstance(reward, RewardParams):
-            params = reward
-        elif isinstance(reward, Mapping):
-            params = RewardParams(**reward)
-        elif callable(reward):
+        if callable(reward) and not isinstance(reward, (RewardParams, Mapping)):
             params = RewardParams()
             self._reward_fn = reward
         else:
-            raise ValueError(f"reward is RewardParams, a dict of its weights or a callable, got {reward!r}")
+            params = reward_params(reward, "RewardParams, a dict of its weights or a callable")
         self.render_mode: Optional[str] = _render_mode(render_mode)
         self.render_shape: tuple = _render_shape(render_shape)
         #: What each reset draws anew (None: nothing; every episode starts as the scenario says).
@@ -221,6 +215,17 @@ def _seed(seed: Any) -> int:
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise ValueError(f"seed must be a non-negative integer, got {seed!r}")
     return int(seed)
+
+
+def reward_params(reward: Any, what: str = "RewardParams or a dict of its weights") -> RewardParams:
+    """The default reward's weights from None (the defaults), RewardParams or a dict of them."""
+    if reward is None:
+        return RewardParams()
+    if isinstance(reward, RewardParams):
+        return reward
+    if isinstance(reward, Mapping):
+        return RewardParams(**reward)
+    raise ValueError(f"reward is {what}, got {reward!r}")
 
 
 def _floornav_module() -> Any:
