@@ -38,7 +38,15 @@ def _switch_rows(mode: np.ndarray) -> np.ndarray:
     return np.flatnonzero(mode[1:] != mode[:-1]) + 1 if len(mode) else np.array([], int)
 
 
-def draw_crowd(ax: Any, crowd: dict) -> list:
+def _forklift_corners(x: float, y: float, th: float, size) -> list:
+    length, width = size
+    c, s = np.cos(th), np.sin(th)
+    return [(x + c * a - s * b, y + s * a + c * b)
+            for a, b in ((length / 2, width / 2), (-length / 2, width / 2),
+                         (-length / 2, -width / 2), (length / 2, -width / 2))]
+
+
+def draw_crowd(ax: Any, crowd: dict, last: bool = True) -> list:
     """The people's tracks and where they ended (discs), the forklifts' tracks and where they
     ended (rectangles); returns legend handles for what was drawn."""
     from matplotlib.lines import Line2D
@@ -50,8 +58,9 @@ def draw_crowd(ax: Any, crowd: dict) -> list:
         if len(xy) == 0:
             continue
         ax.plot(xy[:, 1], xy[:, 2], color=PERSON, linewidth=0.8, alpha=0.45, zorder=2)
-        ax.add_patch(Circle((xy[-1, 1], xy[-1, 2]), p["size"][0] / 2, facecolor=PERSON,
-                            edgecolor="white", linewidth=0.6, alpha=0.9, zorder=5))
+        if last:
+            ax.add_patch(Circle((xy[-1, 1], xy[-1, 2]), p["size"][0] / 2, facecolor=PERSON,
+                                edgecolor="white", linewidth=0.6, alpha=0.9, zorder=5))
     if crowd["people"]:
         handles.append(Line2D([0], [0], marker="o", linestyle="-", color=PERSON, markersize=7,
                               label="person (track, last position)"))
@@ -60,12 +69,10 @@ def draw_crowd(ax: Any, crowd: dict) -> list:
         if len(xy) == 0:
             continue
         ax.plot(xy[:, 1], xy[:, 2], color=FORKLIFT, linewidth=0.8, alpha=0.45, zorder=2)
-        (length, width), th = f["size"], xy[-1, 3]
-        c, s = np.cos(th), np.sin(th)
-        corners = [(sx * length / 2, sy * width / 2) for sx, sy in ((1, 1), (-1, 1), (-1, -1), (1, -1))]
-        ax.add_patch(Polygon([(xy[-1, 1] + c * a - s * b, xy[-1, 2] + s * a + c * b) for a, b in corners],
-                             closed=True, facecolor=FORKLIFT, edgecolor="white", linewidth=0.6,
-                             alpha=0.9, zorder=5))
+        if last:
+            ax.add_patch(Polygon(_forklift_corners(xy[-1, 1], xy[-1, 2], xy[-1, 3], f["size"]),
+                                 closed=True, facecolor=FORKLIFT, edgecolor="white",
+                                 linewidth=0.6, alpha=0.9, zorder=5))
     if crowd["forklifts"]:
         handles.append(Line2D([0], [0], marker="s", linestyle="-", color=FORKLIFT, markersize=7,
                               label="forklift (track, last position)"))
@@ -137,7 +144,7 @@ def _segments_by_mode(t: dict):
 
 
 def plot(result: Any, ax: Any = None, *, title: Optional[str] = None, legend: bool = True,
-         switches: bool = True) -> Any:
+         switches: bool = True, crowd_positions: bool = True) -> Any:
     """Draws ``result`` (a floornav.RunResult with its trajectory recorded) on ``ax`` (a new
     figure if None): the world, a lone robot's path coloured by mode (a fleet's: a colour per
     robot, trajectory.svg's), a circle at every mode switch, the start poses and the goals, the
@@ -189,7 +196,7 @@ def plot(result: Any, ax: Any = None, *, title: Optional[str] = None, legend: bo
         if switches and (result.transitions or any(len(_switch_rows(t["mode"])) for _, t in runs)):
             handles.append(Line2D([0], [0], marker="o", linestyle="", markerfacecolor="white",
                                   markeredgecolor="#222222", label="mode switch"))
-    handles += draw_crowd(ax, result.crowd)
+    handles += draw_crowd(ax, result.crowd, last=crowd_positions)
     for robot in scenario.robots:
         x, y, th = robot["start"]
         r = robot["body_radius"]
@@ -240,7 +247,8 @@ def frame_times(result: Any, *, fps: int = 20, speed: float = 1.0, max_frames: i
 def animate(result: Any, path: str, *, fps: int = 20, speed: float = 1.0,
             max_frames: int = 400, dpi: int = 80) -> int:
     """Writes an animation of ``result`` to ``path``: each robot (its body and heading) moving
-    along its path, the path so far coloured by mode, the time. ``speed`` simulated seconds per
+    along its path, the path so far coloured by mode (a fleet's: a colour per robot), the people
+    and forklifts moving along their tracks, the time. ``speed`` simulated seconds per
     second of animation; at most ``max_frames`` frames (sped up if needed). A ``.gif`` is written
     with Pillow; other suffixes with the matplotlib writer that knows them (ffmpeg for .mp4).
     Returns the number of frames."""
@@ -256,14 +264,34 @@ def animate(result: Any, path: str, *, fps: int = 20, speed: float = 1.0,
     frames = len(times)
 
     fig, ax = plt.subplots(figsize=(6, 5), dpi=dpi)
-    plot(result, ax=ax, switches=False)
+    plot(result, ax=ax, switches=False, crowd_positions=False)
     for line in list(ax.lines):  # the full paths come back frame by frame
-        if line.get_linewidth() == 1.8:
+        if line.get_linewidth() in (1.8, 1.6):
             line.remove()
     names = []
     for _, t in runs:
         names.extend(n for n in dict.fromkeys(t["mode"].tolist()) if n not in names)
     colours = mode_colours(names)
+    # A fleet: each robot in its colour (trajectory.svg's), not by mode.
+    fleet = result.is_fleet and len(result.scenario.robots) > 1
+    index = {r["name"]: i for i, r in enumerate(result.scenario.robots)}
+    # People and forklifts moving along their tracks.
+    from matplotlib.patches import Polygon
+
+    movers = []
+    for p in result.crowd["people"]:
+        if len(p["samples"]):
+            disc = plt.Circle(tuple(p["samples"][0, 1:3]), p["size"][0] / 2, facecolor=PERSON,
+                              edgecolor="white", linewidth=0.6, zorder=6)
+            ax.add_patch(disc)
+            movers.append((p, disc))
+    for f in result.crowd["forklifts"]:
+        if len(f["samples"]):
+            x0, y0, th0 = f["samples"][0, 1:4]
+            box = Polygon(_forklift_corners(x0, y0, th0, f["size"]), closed=True,
+                          facecolor=FORKLIFT, edgecolor="white", linewidth=0.6, zorder=6)
+            ax.add_patch(box)
+            movers.append((f, box))
     radius = {r["name"]: r["body_radius"] for r in result.scenario.robots}
     default_r = result.scenario.robots[0]["body_radius"]
     bodies, headings, trails = [], [], []
@@ -281,9 +309,11 @@ def animate(result: Any, path: str, *, fps: int = 20, speed: float = 1.0,
         cuts = np.flatnonzero(mode[1:] != mode[:-1]) + 1 if len(mode) else np.array([], int)
         starts = np.concatenate(([0], cuts)) if len(mode) else []
         ends = np.concatenate((cuts, [len(mode)])) if len(mode) else []
+        if fleet:
+            starts, ends = [0], [len(mode)]
         for s0, e0 in zip(starts, ends):
-            (line,) = ax.plot([], [], color=colours.get(mode[s0], "#888888"), linewidth=1.8,
-                              zorder=3)
+            colour = robot_colour(index.get(name, 0)) if fleet else colours.get(mode[s0], "#888888")
+            (line,) = ax.plot([], [], color=colour, linewidth=1.8, zorder=3)
             pieces.append((max(s0 - 1, 0), e0, line))
         trails.append(pieces)
     clock = ax.text(0.02, 0.97, "", transform=ax.transAxes, va="top", fontsize=9,
@@ -300,13 +330,22 @@ def animate(result: Any, path: str, *, fps: int = 20, speed: float = 1.0,
             x, y, th = t["x"][i], t["y"][i], t["theta"][i]
             r = body.get_radius()
             body.center = (x, y)
-            body.set_facecolor(colours.get(t["mode"][i], "#ffffff"))
+            body.set_facecolor(robot_colour(index.get(name, 0)) if fleet
+                               else colours.get(t["mode"][i], "#ffffff"))
             heading.set_data([x, x + 1.4 * r * np.cos(th)], [y, y + 1.4 * r * np.sin(th)])
             for s0, e0, line in pieces:
                 stop = min(e0, i + 1)
                 line.set_data(t["x"][s0:stop], t["y"][s0:stop]) if stop > s0 else line.set_data([], [])
                 artists.append(line)
             artists += [body, heading]
+        for track, patch in movers:
+            xy = track["samples"]
+            i = max(0, min(int(np.searchsorted(xy[:, 0], now, side="right")) - 1, len(xy) - 1))
+            if isinstance(patch, Polygon):
+                patch.set_xy(_forklift_corners(xy[i, 1], xy[i, 2], xy[i, 3], track["size"]))
+            else:
+                patch.center = (xy[i, 1], xy[i, 2])
+            artists.append(patch)
         clock.set_text(f"t = {now:.1f} s")
         return artists
 

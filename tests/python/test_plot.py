@@ -99,6 +99,29 @@ def test_animate_writes_a_gif(tmp_path):
         assert im.n_frames == frames == 8
 
 
+def test_animate_a_fleet_with_people_and_forklifts_moving(tmp_path):
+    s = floornav.load_scenario(SCENARIOS / "crowd" / "factory_people.yaml", {"sim.t_max": 4})
+    r = floornav.run(s)
+    frames = floornav.animate(r, tmp_path / "fleet.gif", fps=5, speed=4.0, max_frames=4, dpi=40)
+    assert frames == 4
+    pictures = []
+    with Image.open(tmp_path / "fleet.gif") as im:
+        for k in range(im.n_frames):
+            im.seek(k)
+            pictures.append(np.asarray(im.convert("RGB")).astype(int))
+
+    def near(picture, rgb):  # pixels within a GIF palette's rounding of a colour
+        return np.all(np.abs(picture - np.array(rgb)) <= 12, axis=2)
+
+    person = [near(p, (123, 63, 160)) for p in pictures]
+    assert all(m.sum() > 20 for m in person)        # people drawn in every frame ...
+    assert not np.array_equal(person[0], person[-1])  # ... where they walk
+    first_robot = floornav._plot.robot_colour(0)
+    rgb = tuple(int(first_robot[i:i + 2], 16) for i in (1, 3, 5))
+    assert near(pictures[-1], rgb).sum() > 0          # robot amr0 in its colour
+    plt.close("all")
+
+
 def test_animate_refuses_a_run_without_trajectory(tmp_path):
     r = floornav.run(floornav.load_scenario(SCENARIOS / "week7_pocket.yaml",
                                             {"sim.record_trajectory": False}))
