@@ -34,3 +34,16 @@ def test_the_stub_declares_everything_the_extension_has():
     declared |= {t.id for n in tree.body if isinstance(n, ast.Assign) for t in n.targets}
     public = {n for n in dir(_floornav) if not n.startswith("__")}
     assert public - declared == set()
+
+
+def test_the_attributes_the_docs_use_work_without_their_own_import():
+    import subprocess
+    import sys
+
+    # floornav.chapter without `import floornav.chapter`, in a fresh interpreter.
+    code = "import floornav; print(floornav.chapter.factory('hybrid') is not None)"
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert p.stdout.strip() == "True"
+    params = floornav.NavigationParams()
+    assert params.planner.kind == "none" and params.dwa.horizon > 0
+    assert floornav.ParallelEnv and floornav.Box and floornav.Dict
