@@ -61,6 +61,7 @@
 #include "floornav/sensing/obstacle_memory.hpp"
 #include "floornav/sensing/range_sensor.hpp"
 #include "floornav/sim/crowd.hpp"
+#include "floornav/sim/episode_draw.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/goal_rows.hpp"
 #include "floornav/sim/robot_agent.hpp"

@@ -5,6 +5,7 @@
 /// trajectory.html (the replay in a browser), and the colours both use.
 
 #include "floornav/core.hpp"
+#include "floornav/render/frame_raster.hpp"
 #include "floornav/render/palette.hpp"
 #include "floornav/render/trajectory_html.hpp"
 #include "floornav/render/trajectory_svg.hpp"
