@@ -63,6 +63,13 @@ def main() -> int:
                 if target is None or src_mod not in target.parents:
                     errors.append(f"{path.relative_to(root)}: private header \"{inc}\" is not "
                                   f"in src/{mod}/")
+    # Every public module header is named by an umbrella (include/floornav/*.hpp), so that
+    # `#include <floornav/floornav.hpp>` is everything (the consumer test checks the same).
+    umbrellas = "".join(u.read_text() for u in (root / "include" / "floornav").glob("*.hpp"))
+    for header in sorted((root / "include" / "floornav").glob("*/**/*.hpp")):
+        name = header.relative_to(root / "include").as_posix()
+        if f'#include "{name}"' not in umbrellas:
+            errors.append(f"{name} is in no umbrella header (include/floornav/*.hpp)")
     for e in errors:
         print(e)
     if errors:
