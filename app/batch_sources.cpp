@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "bench_cases.hpp"
 #include "floornav/core/input_error.hpp"
+#include "floornav/core/utf8.hpp"
 #include "floornav/io/barn.hpp"
 #include "floornav/io/movingai_map.hpp"
 #include "floornav/io/scenario_file.hpp"
@@ -18,14 +20,29 @@ namespace floornav {
 
 namespace {
 
-/// A case made from a scenario already loaded and checked.
-CaseSource from_cases(std::vector<BatchCase> cases) {
-  auto shared = std::make_shared<std::vector<BatchCase>>(std::move(cases));
-  return {shared->size(), [shared](std::size_t id) { return shared->at(id); }};
-}
+/// The most cases a --grid sweep may have (every one is a scenario loaded from the template).
+constexpr std::size_t kMaxGridCases = 1000000;
+constexpr std::size_t kMaxAxisValues = 100000;  ///< values of one --grid
 
 void add_overrides(SweepHasher& hash, std::span<const std::string> overrides) {
   for (const std::string& o : overrides) hash.add("--set", o);
+}
+
+/// The content of every file `s` was made from (its scenario file, map, map image, people file).
+void add_inputs(SweepHasher& hash, const Scenario& s) {
+  for (const std::string& f : s.input_files) hash.add_content("reads", f);
+}
+
+/// A path named in an output must be UTF-8 (outputs are JSON): a file found in a folder is
+/// checked as command-line arguments are.
+void check_utf8_name(const std::filesystem::path& p, const std::string& where) {
+  const std::string& text = p.native();
+  if (const auto at = first_non_utf8(text))
+    throw InputError(text, where,
+                     fmt::format("the name holds byte 0x{:02x} at position {}, which is not "
+                                 "UTF-8 (names and paths are written to JSON, which holds "
+                                 "nothing else): rename the file",
+                                 static_cast<unsigned char>(text[*at]), *at + 1));
 }
 
 /// The digits in a file name ("world_17.world" -> "17"), or "" (kept as text: a 23-digit number
@@ -47,22 +64,38 @@ bool number_less(const std::string& a, const std::string& b) {
   return a.size() != b.size() ? a.size() < b.size() : a < b;
 }
 
+/// path_N.npy in `barn_paths` for world_N.world.
+std::filesystem::path barn_path_of(const std::filesystem::path& world,
+                                   const std::string& barn_paths) {
+  const std::string n = digits_in(world.filename().string());
+  if (n.empty())
+    throw InputError(world.string(), "",
+                     "--barn-paths: the file name has no number N to find path_N.npy by");
+  return std::filesystem::path(barn_paths) / fmt::format("path_{}.npy", n);
+}
+
 }  // namespace
 
 CaseSource make_file_cases(std::span<const std::string> files,
                            std::span<const std::string> overrides, SweepHasher& hash) {
   hash.add("mode", "files");
   add_overrides(hash, overrides);
-  std::vector<BatchCase> cases;
-  for (const std::string& f : files) {
+  auto list = std::make_shared<const std::vector<std::string>>(files.begin(), files.end());
+  auto sets = std::make_shared<const std::vector<std::string>>(overrides.begin(), overrides.end());
+  auto make = [list, sets](std::size_t id) {
     BatchCase c;
-    c.scenario = load_scenario_file(f, overrides);
-    c.source = f;
-    c.id = cases.size();
-    hash.add_file("scenario", f);
-    cases.push_back(std::move(c));
+    c.scenario = load_scenario_file(list->at(id), *sets);
+    c.source = list->at(id);
+    c.id = id;
+    return c;
+  };
+  // Every file is loaded (and so checked) now, one at a time, for what it reads; none is kept.
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const BatchCase c = make(i);
+    hash.add_file("scenario", (*list)[i]);
+    add_inputs(hash, c.scenario);
   }
-  return from_cases(std::move(cases));
+  return {list->size(), make, true};
 }
 
 CaseSource make_scen_cases(const std::string& template_file, const std::string& scen_file,
@@ -106,7 +139,7 @@ CaseSource make_scen_cases(const std::string& template_file, const std::string& 
   };
   const auto [s0, g0] = pose_of(first);
   std::vector<ScenarioOverride> sets = user_overrides(overrides);
-  sets.push_back({"world.map=" + map_path, scen_file, first_line + " (its map)"});
+  sets.push_back({"world.map=" + map_path, scen_file, first_line + " (its map)", true});
   sets.push_back(
       {fmt::format("world.cell_size={}", cell_size), "", fmt::format("--cell-size {}", cell_size)});
   sets.push_back({fmt::format("robot.start=[{},{},{}]", s0.position.x(), s0.position.y(), s0.theta),
@@ -114,6 +147,7 @@ CaseSource make_scen_cases(const std::string& template_file, const std::string& 
   sets.push_back(
       {fmt::format("goal=[{},{}]", g0.x(), g0.y()), scen_file, first_line + " (its goal)"});
   auto base = std::make_shared<const Scenario>(load_scenario_with_overrides(template_file, sets));
+  add_inputs(hash, *base);
   if (base->is_fleet())
     throw InputError(template_file, "robots", "a .scen template has one robot, not a robots list");
   const OccupancyGrid* grid = base->world->grid();
@@ -138,7 +172,8 @@ CaseSource make_scen_cases(const std::string& template_file, const std::string& 
           fmt::format("{}: {}", e.where == "goal" ? "its goal" : "its start", e.detail));
     }
   }
-  return {rows->size(), [base, rows, cell_size, scen_file, pose_of](std::size_t id) {
+  return {rows->size(),
+          [base, rows, cell_size, scen_file, pose_of](std::size_t id) {
             const MovingAiCase& row = rows->at(id);
             BatchCase c;
             c.scenario = *base;
@@ -150,7 +185,8 @@ CaseSource make_scen_cases(const std::string& template_file, const std::string& 
             c.id = id;
             c.optimal_length = row.optimal_length * cell_size;  // the scen's octile optimum, in m
             return c;
-          }};
+          },
+          true};
 }
 
 CaseSource make_world_cases(const std::string& template_file, const std::string& dir,
@@ -163,9 +199,15 @@ CaseSource make_world_cases(const std::string& template_file, const std::string&
                          ? "is not a directory (--worlds needs a folder of .world/.sdf files)"
                          : "does not exist (--worlds needs a folder of .world/.sdf files)");
   std::vector<std::filesystem::path> worlds;
-  for (const auto& e : std::filesystem::directory_iterator(dir))
-    if (e.path().extension() == ".world" || e.path().extension() == ".sdf")
-      worlds.push_back(e.path());
+  // Every step of the listing is checked: an unreadable folder is the input's fault, said so.
+  std::filesystem::directory_iterator it(dir, ec), end;
+  for (; !ec && it != end; it.increment(ec)) {
+    const std::filesystem::path& p = it->path();
+    if (p.extension() != ".world" && p.extension() != ".sdf") continue;
+    check_utf8_name(p, "--worlds");
+    worlds.push_back(p);
+  }
+  if (ec) throw InputError(dir, "", "cannot be read (--worlds): " + ec.message());
   if (worlds.empty()) throw InputError(dir, "", "no .world or .sdf files in the folder");
   std::sort(worlds.begin(), worlds.end(), [](const auto& a, const auto& b) {
     const std::string na = digits_in(a.filename().string()), nb = digits_in(b.filename().string());
@@ -174,30 +216,32 @@ CaseSource make_world_cases(const std::string& template_file, const std::string&
   hash.add("mode", "worlds");
   add_overrides(hash, overrides);
   hash.add_file("template", template_file);
-  std::vector<BatchCase> cases;
-  for (std::size_t i = 0; i < worlds.size(); ++i) {
-    std::vector<ScenarioOverride> sets = user_overrides(overrides);
-    sets.push_back({"world.map=" + std::filesystem::absolute(worlds[i]).string(),
-                    worlds[i].string(), "--worlds"});
-    hash.add_file("world", worlds[i]);
+  auto list = std::make_shared<const std::vector<std::filesystem::path>>(std::move(worlds));
+  auto sets = std::make_shared<const std::vector<std::string>>(overrides.begin(), overrides.end());
+  auto make = [template_file, barn_paths, list, sets](std::size_t id) {
+    const std::filesystem::path& world = list->at(id);
+    std::vector<ScenarioOverride> o = user_overrides(*sets);
+    o.push_back({"world.map=" + std::filesystem::absolute(world).string(), world.string(),
+                 "--worlds", true});
     BatchCase c;
-    c.scenario = load_scenario_with_overrides(template_file, sets);
-    c.scenario.name = fmt::format("{}-{}", c.scenario.name, worlds[i].stem().string());
-    c.source = worlds[i].string();
-    c.id = i;
+    c.scenario = load_scenario_with_overrides(template_file, o);
+    c.scenario.name = fmt::format("{}-{}", c.scenario.name, world.stem().string());
+    c.source = world.string();
+    c.id = id;
     if (!barn_paths.empty()) {
-      const std::string n = digits_in(worlds[i].filename().string());
-      if (n.empty())
-        throw InputError(worlds[i].string(), "",
-                         "--barn-paths: the file name has no number N to find path_N.npy by");
-      const auto path = std::filesystem::path(barn_paths) / fmt::format("path_{}.npy", n);
-      hash.add_file("barn_path", path);
-      c.optimal_time = barn_optimal_time(load_barn_path(path), c.scenario.robot().start.position,
-                                         c.scenario.robot().goals.back());
+      c.optimal_time =
+          barn_optimal_time(load_barn_path(barn_path_of(world, barn_paths)),
+                            c.scenario.robot().start.position, c.scenario.robot().goals.back());
     }
-    cases.push_back(std::move(c));
+    return c;
+  };
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    hash.add_file("world", (*list)[i]);
+    if (!barn_paths.empty()) hash.add_file("barn_path", barn_path_of((*list)[i], barn_paths));
   }
-  return from_cases(std::move(cases));
+  // What the template reads besides the world (a people_file): the first case's inputs.
+  add_inputs(hash, make(0).scenario);
+  return {list->size(), make, false};
 }
 
 namespace {
@@ -207,6 +251,39 @@ struct GridAxis {
   std::string key;
   std::vector<std::string> values;
 };
+
+/// Why two --grid keys cannot both be swept (the same key, one inside the other, or goal and
+/// goals), or nullopt.
+std::optional<std::string> axes_overlap(const std::string& a, const std::string& b) {
+  if (a == b) return fmt::format("--grid sets '{}'", b);
+  const auto under = [](const std::string& x, const std::string& y) {  // x is inside y
+    return x.size() > y.size() && x.compare(0, y.size(), y) == 0 &&
+           (x[y.size()] == '.' || x[y.size()] == '[');
+  };
+  if (under(a, b) || under(b, a)) return fmt::format("--grid sets '{}', which overlaps '{}'", b, a);
+  const auto last = [](const std::string& k) { return k.substr(k.rfind('.') + 1); };
+  const auto parent = [](const std::string& k) {
+    const auto dot = k.rfind('.');
+    return dot == std::string::npos ? std::string() : k.substr(0, dot);
+  };
+  const std::string la = last(a), lb = last(b);
+  if (parent(a) == parent(b) &&
+      ((la == "goal" && lb == "goals") || (la == "goals" && lb == "goal")))
+    return fmt::format("--grid sets '{}', which replaces '{}'", b, a);
+  return std::nullopt;
+}
+
+/// Whether a --grid on `key` can change which files a case reads (a map, a people file).
+bool names_files(const std::string& key) {
+  for (const char* k : {"world.map", "people_file"}) {
+    const std::string file_key = k;
+    if (key == file_key ||
+        (file_key.size() > key.size() && file_key.compare(0, key.size(), key) == 0 &&
+         file_key[key.size()] == '.'))
+      return true;
+  }
+  return false;
+}
 
 GridAxis parse_grid(const std::string& spec) {
   const std::string where = "--grid " + spec;
@@ -238,7 +315,8 @@ GridAxis parse_grid(const std::string& spec) {
       bad("FROM and TO are numbers and COUNT a whole number, e.g. 0.1:0.5:5");
     }
     if (!std::isfinite(from) || !std::isfinite(to)) bad("FROM and TO must be finite");
-    if (count < 1 || count > 100000) bad("COUNT must be between 1 and 100000");
+    if (count < 1 || count > static_cast<long>(kMaxAxisValues))
+      bad(fmt::format("COUNT must be between 1 and {}", kMaxAxisValues));
     for (long i = 0; i < count; ++i) {
       // Evenly spaced, both ends exact.
       const double v = count == 1       ? from
@@ -253,6 +331,8 @@ GridAxis parse_grid(const std::string& spec) {
       p = rhs.find(',', start);
       const std::string v = rhs.substr(start, p == std::string::npos ? p : p - start);
       if (v.empty()) bad("an empty value in the list");
+      if (axis.values.size() >= kMaxAxisValues)
+        bad(fmt::format("more than {} values", kMaxAxisValues));
       axis.values.push_back(v);
       if (p == std::string::npos) break;
     }
@@ -265,42 +345,72 @@ GridAxis parse_grid(const std::string& spec) {
 CaseSource make_grid_cases(const std::string& template_file, std::span<const std::string> grid,
                            std::span<const std::string> overrides, SweepHasher& hash) {
   if (grid.empty()) throw InputError("", "--grid", "give at least one --grid KEY=VALUES");
-  std::vector<GridAxis> axes;
+  auto axes = std::make_shared<std::vector<GridAxis>>();
   std::size_t count = 1;
   for (const std::string& spec : grid) {
-    axes.push_back(parse_grid(spec));
-    count *= axes.back().values.size();
-    if (count > 1000000)
-      throw InputError("", "--grid " + spec, "the grid has more than 1000000 cases");
+    GridAxis axis = parse_grid(spec);
+    // Two axes on one key (or on a key and a part of it, or on goal and goals, which replace
+    // each other) would have the later silently undo the earlier: refused.
+    for (std::size_t a = 0; a < axes->size(); ++a)
+      if (const auto why = axes_overlap((*axes)[a].key, axis.key))
+        throw InputError("", "--grid " + spec,
+                         fmt::format("{} as --grid {} does, so one would undo the other: give "
+                                     "each key one --grid (with all its values)",
+                                     *why, grid[a]));
+    axes->push_back(std::move(axis));
+    count *= axes->back().values.size();
+    if (count > kMaxGridCases)
+      throw InputError("", "--grid " + spec,
+                       fmt::format("the grid has more than {} cases", kMaxGridCases));
   }
   hash.add("mode", "grid");
   add_overrides(hash, overrides);
   for (const std::string& spec : grid) hash.add("--grid", spec);
   hash.add_file("template", template_file);
-  // Every combination is loaded (and so checked) now; the last axis varies fastest.
-  std::vector<BatchCase> cases;
-  cases.reserve(count);
-  std::vector<std::size_t> at(axes.size(), 0);
-  for (std::size_t id = 0; id < count; ++id) {
-    std::vector<ScenarioOverride> sets = user_overrides(overrides);
+  auto specs = std::make_shared<const std::vector<std::string>>(grid.begin(), grid.end());
+  auto sets = std::make_shared<const std::vector<std::string>>(overrides.begin(), overrides.end());
+  // Case `id`'s value index on every axis: the last axis varies fastest.
+  auto indices = [axes](std::size_t id) {
+    std::vector<std::size_t> at(axes->size(), 0);
+    for (std::size_t a = axes->size(); a-- > 0;) {
+      at[a] = id % (*axes)[a].values.size();
+      id /= (*axes)[a].values.size();
+    }
+    return at;
+  };
+  auto id_of = [axes](const std::vector<std::size_t>& at) {
+    std::size_t id = 0;
+    for (std::size_t a = 0; a < axes->size(); ++a) id = id * (*axes)[a].values.size() + at[a];
+    return id;
+  };
+  auto make = [template_file, axes, specs, sets, indices](std::size_t id) {
+    const std::vector<std::size_t> at = indices(id);
+    std::vector<ScenarioOverride> o = user_overrides(*sets);
     BatchCase c;
     std::string label;
-    for (std::size_t a = 0; a < axes.size(); ++a) {
-      const std::string assignment = axes[a].key + "=" + axes[a].values[at[a]];
-      sets.push_back({assignment, "", "--grid " + grid[a] + " (" + assignment + ")"});
+    for (std::size_t a = 0; a < axes->size(); ++a) {
+      const std::string assignment = (*axes)[a].key + "=" + (*axes)[a].values[at[a]];
+      o.push_back({assignment, "", "--grid " + (*specs)[a] + " (" + assignment + ")"});
       c.swept.push_back(assignment);
       label += (a ? " " : "") + assignment;
     }
-    c.scenario = load_scenario_with_overrides(template_file, sets);
+    c.scenario = load_scenario_with_overrides(template_file, o);
     c.source = template_file + " [" + label + "]";
     c.id = id;
-    cases.push_back(std::move(c));
-    for (std::size_t a = axes.size(); a-- > 0;) {
-      if (++at[a] < axes[a].values.size()) break;
-      at[a] = 0;
+    return c;
+  };
+  // The files the cases read: those of the first case, and, for an axis that names files (a
+  // world.map, a people_file), those of each of its values. Other axes change no file read.
+  add_inputs(hash, make(0).scenario);
+  for (std::size_t a = 0; a < axes->size(); ++a) {
+    if (!names_files((*axes)[a].key)) continue;
+    for (std::size_t v = 1; v < (*axes)[a].values.size(); ++v) {
+      std::vector<std::size_t> at(axes->size(), 0);
+      at[a] = v;
+      add_inputs(hash, make(id_of(at)).scenario);
     }
   }
-  return from_cases(std::move(cases));
+  return {count, make, false};
 }
 
 CaseSource make_floor_cases(const std::string& template_file, int count, std::uint64_t first_seed,
@@ -312,32 +422,31 @@ CaseSource make_floor_cases(const std::string& template_file, int count, std::ui
   hash.add("floors", fmt::format("{}", count));
   hash.add("floor_seed", fmt::format("{}", first_seed));
   hash.add_file("template", template_file);
-  const Scenario base = load_scenario_file(template_file, overrides);
-  std::vector<BatchCase> cases;
-  for (int i = 0; i < count; ++i) {
+  auto base = std::make_shared<const Scenario>(load_scenario_file(template_file, overrides));
+  add_inputs(hash, *base);
+  auto make = [base, first_seed, template_file](std::size_t i) {
     const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
     BenchFloorParams p;
     p.seed = seed;
     auto world = std::make_shared<const World>(make_bench_floor(p));
     // The tour of make_floor_scenario (free start and four goals across the floor) for this seed.
     const Scenario tour = make_floor_scenario(world, 0, static_cast<int>(seed));
-    Scenario s = base;
+    Scenario s = *base;
     s.world = world;
     for (RobotTask& t : s.robots) {
       t.start = tour.robot().start;
       t.goals = tour.robot().goals;
     }
-    s.name = fmt::format("{}-floor{}", base.name, seed);
+    s.name = fmt::format("{}-floor{}", base->name, seed);
     validate_scenario(s, fmt::format("{} (floor {})", template_file, seed));
-    cases.push_back(
-        {std::move(s), fmt::format("floor:{}", seed), static_cast<std::size_t>(i), {}, {}, {}});
-  }
-  return from_cases(std::move(cases));
+    return BatchCase{std::move(s), fmt::format("floor:{}", seed), i, {}, {}, {}};
+  };
+  return {static_cast<std::size_t>(count), make, false};
 }
 
 CaseSource make_shared_floor_cases(const std::string& template_file, int count,
-                                   std::uint64_t first_seed,
-                                   std::span<const std::string> overrides, SweepHasher& hash) {
+                                   std::uint64_t first_seed, std::span<const std::string> overrides,
+                                   SweepHasher& hash) {
   if (count < 1 || count > 100000)
     throw InputError("", "--shared-floors", fmt::format("must be in [1, 100000], got {}", count));
   hash.add("mode", "shared_floors");
@@ -345,22 +454,21 @@ CaseSource make_shared_floor_cases(const std::string& template_file, int count,
   hash.add("shared_floors", fmt::format("{}", count));
   hash.add("floor_seed", fmt::format("{}", first_seed));
   hash.add_file("template", template_file);
-  const Scenario base = load_scenario_file(template_file, overrides);
-  std::vector<BatchCase> cases;
-  for (int i = 0; i < count; ++i) {
+  auto base = std::make_shared<const Scenario>(load_scenario_file(template_file, overrides));
+  add_inputs(hash, *base);
+  auto make = [base, first_seed, template_file](std::size_t i) {
     const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
     SharedFloorOptions o;
-    o.robot = &base.robot();
-    o.t_max = base.sim.t_max;
+    o.robot = &base->robot();
+    o.t_max = base->sim.t_max;
     Scenario s = make_shared_floor(seed, o);
-    s.sim = base.sim;
+    s.sim = base->sim;
     s.sim.seed = seed;
-    s.name = fmt::format("{}-shared{}", base.name, seed);
+    s.name = fmt::format("{}-shared{}", base->name, seed);
     validate_scenario(s, fmt::format("{} (shared floor {})", template_file, seed));
-    cases.push_back({std::move(s), fmt::format("shared_floor:{}", seed),
-                     static_cast<std::size_t>(i), {}, {}, {}});
-  }
-  return from_cases(std::move(cases));
+    return BatchCase{std::move(s), fmt::format("shared_floor:{}", seed), i, {}, {}, {}};
+  };
+  return {static_cast<std::size_t>(count), make, false};
 }
 
 }  // namespace floornav

@@ -1,8 +1,11 @@
 #pragma once
 // Where a batch's cases come from: scenario files, the rows of a MovingAI .scen file, a folder of
-// Gazebo worlds (BARN), or a grid of parameter values over a template. Every case is checked
-// when the source is made (a bad row or value is an error before anything runs); cases are then
-// made one at a time when they run, so that a .scen of a million rows holds no million scenarios.
+// Gazebo worlds (BARN), a grid of parameter values over a template, or generated floors. A source
+// holds no case: each is made when it is needed, so that neither a .scen of a million rows nor a
+// grid of 100 values over a 4-Mcell map holds more than the cases being run, and --limit and
+// --shard make only what they select. A source's sweep id fingerprints every input of every case
+// (the template, the --set and --grid values, the files each case reads: maps, their images,
+// people files, worlds), whatever --limit and --shard select.
 
 #include <cstdint>
 #include <functional>
@@ -15,10 +18,13 @@
 
 namespace floornav {
 
-/// `count` cases, numbered 0..count-1; `make(id)` makes one.
+/// `count` cases, numbered 0..count-1; `make(id)` makes one (and throws InputError for a bad
+/// one). `checked`: every case was made, and so checked, when the source was made (a few files, a
+/// .scen's rows); otherwise the caller checks the cases it selects before running any.
 struct CaseSource {
   std::size_t count{0};
   std::function<BatchCase(std::size_t id)> make;
+  bool checked{false};
 };
 
 /// One case per scenario file, each with the --set values `overrides`.

@@ -15,6 +15,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "batch_sources.hpp"
@@ -22,6 +23,7 @@
 #include "demo_scenario.hpp"
 #include "floornav/core/input_error.hpp"
 #include "floornav/core/output_error.hpp"
+#include "floornav/core/utf8.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/provenance.hpp"
 #include "floornav/io/scenario_file.hpp"
@@ -174,7 +176,7 @@ std::pair<int, int> parse_shard(const std::string& text) {
   char slash = 0;
   std::istringstream ss(text);
   if (text.empty() || !(ss >> k >> slash >> n) || slash != '/' || n < 1 || k < 1 || k > n ||
-      !ss.eof() || n > 1000000)
+      !ss.eof() || n > kMaxShards)
     throw InputError("", "--shard " + text, "expected K/N with 1 <= K <= N (e.g. --shard 2/16)");
   return {k, n};
 }
@@ -264,6 +266,10 @@ int run_sweep(const CaseSource& source, SweepHasher& hash, const BatchRequest& r
     opt.mcap_dir = rq.mcap[1];
   }
   CaseList list{shard_ids(count, k, n), source.make};
+  // Every case that will run is checked before any runs (one at a time, none kept: a bad value
+  // is an error before the output folder exists). A source that made every case has checked.
+  if (!source.checked)
+    for (const std::size_t id : list.ids) source.make(id);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   const BatchOutcome o = run_batch(list, opt);
@@ -280,6 +286,20 @@ int run_sweep(const CaseSource& source, SweepHasher& hash, const BatchRequest& r
       rate("success_rate"), rate("collision_rate"), rate("timeout_rate"), rate("stuck_rate"),
       rq.out);
   return o.interrupted ? 130 : 0;
+}
+
+/// Refuses a command-line argument that is not UTF-8 (a path, a --set, a --grid value): every one
+/// of them can reach a JSON output, which holds UTF-8 only.
+void check_arguments_are_utf8(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (const auto at = first_non_utf8(arg))
+      throw InputError("", fmt::format("argument {} '{}'", i, arg),
+                       fmt::format("byte 0x{:02x} at position {} is not UTF-8: floornav reads "
+                                   "text as UTF-8 (names and paths are written to JSON, which "
+                                   "holds nothing else)",
+                                   static_cast<unsigned char>(arg[*at]), *at + 1));
+  }
 }
 
 /// The name of the subcommand a parse error is about, for the hint.
@@ -411,6 +431,7 @@ int main(int argc, char** argv) {
   }
 
   try {
+    check_arguments_are_utf8(argc, argv);
     if (*run) {
       run_rq.file = run_file;
       run_rq.optimum = !run_no_optimum;

@@ -32,9 +32,14 @@ void SweepHasher::add(std::string_view label, std::string_view text) {
 }
 
 void SweepHasher::add_file(std::string_view label, const std::filesystem::path& path) {
+  add(label, path.string());
+  add_content(label, path);
+}
+
+void SweepHasher::add_content(std::string_view label, const std::filesystem::path& path) {
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
-  add(label, path.string());
+  update(fmt::format("{}:{}:", label.size(), label));
   update(fmt::format("{}:", ec ? 0 : size));
   std::ifstream in(path, std::ios::binary);
   std::array<char, 1 << 16> buffer{};

@@ -21,6 +21,10 @@ class SweepHasher {
   void add(std::string_view label, std::string_view text);
   /// Adds a file's name as given and its whole content (read in pieces).
   void add_file(std::string_view label, const std::filesystem::path& path);
+  /// Adds a file's whole content, not its name: for files a scenario names (a map, its image, a
+  /// people_file), whose paths differ from machine to machine while the scenario's text, which
+  /// names them, is hashed already.
+  void add_content(std::string_view label, const std::filesystem::path& path);
   /// The first 16 hex digits of the SHA-256 (64 bits: enough to tell sweeps apart).
   std::string id();
 

@@ -11,6 +11,7 @@
 
 #include "bindings.hpp"
 #include "floornav/core/input_error.hpp"
+#include "floornav/core/output_error.hpp"
 #include "floornav/io/scenario_file.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "py_controller.hpp"
@@ -166,6 +167,9 @@ void bind_scenario(py::module_& m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const OutputError& e) {
+      // An output that cannot be written is the system's error, not the input's: OSError.
+      PyErr_SetString(PyExc_OSError, e.what());
     } catch (const InputError& e) {
       const std::string line = std::string(kCliPrefix) + e.what();
       py::object exc = g_input_error(line);

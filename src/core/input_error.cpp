@@ -2,33 +2,10 @@
 
 #include <cstddef>
 
+#include "floornav/core/utf8.hpp"
+
 namespace floornav {
 namespace {
-
-/// The length of the well-formed UTF-8 sequence of 2 to 4 bytes at `s[i]`, or 0.
-std::size_t utf8_length(const std::string& s, std::size_t i) {
-  const auto b = [&](std::size_t k) { return static_cast<unsigned char>(s[i + k]); };
-  const unsigned char lead = b(0);
-  std::size_t n = 0;
-  unsigned char lo = 0x80, hi = 0xbf;  // the allowed range of the second byte
-  if (lead >= 0xc2 && lead <= 0xdf) {
-    n = 2;
-  } else if (lead >= 0xe0 && lead <= 0xef) {
-    n = 3;
-    if (lead == 0xe0) lo = 0xa0;  // no overlong forms
-    if (lead == 0xed) hi = 0x9f;  // no surrogates
-  } else if (lead >= 0xf0 && lead <= 0xf4) {
-    n = 4;
-    if (lead == 0xf0) lo = 0x90;
-    if (lead == 0xf4) hi = 0x8f;  // nothing above U+10FFFF
-  } else {
-    return 0;
-  }
-  if (i + n > s.size() || b(1) < lo || b(1) > hi) return 0;
-  for (std::size_t k = 2; k < n; ++k)
-    if (b(k) < 0x80 || b(k) > 0xbf) return 0;
-  return n;
-}
 
 /// `s` with control characters and bytes that are not UTF-8 spelled as escapes.
 std::string one_line(const std::string& s) {
@@ -38,7 +15,7 @@ std::string one_line(const std::string& s) {
   for (std::size_t i = 0; i < s.size();) {
     const auto u = static_cast<unsigned char>(s[i]);
     if (u >= 0x80) {
-      if (const std::size_t n = utf8_length(s, i); n > 0) {
+      if (const std::size_t n = utf8_sequence_length(s, i); n > 0) {
         out.append(s, i, n);
         i += n;
         continue;

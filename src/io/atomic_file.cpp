@@ -3,12 +3,14 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <string>
 #include <system_error>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/core/output_error.hpp"
 
 namespace floornav {
@@ -58,9 +60,16 @@ void write_file_atomically(
   if (fd < 0) throw_cannot_write(path, errno);
 
   int error = 0;  // the first failure; later pieces are skipped
-  produce([&](std::string_view piece) {
-    if (error == 0) error = write_all(fd, piece);
-  });
+  try {
+    produce([&](std::string_view piece) {
+      if (error == 0) error = write_all(fd, piece);
+    });
+  } catch (...) {  // the producer failed: no half file is left, and the error is its own
+    ::close(fd);
+    std::error_code ignored;
+    std::filesystem::remove(temp, ignored);
+    throw;
+  }
   if (::close(fd) != 0 && error == 0) error = errno;  // NFS and quotas report late, at close
   if (error == 0) {
     std::error_code ec;
@@ -81,43 +90,59 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 void ensure_directory(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) throw OutputError(dir.string(), "cannot create directory: " + ec.message());
+  if (ec)
+    throw OutputError(dir.string(), "cannot write: cannot create the folder: " + ec.message());
   if (!std::filesystem::is_directory(dir, ec))
-    throw OutputError(dir.string(), "cannot create directory: it exists and is not a directory");
+    throw OutputError(dir.string(), "cannot write: it exists and is not a folder");
 }
 
-OutputFolder::OutputFolder(std::filesystem::path dir) : dir_(dir.lexically_normal()) {
+OutputFolder::OutputFolder(std::filesystem::path dir, std::vector<std::string> owned)
+    : dir_(dir.lexically_normal()), owned_(std::move(owned)) {
   if (dir_.has_filename() == false && dir_.has_parent_path()) dir_ = dir_.parent_path();
   if (dir_.empty() || dir_ == "." || dir_ == "..")
     throw InputError(dir.string(), "", "cannot write outputs there: name a folder below it");
   std::error_code ec;
   if (std::filesystem::exists(dir_, ec) && !std::filesystem::is_directory(dir_, ec))
-    throw InputError(dir_.string(), "", "cannot write outputs: it exists and is not a directory");
+    throw OutputError(dir_.string(), "cannot write: it exists and is not a folder");
 }
 
 OutputFolder::~OutputFolder() {
-  if (staging_.empty()) return;
   std::error_code ignored;
-  std::filesystem::remove_all(staging_, ignored);
+  if (!staging_.empty()) std::filesystem::remove_all(staging_, ignored);
+  if (committed_) return;
+  // Folders this set created and left empty go too (remove() takes only empty folders).
+  for (auto it = created_.rbegin(); it != created_.rend(); ++it)
+    std::filesystem::remove(*it, ignored);
 }
 
 void OutputFolder::stage() {
   if (!staging_.empty()) return;
-  const std::filesystem::path parent = dir_.has_parent_path() ? dir_.parent_path() : ".";
-  ensure_directory(parent);
-  std::string name(1, '.');
-  name += dir_.filename().string();
-  name += ".staging.";
+  // The folder and any missing parents, each remembered: a failure removes them again.
+  std::vector<std::filesystem::path> missing;
+  std::error_code ec;
+  for (std::filesystem::path p = dir_; !p.empty() && !std::filesystem::exists(p, ec);
+       p = p.parent_path()) {
+    missing.push_back(p);
+    if (!p.has_parent_path() || p.parent_path() == p) break;
+  }
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+    if (!std::filesystem::create_directory(*it, ec) && ec)
+      throw OutputError(it->string(), "cannot write: cannot create the folder: " + ec.message());
+    created_.push_back(*it);
+  }
+  if (!std::filesystem::is_directory(dir_, ec))
+    throw OutputError(dir_.string(), "cannot write: it exists and is not a folder");
+  // Staged inside the folder itself (never in its parent, which may be read-only, another
+  // filesystem, or not the user's): each file is renamed into place within one folder.
+  std::string name = ".floornav-staging.";
   name += std::to_string(static_cast<long>(::getpid()));
   name += '.';
   name += std::to_string(g_temp_counter.fetch_add(1, std::memory_order_relaxed));
-  staging_ = parent / name;
-  std::error_code ec;
-  if (!std::filesystem::create_directory(staging_, ec)) {
-    const std::string reason = ec ? ec.message() : "it exists";
-    staging_.clear();
-    throw OutputError(parent.string(), "cannot create a staging folder: " + reason);
-  }
+  const std::filesystem::path staging = dir_ / name;
+  if (!std::filesystem::create_directory(staging, ec))
+    throw OutputError(dir_.string(), "cannot write: cannot create a staging folder in it: " +
+                                         (ec ? ec.message() : "it exists"));
+  staging_ = staging;
 }
 
 void OutputFolder::write(const std::string& name, std::string_view content) {
@@ -139,24 +164,18 @@ void OutputFolder::write(
 
 void OutputFolder::commit() {
   if (committed_) return;
-  committed_ = true;
-  if (staging_.empty()) {  // nothing written: just the folder
-    ensure_directory(dir_);
-    return;
-  }
+  stage();  // also for a set of no files: the folder exists afterwards
   std::error_code ec;
-  if (!std::filesystem::exists(dir_, ec)) {
-    std::filesystem::rename(staging_, dir_, ec);  // the whole set in one step
-    if (!ec) {
-      staging_.clear();
-      return;
-    }
-  }
-  ensure_directory(dir_);
   for (const std::string& name : names_) {
     std::filesystem::rename(staging_ / name, dir_ / name, ec);
     if (ec) throw OutputError((dir_ / name).string(), "cannot write: " + ec.message());
   }
+  committed_ = true;
+  // What an earlier output of the same kind left and this one does not replace (its replay, its
+  // crowd.csv) would sit beside the new files as if it belonged to them: removed.
+  for (const std::string& name : owned_)
+    if (std::find(names_.begin(), names_.end(), name) == names_.end())
+      std::filesystem::remove(dir_ / name, ec);
   std::filesystem::remove_all(staging_, ec);
   staging_.clear();
 }

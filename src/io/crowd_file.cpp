@@ -2,8 +2,14 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
-#include <sstream>
+#include <yaml-cpp/depthguard.h>
+
+#include <array>
+#include <initializer_list>
+#include <set>
+
+#include "input_file.hpp"
+#include "utf8_input.hpp"
 
 namespace floornav::io_detail {
 
@@ -14,6 +20,8 @@ namespace {
 constexpr std::size_t kMaxMovers = 10000;
 constexpr std::size_t kMaxRoutePoints = 1000;
 constexpr std::size_t kMaxAgentFileBytes = 4u << 20;
+// All goals of all people of a file (YAML aliases can repeat a goal list without repeating text).
+constexpr std::size_t kMaxWaypointsInAll = 1000000;
 
 double read_positive(const std::string& file, MapReader& r, const char* key, double fallback) {
   if (!r.has(key)) return fallback;
@@ -90,88 +98,138 @@ ForkliftSpec read_forklift(const std::string& file, const YAML::Node& item, cons
   return f;
 }
 
-// A required child of a HuNavSim map.
-YAML::Node child(const std::string& file, const YAML::Node& n, const std::string& path,
-                 const std::string& key) {
-  if (!n.IsMap()) fail(file, n, path, "expected a mapping");
-  const YAML::Node c = n[key];
-  if (!c) fail(file, n, path.empty() ? key : path + "." + key, "missing");
-  return c;
+// The keys of a HuNavSim file that floornav reads or knowingly leaves out (HuNavSim's behaviour
+// models, its ids and skins: every agent walks by the social force model here). Any other key is
+// refused as unknown, as a scenario's are: a misspelt `max_vell` is never a silent default.
+constexpr std::array kIgnoredAgentKeys = {"id", "skin", "group_id", "behavior"};
+constexpr std::array kBehaviourKeys = {"type",
+                                       "configuration",
+                                       "duration",
+                                       "once",
+                                       "vel",
+                                       "dist",
+                                       "goal_force_factor",
+                                       "obstacle_force_factor",
+                                       "social_force_factor",
+                                       "other_force_factor"};
+
+Vec2 read_xy(const std::string& file, MapReader& r, std::initializer_list<const char*> ignored) {
+  for (const char* key : ignored) r.has(key);  // HuNavSim's height and heading: not used
+  const Vec2 p(read_double(file, r.require("x", "m"), r.path_of("x")),
+               read_double(file, r.require("y", "m"), r.path_of("y")));
+  r.finish();
+  return p;
+}
+
+double read_agent_positive(const std::string& file, MapReader& r, const char* key,
+                           double fallback) {
+  if (!r.has(key)) return fallback;
+  const YAML::Node n = r.get(key);
+  const double v = read_double(file, n, r.path_of(key));
+  if (!(v > 0.0)) fail(file, n, r.path_of(key), "must be positive");
+  return v;
+}
+
+PersonSpec read_agent(const std::string& file, MapReader& params, const std::string& name,
+                      std::size_t& waypoints_in_all) {
+  MapReader a = params.sub(name);
+  for (const char* key : kIgnoredAgentKeys) a.has(key);
+  if (a.has("behavior")) {
+    MapReader b = a.sub("behavior");
+    for (const char* key : kBehaviourKeys) b.has(key);
+    b.finish();
+  }
+  PersonSpec p;
+  p.name = name;
+  {
+    MapReader pose = a.sub("init_pose");
+    p.start = read_xy(file, pose, {"z", "h"});
+  }
+  p.speed = read_agent_positive(file, a, "max_vel", p.speed);
+  p.radius = read_agent_positive(file, a, "radius", p.radius);
+  p.goal_radius = read_agent_positive(file, a, "goal_radius", p.goal_radius);
+  if (a.has("cyclic_goals"))
+    p.cyclic = read_bool(file, a.get("cyclic_goals"), a.path_of("cyclic_goals"));
+  const YAML::Node goals = a.require("goals", "a list of goal names");
+  const std::string goals_key = a.path_of("goals");
+  if (!goals.IsSequence()) fail(file, goals, goals_key, "expected a list of goal names");
+  if (goals.size() == 0) fail(file, goals, goals_key, "needs at least one goal");
+  if (goals.size() > kMaxRoutePoints)
+    fail(file, goals, goals_key,
+         fmt::format("at most {} goals per agent, got {}", kMaxRoutePoints, goals.size()));
+  if ((waypoints_in_all += goals.size()) > kMaxWaypointsInAll)
+    fail(
+        file, goals, goals_key,
+        fmt::format("the people have more than {} goals and waypoints in all", kMaxWaypointsInAll));
+  for (std::size_t k = 0; k < goals.size(); ++k) {
+    const std::string key = fmt::format("{}[{}]", goals_key, k);
+    const std::string g = read_string(file, goals[k], key);
+    if (!a.has(g)) fail(file, goals[k], key, fmt::format("no goal '{}' in {}", g, name));
+    MapReader goal = a.sub(g);
+    p.waypoints.push_back(read_xy(file, goal, {"z", "h"}));
+  }
+  a.finish();
+  return p;
 }
 
 }  // namespace
 
 std::vector<PersonSpec> load_hunav_agents(const std::filesystem::path& path) {
   const std::string file = path.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(file, "",
-                     std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
-  if (std::filesystem::file_size(path, ec) > kMaxAgentFileBytes)
-    throw InputError(file, "", "too large for an agent file");
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
+  // Named for what it is (missing, unreadable, a folder, a FIFO, a device, too large).
+  const std::string text = read_input_file(path, "HuNavSim agent", kMaxAgentFileBytes);
+  if (text.find('\0') != std::string::npos)
+    throw InputError(file, "", "binary data, not a HuNavSim agent file (YAML)");
+  check_utf8_text(text, file);
   YAML::Node root;
   try {
-    root = YAML::Load(text.str());
+    const OneDocument doc = load_one_document(text);
+    if (doc.second)
+      throw InputError(file, fmt::format("line {}", doc.second->line + 1),
+                       "a second YAML document: an agent file is one document");
+    root.reset(doc.node);
+  } catch (const YAML::DeepRecursion& e) {
+    throw InputError(file, fmt::format("line {}", e.mark.line + 1),
+                     "not valid YAML: the text nests too deeply");
   } catch (const YAML::Exception& e) {
     throw InputError(file, fmt::format("line {}", e.mark.line + 1), "not valid YAML: " + e.msg);
   }
-  const std::string base = "hunav_loader.ros__parameters";
-  const YAML::Node params =
-      child(file, child(file, root, "", "hunav_loader"), "hunav_loader", "ros__parameters");
-  const YAML::Node names = child(file, params, base, "agents");
-  checked_list(file, names, base + ".agents");
+  if (!root.IsDefined() || root.IsNull())
+    throw InputError(file, "", "the file is empty (expected hunav_loader: ros__parameters: ...)");
+  MapReader top(file, root, "");
+  MapReader loader = top.sub("hunav_loader");
+  top.finish();
+  MapReader params = loader.sub("ros__parameters");
+  loader.finish();
+  for (const char* key : {"map", "publish_people"}) params.has(key);  // for the ROS node only
+  const YAML::Node names = params.require("agents", "a list of agent names");
+  checked_list(file, names, params.path_of("agents"));
   std::vector<PersonSpec> people;
+  std::size_t waypoints_in_all = 0;
+  std::set<std::string> seen;
   for (std::size_t i = 0; i < names.size(); ++i) {
-    const std::string name = read_string(file, names[i], fmt::format("{}.agents[{}]", base, i));
-    const std::string at = base + "." + name;
-    const YAML::Node agent = child(file, params, base, name);
-    PersonSpec p;
-    p.name = name;
-    const YAML::Node pose = child(file, agent, at, "init_pose");
-    p.start =
-        Vec2(read_double(file, child(file, pose, at + ".init_pose", "x"), at + ".init_pose.x"),
-             read_double(file, child(file, pose, at + ".init_pose", "y"), at + ".init_pose.y"));
-    auto positive = [&](const char* key, double& field) {
-      const YAML::Node n = agent[key];
-      if (!n) return;
-      field = read_double(file, n, at + "." + key);
-      if (!(field > 0.0)) fail(file, n, at + "." + key, "must be positive");
-    };
-    positive("max_vel", p.speed);
-    positive("radius", p.radius);
-    positive("goal_radius", p.goal_radius);
-    if (agent["cyclic_goals"])
-      p.cyclic = read_bool(file, agent["cyclic_goals"], at + ".cyclic_goals");
-    const YAML::Node goals = child(file, agent, at, "goals");
-    checked_list(file, goals, at + ".goals");
-    if (goals.size() == 0) fail(file, goals, at + ".goals", "needs at least one goal");
-    for (std::size_t k = 0; k < goals.size(); ++k) {
-      const std::string g = read_string(file, goals[k], fmt::format("{}.goals[{}]", at, k));
-      const YAML::Node goal = agent[g];
-      if (!goal)
-        fail(file, goals[k], fmt::format("{}.goals[{}]", at, k),
-             fmt::format("no goal '{}' in {}", g, name));
-      p.waypoints.emplace_back(
-          read_double(file, child(file, goal, at + "." + g, "x"), at + "." + g + ".x"),
-          read_double(file, child(file, goal, at + "." + g, "y"), at + "." + g + ".y"));
-    }
-    people.push_back(std::move(p));
+    const std::string key = fmt::format("{}[{}]", params.path_of("agents"), i);
+    const std::string name = read_string(file, names[i], key);
+    if (!seen.insert(name).second)
+      fail(file, names[i], key, fmt::format("{} is listed twice", quote_input(name)));
+    if (!params.has(name))
+      fail(file, names[i], key, fmt::format("no section {} for this agent", quote_input(name)));
+    people.push_back(read_agent(file, params, name, waypoints_in_all));
   }
+  params.finish();
   return people;
 }
 
 void read_crowd(const std::string& file, MapReader& top, const std::filesystem::path& origin,
-                CrowdSpec& crowd) {
+                CrowdSpec& crowd, std::vector<std::string>& files_read) {
   if (top.has("people_file")) {
     const YAML::Node n = top.get("people_file");
     std::filesystem::path agents = read_string(file, n, "people_file");
+    if (agents.empty()) fail(file, n, "people_file", "is empty (a path to a HuNavSim agent file)");
     if (agents.is_relative()) agents = origin.parent_path() / agents;
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(agents, ec))
-      fail(file, n, "people_file", fmt::format("no such file: {}", agents.string()));
+    if (auto problem = input_file_problem(agents, "HuNavSim agent", kMaxAgentFileBytes))
+      fail(file, n, "people_file", fmt::format("'{}' {}", agents.string(), *problem));
+    files_read.push_back(agents.string());
     crowd.people = load_hunav_agents(agents);
   }
   if (top.has("people")) {

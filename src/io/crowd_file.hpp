@@ -3,8 +3,9 @@
 // `forklifts:`. Private to the io library.
 
 #include <filesystem>
-
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "floornav/scenario/random_people.hpp"
 #include "floornav/scenario/scenario.hpp"
@@ -14,9 +15,9 @@
 namespace floornav::io_detail {
 
 /// Reads the top-level crowd keys of a scenario (if present) into `crowd`; paths are relative to
-/// the scenario file `origin`.
+/// the scenario file `origin`. A people_file read is appended to `files_read`.
 void read_crowd(const std::string& file, MapReader& top, const std::filesystem::path& origin,
-                CrowdSpec& crowd);
+                CrowdSpec& crowd, std::vector<std::string>& files_read);
 
 /// The `random_people:` section, if given: its keys read and checked (ranges, units).
 std::optional<RandomPeopleSpec> read_random_people(const std::string& file, MapReader& top);
@@ -30,8 +31,10 @@ void add_random_people(const std::string& file, const YAML::Node& root,
 /// The people of a HuNavSim agent file (a ROS 2 parameter file, `hunav_loader:
 /// ros__parameters: agents: [...]`): each agent's init_pose, goals (in order), max_vel as the
 /// walking speed, radius, goal_radius and cyclic_goals. HuNavSim's behaviours (curious, scared,
-/// ...) are not modelled: every agent walks by the social force model. Errors name the file and
-/// the key.
+/// ...) are not modelled: every agent walks by the social force model. Read as strictly as a
+/// scenario: one YAML document, every key known (HuNavSim's own that floornav does not use, such
+/// as `behavior`, are known), no key twice, every agent listed once, at most 1000 goals per agent.
+/// Errors name the file and the key.
 std::vector<PersonSpec> load_hunav_agents(const std::filesystem::path& path);
 
 }  // namespace floornav::io_detail

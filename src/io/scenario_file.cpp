@@ -21,6 +21,7 @@
 #include "floornav/scenario/presets.hpp"
 #include "floornav/scenario/validate.hpp"
 #include "input_file.hpp"
+#include "utf8_input.hpp"
 #include "world_map.hpp"
 #include "yaml_reader.hpp"
 
@@ -105,16 +106,22 @@ YAML::Node shallow_copy(const YAML::Node& n) {
 void apply_override(YAML::Node& root, const ScenarioOverride& o, std::vector<YAML::Node>& keep) {
   const std::string& assignment = o.assignment;
   auto bad = [&](const std::string& what) { throw InputError(o.file, o.where, what); };
+  io_detail::check_utf8_value(assignment, o.file, o.where);
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0) bad("expected KEY=VALUE");
   const std::string key = assignment.substr(0, eq);
   const std::string text = assignment.substr(eq + 1);
   YAML::Node value;
-  try {
-    value.reset(parse_yaml(text, o.file, o.where));
+  if (o.text) {
+    value.reset(YAML::Node(text));  // a string node: never parsed, so nothing in it is syntax
     keep.push_back(value);
-  } catch (const InputError& e) {
-    bad(fmt::format("cannot read value {}: {}", quote_input(text), e.detail));
+  } else {
+    try {
+      value.reset(parse_yaml(text, o.file, o.where));
+      keep.push_back(value);
+    } catch (const InputError& e) {
+      bad(fmt::format("cannot read value {}: {}", quote_input(text), e.detail));
+    }
   }
   std::vector<std::string> parts;
   std::stringstream ss(key);
@@ -586,8 +593,8 @@ void read_world(const std::string& file, MapReader& top, const std::filesystem::
   }
   if (map) {
     const std::size_t circles = desc.circles.size(), polygons = desc.polygons.size();
-    desc.grid = io_detail::load_world_map(*map, options, desc, file,
-                                          io_detail::where_of(map_node, "world.map"));
+    desc.grid = io_detail::load_world_map(
+        *map, options, desc, file, io_detail::where_of(map_node, "world.map"), s.input_files);
     std::error_code ec;
     const auto absolute = std::filesystem::absolute(*map, ec);
     source.path = (ec ? *map : absolute).lexically_normal().string();
@@ -645,7 +652,7 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
   WorldDesc desc;
   top.require("world", "a section world: {bounds: [xmin, ymin, xmax, ymax]}");
   read_world(file, top, origin, s, desc);
-  io_detail::read_crowd(file, top, origin, s.crowd);
+  io_detail::read_crowd(file, top, origin, s.crowd, s.input_files);
   const std::optional<RandomPeopleSpec> random_people = io_detail::read_random_people(file, top);
   top.finish();
   s.world = std::make_shared<const World>(std::move(desc));
@@ -701,6 +708,9 @@ Scenario load_scenario_text_with_overrides(std::string_view yaml,
                                            const std::filesystem::path& origin,
                                            std::span<const ScenarioOverride> overrides) {
   const std::string file = origin.string();
+  // Names and paths go to JSON outputs: the file's name and its text are UTF-8 or refused.
+  io_detail::check_utf8_path(origin, file, "");
+  io_detail::check_utf8_text(yaml, file);
   YAML::Node root = parse_yaml(std::string(yaml), file, "");
   if (root.IsDefined() && !root.IsNull() && !root.IsMap())
     throw InputError(file, "line 1", "a scenario is a mapping of sections (world, robot, goal)");
@@ -733,7 +743,9 @@ Scenario load_scenario_with_overrides(const std::filesystem::path& path,
       io_detail::read_input_file(path, "scenario", io_detail::kMaxScenarioBytes);
   if (text.find('\0') != std::string::npos)
     throw InputError(path.string(), "", "binary data, not a YAML scenario");
-  return load_scenario_text_with_overrides(text, path, overrides);
+  Scenario s = load_scenario_text_with_overrides(text, path, overrides);
+  s.input_files.insert(s.input_files.begin(), path.string());
+  return s;
 }
 
 Scenario load_scenario_file(const std::filesystem::path& path,

@@ -8,21 +8,13 @@
 #include <string_view>
 #include <vector>
 
+#include "csv_field.hpp"
+
 namespace floornav {
 
 namespace {
 
-/// A CSV field: quoted (with doubled quotes) only when it holds a separator, quote or newline.
-std::string csv_field(std::string_view text) {
-  if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  out += '"';
-  return out;
-}
+using io_detail::csv_field;
 
 constexpr std::size_t kPiece = 1 << 20;  // bytes handed to a sink at a time
 

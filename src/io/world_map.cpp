@@ -17,17 +17,22 @@ namespace floornav::io_detail {
 std::shared_ptr<const OccupancyGrid> load_world_map(const std::filesystem::path& path,
                                                     const MapOptions& options, WorldDesc& desc,
                                                     const std::string& scenario_file,
-                                                    const std::string& key) {
+                                                    const std::string& key,
+                                                    std::vector<std::string>& files_read) {
   // Named for what it is (missing, a folder, a FIFO, a device) before any reader opens it.
   if (auto problem = input_file_problem(path, "map", std::uint64_t{1} << 40))
     throw InputError(scenario_file, key, fmt::format("map file '{}' {}", path.string(), *problem));
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
+  files_read.push_back(path.string());
   if (ext == ".yaml" || ext == ".yml") {
     RosMapOptions ro;
     ro.unknown = options.unknown_is_occupied ? UnknownPolicy::Occupied : UnknownPolicy::Free;
-    return std::make_shared<const OccupancyGrid>(load_ros_map(path, ro));
+    std::filesystem::path image;
+    auto grid = std::make_shared<const OccupancyGrid>(load_ros_map(path, ro, &image));
+    files_read.push_back(image.string());
+    return grid;
   }
   if (ext == ".pgm" || ext == ".png") {
     if (options.cell_size <= 0.0)

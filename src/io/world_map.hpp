@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
@@ -17,11 +18,12 @@ struct MapOptions {
 };
 
 /// Adds what `path` holds to `desc`; returns the occupancy grid if the map is one (the caller
-/// keeps it alive). Throws InputError naming `path` (or `scenario_file` + `key` for a bad
-/// option).
+/// keeps it alive). Appends every file it read (the map, a map yaml's image) to `files_read`.
+/// Throws InputError naming `path` (or `scenario_file` + `key` for a bad option).
 std::shared_ptr<const OccupancyGrid> load_world_map(const std::filesystem::path& path,
                                                     const MapOptions& options, WorldDesc& desc,
                                                     const std::string& scenario_file,
-                                                    const std::string& key);
+                                                    const std::string& key,
+                                                    std::vector<std::string>& files_read);
 
 }  // namespace floornav::io_detail

@@ -13,12 +13,14 @@
 #include <exception>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <set>
 #include <thread>
 
 #include "floornav/core/input_error.hpp"
+#include "floornav/core/output_error.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/provenance.hpp"
 #include "floornav/io/run_mcap.hpp"
@@ -109,6 +111,7 @@ std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
   if (sc.sim.record_trajectory) prepare_outputs(sc, which);
   const std::string stem = (o.pictures_dir / picture_stem(c)).string();
   const auto bag = [&](const auto& write) {
+    ensure_directory(o.mcap_dir);  // made with the first bag: none, no folder
     write_file_atomically(o.mcap_dir / (picture_stem(c) + ".mcap"),
                           [&](const std::function<void(std::string_view)>& sink) { write(sink); });
   };
@@ -118,6 +121,7 @@ std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
     auto f = run_fleet_timed(sc, 1, o.stop, halt);
     if (!f) return std::nullopt;
     if (wants_picture(o.pictures, f->status)) {
+      ensure_directory(o.pictures_dir);
       write_file_atomically(stem + ".svg", render_fleet_svg(sc, *f));
       write_file_atomically(stem + ".html", render_fleet_html(sc, *f));
     }
@@ -132,6 +136,7 @@ std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
   auto r = run_timed(sc, o.stop, halt);
   if (!r) return std::nullopt;
   if (wants_picture(o.pictures, r->status)) {
+    ensure_directory(o.pictures_dir);  // made with the first picture: none, no folder
     write_file_atomically(stem + ".svg", render_trajectory_svg(sc, *r));
     write_file_atomically(stem + ".html", render_trajectory_html(sc, *r));
   }
@@ -151,44 +156,114 @@ std::string sweep_text(const SweepInfo& s, std::size_t shard_cases) {
   return j.dump(2) + "\n";
 }
 
-/// sweep.json of a folder, or nullopt when it has none.
+/// sweep.json of a folder, or nullopt when it has none. Its numbers are bounded before anything
+/// is sized by them (a 90-byte file may claim 10^12 cases).
 std::optional<Json> read_sweep(const std::filesystem::path& dir) {
   const auto path = dir / "sweep.json";
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  if (!std::filesystem::exists(path, ec)) return std::nullopt;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(path.string(), "", "is not a file (a batch folder's sweep.json)");
+  if (std::filesystem::file_size(path, ec) > (1u << 20))
+    throw InputError(path.string(), "", "is larger than the 1 MiB a sweep.json may have");
   std::ifstream in(path);
   Json j = Json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object() || !j.contains("sweep_id") || !j["sweep_id"].is_string() ||
       !j.contains("shard") || !j["shard"].is_number_integer() || !j.contains("shards") ||
       !j["shards"].is_number_integer() || !j.contains("cases") || !j["cases"].is_number_unsigned())
     throw InputError(path.string(), "", "not a sweep.json written by floornav batch");
+  const auto shards = j["shards"].get<std::int64_t>(), shard = j["shard"].get<std::int64_t>();
+  if (shards < 1 || shards > kMaxShards)
+    throw InputError(path.string(), "shards",
+                     fmt::format("{} is not in [1, {}] (not a sweep.json written by floornav "
+                                 "batch)",
+                                 shards, kMaxShards));
+  if (shard < 1 || shard > shards)
+    throw InputError(path.string(), "shard",
+                     fmt::format("{} is not in [1, shards = {}]", shard, shards));
+  if (j["cases"].get<std::uint64_t>() > kMaxSweepCases)
+    throw InputError(path.string(), "cases",
+                     fmt::format("{} is more than the {} cases a sweep may have",
+                                 j["cases"].get<std::uint64_t>(), kMaxSweepCases));
   return j;
 }
 
-/// The lines of a results.jsonl, by case number. A line cut short (an interrupted write) is
-/// skipped when `tolerate_cut` (resume: that case runs again), an error otherwise (merge).
-std::map<std::size_t, Json> read_results(const std::filesystem::path& path, bool tolerate_cut) {
+/// Whether `j` is a finished case's line: its case number and the run's outcome (a line that has
+/// the number but no result, written by hand or cut short, is not a finished case).
+bool is_result_line(const Json& j) {
+  if (!j.is_object() || !j.contains("case") || !j["case"].is_number_unsigned()) return false;
+  const auto status = j.find("status");
+  if (status == j.end() || !status->is_string()) return false;
+  const std::string s = status->get<std::string>();
+  if (s != "reached" && s != "collision" && s != "timeout" && s != "stuck") return false;
+  const auto time = j.find("sim_time");
+  return time != j.end() && time->is_number() && j.contains("source") && j["source"].is_string();
+}
+
+/// The lines of a results.jsonl, by case number. A line that is not a finished case (cut short
+/// by an interrupted write, or without a result) is skipped when `resume` (that case runs again)
+/// and an error otherwise (merge). A case given twice is an error either way: which of the two
+/// is the result?
+std::map<std::size_t, Json> read_results(const std::filesystem::path& path, bool resume) {
   std::map<std::size_t, Json> out;
+  std::map<std::size_t, std::size_t> line_of;
   std::ifstream in(path);
   if (!in) {
-    if (tolerate_cut) return out;
+    if (resume) return out;
     throw InputError(path.string(), "", "cannot be read (is this a batch output folder?)");
   }
   std::string text;
   for (std::size_t n = 1; std::getline(in, text); ++n) {
     if (text.empty()) continue;
     Json j = Json::parse(text, nullptr, false);
-    if (j.is_discarded() || !j.is_object() || !j.contains("case") ||
-        !j["case"].is_number_unsigned()) {
-      if (tolerate_cut) continue;
+    if (j.is_discarded() || !is_result_line(j)) {
+      if (resume) continue;
       throw InputError(path.string(), "line " + std::to_string(n),
-                       "not a result line (cut short, or not written by floornav batch)");
+                       "not a finished case's line (cut short, without a result, or not written "
+                       "by floornav batch)");
     }
     // The case number first: the line itself is moved into the map only after it was read.
     const auto id = j["case"].get<std::size_t>();
+    if (const auto [it, fresh] = line_of.emplace(id, n); !fresh)
+      throw InputError(
+          path.string(), "line " + std::to_string(n),
+          fmt::format("case {} again (also on line {}): a case is in a results file "
+                      "once{}",
+                      id, it->second, resume ? "; leave out --resume to run the sweep again" : ""));
     out[id] = std::move(j);
   }
   return out;
+}
+
+/// Removes the pictures an earlier batch left in `dir` (case-NNNNN-<name>.svg and .html, the
+/// names picture_stem makes), so that a fresh batch's folder shows only its own cases. Nothing
+/// else in the folder is touched.
+void remove_old_pictures(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::vector<std::filesystem::path> old;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const std::string ext = it->path().extension().string();
+    const bool digits = name.size() > 11 && name.compare(0, 5, "case-") == 0 &&
+                        std::all_of(name.begin() + 5, name.begin() + 10,
+                                    [](char c) { return c >= '0' && c <= '9'; });
+    if (digits && (ext == ".svg" || ext == ".html") && it->is_regular_file(ec))
+      old.push_back(it->path());
+  }
+  for (const auto& p : old) std::filesystem::remove(p, ec);
+}
+
+/// How many of the case numbers 0..cases-1 are in shard k of n (every n-th from k - 1).
+std::size_t shard_size(std::size_t cases, int k, int n) {
+  const auto first = static_cast<std::size_t>(k - 1);
+  return cases > first
+             ? (cases - first + static_cast<std::size_t>(n) - 1) / static_cast<std::size_t>(n)
+             : 0;
+}
+
+/// Whether case `id` is one of shard k of n of a sweep of `cases` cases.
+bool in_shard(std::size_t id, std::size_t cases, int k, int n) {
+  return id < cases && id % static_cast<std::size_t>(n) == static_cast<std::size_t>(k - 1);
 }
 
 void draw_progress(std::size_t done, std::size_t total, double elapsed) {
@@ -305,17 +380,26 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
 }
 
 BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
-  ensure_directory(options.out_dir);
-  if (options.pictures != BatchPictures::None) ensure_directory(options.pictures_dir);
-  if (options.mcap != BatchPictures::None) ensure_directory(options.mcap_dir);
   const auto results_path = options.out_dir / "results.jsonl";
   const auto sweep_path = options.out_dir / "sweep.json";
   const std::size_t n = cases.ids.size();
   std::vector<std::optional<Json>> lines(n);
   std::size_t resumed = 0;
+  // The sweep's case count as sweep.json will say: a resumed folder keeps a larger count it had
+  // (a resume with a smaller --limit runs fewer cases, but never drops lines already finished).
+  std::size_t sweep_cases = options.sweep.cases;
+  // Finished lines of this shard outside this call's cases (beyond --limit): kept as they are.
+  std::map<std::size_t, Json> beyond;
   if (options.resume) {
     // Only a folder of this very sweep and shard may be resumed: its lines are kept as they are.
-    if (auto old = read_sweep(options.out_dir)) {
+    const auto old = read_sweep(options.out_dir);
+    std::error_code ec;
+    if (!old && std::filesystem::exists(results_path, ec))
+      throw InputError(options.out_dir.string(), "",
+                       "has a results.jsonl but no sweep.json, so which sweep its lines belong to "
+                       "cannot be checked: give another --out, or leave out --resume to start "
+                       "again");
+    if (old) {
       if ((*old)["sweep_id"] != options.sweep.id || (*old)["shard"] != options.sweep.shard ||
           (*old)["shards"] != options.sweep.shards)
         throw InputError(
@@ -325,16 +409,27 @@ BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
                         (*old)["shard"].get<int>(), (*old)["shards"].get<int>(),
                         (*old)["sweep_id"].get<std::string>(), options.sweep.shard,
                         options.sweep.shards, options.sweep.id));
+      sweep_cases = std::max(sweep_cases, (*old)["cases"].get<std::size_t>());
     }
     std::map<std::size_t, std::size_t> position;  // case id -> index in `ids`
     for (std::size_t i = 0; i < n; ++i) position[cases.ids[i]] = i;
-    for (auto& [id, line] : read_results(results_path, true))
+    for (auto& [id, line] : read_results(results_path, true)) {
       if (auto it = position.find(id); it != position.end()) {
         lines[it->second] = std::move(line);
         ++resumed;
+      } else if (in_shard(id, sweep_cases, options.sweep.shard, options.sweep.shards)) {
+        beyond.emplace(id, std::move(line));
       }
+    }
   }
-  write_file_atomically(sweep_path, sweep_text(options.sweep, n));
+  // Created only now, after every check: bad input leaves no folder behind.
+  ensure_directory(options.out_dir);
+  if (options.pictures != BatchPictures::None && !options.resume)
+    remove_old_pictures(options.pictures_dir);
+  SweepInfo written = options.sweep;
+  written.cases = sweep_cases;
+  write_file_atomically(
+      sweep_path, sweep_text(written, shard_size(sweep_cases, written.shard, written.shards)));
 
   std::vector<std::size_t> todo;
   for (std::size_t i = 0; i < n; ++i)
@@ -343,16 +438,16 @@ BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
   // Lines are appended in case order; a finished case waits until all before it are written.
   // The file is rewritten (atomically) at the end, so resumed files end up identical too.
   // Resumed lines are rewritten first, so that the file never holds a case twice.
-  {
-    std::string kept;
+  write_file_atomically(results_path, [&](const std::function<void(std::string_view)>& sink) {
     for (const auto& l : lines)
-      if (l) kept += l->dump() + "\n";
-    write_file_atomically(results_path, kept);
-  }
-  std::FILE* out = std::fopen(results_path.c_str(), "a");
-  if (!out)
-    throw InputError(results_path.string(), "",
-                     std::string("cannot write: ") + std::strerror(errno));
+      if (l) sink(l->dump() + "\n");
+    for (const auto& [id, l] : beyond) sink(l.dump() + "\n");
+  });
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out_file(std::fopen(results_path.c_str(), "a"),
+                                                           &std::fclose);
+  if (!out_file)
+    throw OutputError(results_path.string(), std::string("cannot write: ") + std::strerror(errno));
+  std::FILE* out = out_file.get();
 
   std::mutex mutex;
   std::condition_variable cv;
@@ -397,6 +492,18 @@ BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
 
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::thread> threads;
+  // Whatever leaves this scope (a writer that throws, an allocation that fails) leaves it with
+  // every worker stopped and joined: an exception never passes a joinable thread (which would
+  // end the process), and the caller's error message is the one printed.
+  struct JoinAll {
+    std::vector<std::thread>& threads;
+    std::atomic<bool>& halt;
+    ~JoinAll() {
+      halt.store(true);
+      for (auto& t : threads)
+        if (t.joinable()) t.join();
+    }
+  } join_all{threads, halt};
   const int workers = std::max(1, std::min<int>(jobs, static_cast<int>(todo.size())));
   for (int k = 0; k < workers && !todo.empty(); ++k) threads.emplace_back(worker);
 
@@ -429,11 +536,12 @@ BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
   // Lines finished out of order before an interruption are kept too.
   for (std::size_t i = written_upto; i < n && write_error.empty(); ++i)
     if (lines[i] && fresh[i]) append(*lines[i]);
-  if (std::fclose(out) != 0 && write_error.empty()) write_error = std::strerror(errno);
+  if (std::fclose(out_file.release()) != 0 && write_error.empty())
+    write_error = std::strerror(errno);
   if (options.progress) std::fprintf(stderr, "\n");
   if (!write_error.empty())
-    throw InputError(results_path.string(), "",
-                     "cannot write: " + write_error + " (the batch stopped; --resume goes on)");
+    throw OutputError(results_path.string(),
+                      "cannot write: " + write_error + " (the batch stopped; --resume goes on)");
   if (failure) std::rethrow_exception(failure);
 
   BatchOutcome outcome;
@@ -445,9 +553,13 @@ BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
     if (l) finished.push_back(*l);
   outcome.completed = finished.size();
   outcome.interrupted = outcome.completed < n;
+  // Lines kept from beyond this call's cases come after its own (their numbers are larger).
+  for (auto& [id, l] : beyond) finished.push_back(std::move(l));
   outcome.aggregate = aggregate_results(finished);
   outcome.aggregate["sweep_id"] = options.sweep.id;
-  outcome.aggregate["complete"] = !outcome.interrupted;
+  outcome.aggregate["complete"] =
+      !outcome.interrupted &&
+      finished.size() >= shard_size(sweep_cases, options.sweep.shard, options.sweep.shards);
   if (!outcome.interrupted) {
     // Canonical form: every line in case order, whatever order resumed runs appended them in.
     write_file_atomically(results_path, [&](const std::function<void(std::string_view)>& sink) {
@@ -541,26 +653,32 @@ MergeOutcome merge_batches(std::span<const std::filesystem::path> dirs,
                                  outcome.missing_shards.size() == 1 ? "" : "s", missing, id,
                                  outcome.missing_shards.size() == 1 ? "is" : "are"));
   }
-  // Each shard holds exactly its own cases, and all of them.
+  // Each shard holds exactly its own cases, and all of them. Checked by arithmetic on the case
+  // numbers, never by listing a shard's cases: sweep.json's count is bounded (kMaxSweepCases) but
+  // still far more than needs to be held.
   std::map<std::size_t, Json> all;
   for (const auto& [k, dir] : by_shard) {
-    const auto lines = read_results(dir / "results.jsonl", false);
-    const std::vector<std::size_t> ids = shard_ids(total, k, n);
-    const std::set<std::size_t> own(ids.begin(), ids.end());
+    auto lines = read_results(dir / "results.jsonl", false);
     for (const auto& [case_id, line] : lines)
-      if (!own.count(case_id))
+      if (!in_shard(case_id, total, k, n))
         throw InputError(
             (dir / "results.jsonl").string(), "",
-            fmt::format("holds case {}, which is not a case of shard {}/{}", case_id, k, n));
-    std::vector<std::size_t> missing;
-    for (const std::size_t i : ids)
-      if (!lines.count(i)) missing.push_back(i);
-    if (!missing.empty() && !allow_partial)
+            fmt::format("holds case {}, which is not a case of shard {}/{} of {} cases", case_id, k,
+                        n, total));
+    const std::size_t expected = shard_size(total, k, n);
+    if (lines.size() < expected && !allow_partial) {
+      std::vector<std::size_t> missing;  // the first few, for the message
+      for (std::size_t i = static_cast<std::size_t>(k - 1); i < total && missing.size() < 5;
+           i += static_cast<std::size_t>(n))
+        if (!lines.count(i)) missing.push_back(i);
+      const std::size_t more = expected - lines.size() - missing.size();
       throw InputError(dir.string(), "",
                        fmt::format("shard {}/{} is incomplete: {} of its {} cases are missing "
-                                   "(case {}); finish it with --resume, or --allow-partial",
-                                   k, n, missing.size(), ids.size(), list_cases(missing)));
-    for (const auto& [case_id, line] : lines) all[case_id] = line;
+                                   "(case {}{}); finish it with --resume, or --allow-partial",
+                                   k, n, expected - lines.size(), expected, list_cases(missing),
+                                   more ? fmt::format(" and {} more", more) : std::string()));
+    }
+    all.merge(lines);
   }
   std::vector<Json> lines;
   lines.reserve(all.size());

@@ -35,6 +35,13 @@ std::future<std::string> bag_in_background(std::function<void(const McapWriter::
 }
 }  // namespace
 
+const std::vector<std::string>& run_output_files() {
+  static const std::vector<std::string> names = {
+      "summary.json",    "trajectory.csv", "transitions.csv", "trajectory.svg",
+      "trajectory.html", "crowd.csv",      "run.mcap"};
+  return names;
+}
+
 void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,
                        const RunResult& result, const OutputSelection& which) {
   write_run_outputs(dir, scenario, result, RunContext{}, which);
@@ -44,7 +51,7 @@ void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenari
                        const RunResult& result, const RunContext& context,
                        const OutputSelection& which) {
   // Every file of the run appears together, or none does (a full disk, a signal).
-  OutputFolder out(dir);
+  OutputFolder out(dir, run_output_files());
   std::future<std::string> bag;
   if (which.mcap && !result.trajectory.empty())
     bag = bag_in_background(
@@ -116,7 +123,7 @@ void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scena
 void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scenario,
                          const FleetResult& result, const RunContext& context,
                          const OutputSelection& which) {
-  OutputFolder out(dir);
+  OutputFolder out(dir, run_output_files());
   const bool recorded = std::any_of(result.robots.begin(), result.robots.end(),
                                     [](const RunResult& r) { return !r.trajectory.empty(); });
   std::future<std::string> bag;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <utility>
 
+#include "floornav/geometry/polygon.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
 
@@ -340,6 +341,13 @@ void rasterise(const World& world, double r, const RasterFrame& f, FreeRaster& r
         if (row[ix] && !bounds->contains(centre(ix, iy))) row[ix] = 0;
     }
   }
+  // A map without bounds: off the map is solid as outside the bounds is (World::clearance).
+  if (const std::span<const Vec2> edge = world.map_edge(); !edge.empty())
+    for (int iy = 0; iy < f.height; ++iy)
+      for (int ix = 0; ix < f.width; ++ix) {
+        std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
+        if (cell && !contains(edge, centre(ix, iy))) cell = 0;
+      }
 }
 
 }  // namespace

@@ -37,6 +37,16 @@ World::World(WorldDesc desc)
     const Vec2 a = bounds_->min, c = bounds_->max;
     const Vec2 b(c.x(), a.y()), d(a.x(), c.y());
     segments_.insert(segments_.end(), {Segment{a, b}, Segment{b, c}, Segment{c, d}, Segment{d, a}});
+  } else if (grid_) {
+    // A map without bounds is the whole world: off the map is not known to be free, so its edge
+    // is a wall like the bounds' (a robot never drives round a wall by leaving the map).
+    const double w = grid_->width() * grid_->resolution(),
+                 h = grid_->height() * grid_->resolution();
+    const Pose2& o = grid_->origin();
+    map_edge_ = {o.transform_point({0.0, 0.0}), o.transform_point({w, 0.0}),
+                 o.transform_point({w, h}), o.transform_point({0.0, h})};
+    for (std::size_t i = 0; i < map_edge_.size(); ++i) segments_.push_back(edge(map_edge_, i));
+    map_edge_box_ = box_of(map_edge_);
   }
   for (const auto& poly : polygons_) {
     for (std::size_t i = 0; i < poly.size(); ++i) segments_.push_back(edge(poly, i));
@@ -59,6 +69,7 @@ World::World(WorldDesc desc)
 
 bool World::inside_solid_shape(const Vec2& p) const {
   if (bounds_ && !bounds_->contains(p)) return true;
+  if (!map_edge_.empty() && (!map_edge_box_.contains(p) || !contains(map_edge_, p))) return true;
   if (!extent_.contains(p)) return false;
   const std::size_t c = static_cast<std::size_t>(cell_y(p.y())) * index_.nx + cell_x(p.x());
   for (std::uint32_t k = index_.circle_offsets[c]; k < index_.circle_offsets[c + 1]; ++k) {

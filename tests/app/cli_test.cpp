@@ -221,8 +221,12 @@ TEST(Cli, DiskFullIsAClearErrorAndKeepsEarlierResults) {
   const Output o =
       floornav("run " + scenario("factory_delivery.yaml") + " --out " + (mnt / "run").string());
   const std::string kept = read(mnt / "results.jsonl");
+  const bool left_folder = fs::exists(mnt / "run");
   std::system(("umount " + mnt.string()).c_str());
+  // Not the input's fault: status 1 (2 is for bad input), the path and the system's reason.
   EXPECT_EQ(o.status, 1) << o.text;
+  EXPECT_NE(o.text.find("/run/"), std::string::npos) << o.text;
+  EXPECT_FALSE(left_folder) << "the failed run left its folder";
   EXPECT_NE(o.text.find("No space left on device"), std::string::npos) << o.text;
   EXPECT_EQ(std::count(o.text.begin(), o.text.end(), '\n'), 1) << o.text;
   EXPECT_EQ(kept, "{\"case\": 0}\n");

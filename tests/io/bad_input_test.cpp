@@ -161,7 +161,7 @@ std::vector<BadCase> generated_cases() {
       "world: {bounds: [-1, -1, 5, 3]}\nrobot: {start: [0, 0, 0]}\ngoal: [4, 1]\n";
   add("scenario/binary_with_nul.yaml", Via::Cli, "binary data, not a YAML scenario",
       [] { return random_bytes(4096, 1, true); });
-  add("scenario/binary_without_nul.yaml", Via::Cli, "not valid YAML",
+  add("scenario/binary_without_nul.yaml", Via::Cli, "is not UTF-8",
       [] { return random_bytes(4096, 2, false); });
   add("scenario/nul_after_valid_text.yaml", Via::Cli, "binary data",
       [ok_scenario] { return ok_scenario + std::string(1, '\0') + "sim: {dt: 0.5}\n"; });
@@ -212,7 +212,7 @@ std::vector<BadCase> generated_cases() {
   add("scenario/larger_than_16_mib.yaml", Via::Cli,
       "more than the 16777216 a scenario file may have",
       [ok_scenario] { return ok_scenario + "# " + std::string(17u << 20, 'x') + "\n"; });
-  add("ros_map/binary.yaml", Via::Loader, "invalid YAML",
+  add("ros_map/binary.yaml", Via::Loader, "is not UTF-8",
       [] { return random_bytes(2048, 3, true); });
   add("ros_map/binary.pgm", Via::Loader, "unsupported image format",
       [] { return random_bytes(2048, 4, true); });
@@ -234,13 +234,13 @@ std::vector<BadCase> generated_cases() {
       [] { return random_bytes(2048, 7, true); });
   add("movingai/binary.scen", Via::Loader, "expected 'version 1'",
       [] { return random_bytes(2048, 8, true); });
-  add("sdf/binary.sdf", Via::Loader, "malformed XML", [] { return random_bytes(2048, 9, true); });
+  add("sdf/binary.sdf", Via::Loader, "is not UTF-8", [] { return random_bytes(2048, 9, true); });
   add("sdf/deep_nesting_100000.sdf", Via::Loader, "malformed XML", [] {
     std::string s = "<sdf version='1.6'><world name='w'>";
     for (int i = 0; i < 100000; ++i) s += "<model>";
     return s;
   });
-  add("course_xml/binary.xml", Via::Loader, "malformed XML",
+  add("course_xml/binary.xml", Via::Loader, "is not UTF-8",
       [] { return random_bytes(2048, 10, true); });
   add("course_xml/obstacle_of_1001_points.xml", Via::Loader, "at most 1000 <point>s", [] {
     std::string s = "<simulation><obstacle><pose x='0' y='0' theta='0'/><geometry>";

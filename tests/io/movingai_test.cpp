@@ -80,24 +80,26 @@ TEST_F(MovingAiTest, BadMaps) {
 TEST_F(MovingAiTest, TinyScen) {
   const fs::path p = write("t.scen",
                            "version 1.0\n"
-                           "0\tt.map\t4\t3\t0\t0\t3\t2\t3.41421356\n"
+                           "0\tt.map\t4\t3\t0\t0\t3\t2\t3.82842712\n"
                            "\n"
-                           "1\tt.map\t4\t3\t3\t0\t0\t2\t4.5\r\n");
+                           "1\tt.map\t4\t3\t3\t0\t0\t2\t4.5\r\n"
+                           "0\tt.map\t4\t3\t1\t1\t1\t1\t0\n");  // start = goal: length 0
   const auto cases = load_movingai_scen(p);
-  ASSERT_EQ(cases.size(), 2u);
+  ASSERT_EQ(cases.size(), 3u);
+  EXPECT_EQ(cases[2].optimal_length, 0.0);
   EXPECT_EQ(cases[0].bucket, 0);
   EXPECT_EQ(cases[0].map_file, "t.map");
   EXPECT_EQ(cases[0].width, 4);
   EXPECT_EQ(cases[0].height, 3);
   EXPECT_EQ(cases[0].goal_x, 3);
   EXPECT_EQ(cases[0].goal_y, 2);
-  EXPECT_DOUBLE_EQ(cases[0].optimal_length, 3.41421356);
+  EXPECT_DOUBLE_EQ(cases[0].optimal_length, 3.82842712);
   EXPECT_EQ(cases[1].start_x, 3);
   EXPECT_DOUBLE_EQ(cases[1].optimal_length, 4.5);
 }
 
 TEST_F(MovingAiTest, BadScen) {
-  const std::string ok = "0\tt.map\t4\t3\t0\t0\t3\t2\t3.5\n";
+  const std::string ok = "0\tt.map\t4\t3\t0\t0\t3\t2\t3.82842712\n";
   struct Case {
     std::string text;
     std::string needle;
@@ -115,6 +117,12 @@ TEST_F(MovingAiTest, BadScen) {
       {"version 1\n0\tt.map\t4\t3\t0\t0\t3\t2\tfar\n", "line 2: optimal length"},
       {"version 1\n0\tt.map\t4\t3\t0\t0\t3\t2\tnan\n", "optimal length"},
       {"version 1\n0\t\t4\t3\t0\t0\t3\t2\t1\n", "map file name is empty"},
+      // Optima that are no path's length: 0 between two cells, or below the straight line.
+      {"version 1\n0\tt.map\t4\t3\t0\t0\t3\t2\t0\n", "shorter than the straight line"},
+      {"version 1\n0\tt.map\t4\t3\t0\t0\t3\t2\t3.6\n", "line 2: optimal length '3.6'"},
+      {"version 1\n0\tt.map\t4\t3\t0\t0\t0\t1\t1e-9\n", "shorter than the straight line"},
+      // A map name that is not UTF-8 (it is written to JSON as the case's source).
+      {"version 1\n0\tt\xe9.map\t4\t3\t0\t0\t3\t2\t3.9\n", "byte 0xe9 is not UTF-8"},
   };
   for (std::size_t i = 0; i < cases.size(); ++i) {
     SCOPED_TRACE("case " + std::to_string(i));

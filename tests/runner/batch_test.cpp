@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -19,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "floornav/core/input_error.hpp"
+#include "floornav/core/output_error.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/scenario_file.hpp"
@@ -284,13 +286,9 @@ TEST(OutputFolderTest, AllFilesOrNone) {
                              throw InputError("x", "", "the producer failed");
                            }),
                  InputError);
-    // Not committed: nothing appears, and no staging folder is left beside it.
+    // Not committed: nothing appears, not even the folder (it was made for the set).
   }
   EXPECT_FALSE(fs::exists(dir));
-  for (const auto& e : fs::directory_iterator(dir.parent_path()))
-    EXPECT_EQ(e.path().filename().string().find("." + dir.filename().string() + ".staging"),
-              std::string::npos)
-        << e.path();
   // Into an existing folder: the old files stay as they were until the new set is complete.
   fs::create_directories(dir);
   std::ofstream(dir / "a.txt") << "old\n";
@@ -303,7 +301,76 @@ TEST(OutputFolderTest, AllFilesOrNone) {
   }
   EXPECT_EQ(read(dir / "a.txt"), "new\n");
   EXPECT_EQ(read(dir / "b.txt"), "new b\n");
-  EXPECT_THROW(OutputFolder(dir / "a.txt"), InputError);  // a file, not a folder
+  EXPECT_THROW(OutputFolder(dir / "a.txt"), OutputError);  // a file, not a folder
+  fs::remove_all(dir);
+}
+
+// Files are staged inside the output folder, never beside it: its parent may be read-only, a
+// mount point's, or someone else's, and nothing is written outside --out.
+TEST(OutputFolderTest, StagesInsideTheFolderNotItsParent) {
+  const fs::path parent = fresh_dir("folder_parent");
+  const fs::path dir = parent / "out";
+  fs::create_directories(parent);
+  std::ofstream(parent / "neighbour.txt") << "mine\n";
+  auto listing = [](const fs::path& d) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(d)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  {
+    OutputFolder out(dir);
+    out.write("a.txt", [&](const std::function<void(std::string_view)>& sink) {
+      // While a file is written: the parent holds the folder and nothing else new.
+      EXPECT_EQ(listing(parent), (std::vector<std::string>{"neighbour.txt", "out"}));
+      std::size_t staging = 0;
+      for (const std::string& n : listing(dir)) staging += n.rfind(".floornav-staging", 0) == 0;
+      EXPECT_EQ(staging, 1u);
+      sink("a\n");
+    });
+    out.commit();
+  }
+  EXPECT_EQ(listing(dir), std::vector<std::string>{"a.txt"});  // no staging folder left
+  EXPECT_EQ(listing(parent), (std::vector<std::string>{"neighbour.txt", "out"}));
+  fs::remove_all(parent);
+}
+
+// A set that fails removes every folder it created for itself (and only those): bad input or a
+// failed write never leaves an empty folder behind.
+TEST(OutputFolderTest, AFailedSetLeavesNoFolderItMade) {
+  const fs::path base = fresh_dir("folder_made");
+  fs::create_directories(base);
+  const fs::path dir = base / "a" / "b" / "c";
+  {
+    OutputFolder out(dir);
+    EXPECT_THROW(out.write("x.txt",
+                           [](const std::function<void(std::string_view)>&) {
+                             throw InputError("x", "", "fails");
+                           }),
+                 InputError);
+  }
+  EXPECT_FALSE(fs::exists(base / "a"));
+  EXPECT_TRUE(fs::exists(base));  // it was there before
+  fs::remove_all(base);
+}
+
+// A run into the folder of an earlier run: the earlier run's files that this one does not write
+// (its replay, its crowd.csv) are removed, the user's own files are kept.
+TEST(OutputFolderTest, OwnedFilesOfAnEarlierSetDoNotStay) {
+  const fs::path dir = fresh_dir("folder_stale");
+  fs::create_directories(dir);
+  for (const char* name : {"summary.json", "trajectory.html", "crowd.csv", "notes.txt"})
+    std::ofstream(dir / name) << "old\n";
+  {
+    OutputFolder out(dir, {"summary.json", "trajectory.html", "crowd.csv", "trajectory.csv"});
+    out.write("summary.json", "new\n");
+    EXPECT_TRUE(fs::exists(dir / "trajectory.html"));  // nothing changes before commit
+    out.commit();
+  }
+  EXPECT_EQ(read(dir / "summary.json"), "new\n");
+  EXPECT_FALSE(fs::exists(dir / "trajectory.html"));
+  EXPECT_FALSE(fs::exists(dir / "crowd.csv"));
+  EXPECT_EQ(read(dir / "notes.txt"), "old\n");  // not an output's: never touched
   fs::remove_all(dir);
 }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "floornav/core/input_error.hpp"
+#include "floornav/core/output_error.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
@@ -361,13 +362,16 @@ TEST(AtomicFile, WritesAndReplaces) {
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"summary.json"});
 }
 
-TEST(AtomicFile, MissingDirectoryIsAnInputError) {
+// An output that cannot be written is an OutputError (the path and the system's reason), never
+// an InputError: the command line exits 1 for it, 2 being for bad input.
+TEST(AtomicFile, MissingDirectoryIsAnOutputError) {
   const fs::path file = "/proc/floornav-test/x";
   try {
     write_file_atomically(file, "data");
-    FAIL() << "expected InputError";
-  } catch (const InputError& e) {
+    FAIL() << "expected OutputError";
+  } catch (const OutputError& e) {
     EXPECT_EQ(e.file, file.string());
+    EXPECT_EQ(e.detail, "cannot write: No such file or directory");
     EXPECT_NE(std::string(e.what()).find("cannot write: "), std::string::npos) << e.what();
   }
 }
@@ -377,7 +381,15 @@ TEST(AtomicFile, FailedRenameLeavesNoTemporaryFile) {
   // The target is a non-empty directory: the temporary file is written, the rename fails.
   const fs::path target = dir.path() / "occupied";
   fs::create_directories(target / "inside");
-  EXPECT_THROW(write_file_atomically(target, "data"), InputError);
+  EXPECT_THROW(write_file_atomically(target, "data"), OutputError);
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"occupied"});
+  // A producer that throws: its exception passes through, and no temporary file stays.
+  EXPECT_THROW(write_file_atomically(dir.path() / "f",
+                                     [](const std::function<void(std::string_view)>& sink) {
+                                       sink("half");
+                                       throw std::runtime_error("producer");
+                                     }),
+               std::runtime_error);
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"occupied"});
 }
 
@@ -388,8 +400,8 @@ TEST(AtomicFile, EnsureDirectory) {
   EXPECT_TRUE(fs::is_directory(nested));
   ensure_directory(nested);  // already there: fine
   write_file_atomically(dir.path() / "file", "x");
-  EXPECT_THROW(ensure_directory(dir.path() / "file"), InputError);
-  EXPECT_THROW(ensure_directory("/proc/floornav-test/dir"), InputError);
+  EXPECT_THROW(ensure_directory(dir.path() / "file"), OutputError);
+  EXPECT_THROW(ensure_directory("/proc/floornav-test/dir"), OutputError);
 }
 
 }  // namespace

@@ -28,8 +28,9 @@ struct RosMapOptions {
 /// p < free_thresh, else unknown. In raw mode the value v itself is the occupancy in percent
 /// (0..100, larger values unknown), thresholded the same way. Image row 0 becomes the grid's top
 /// row. Unknown keys are ignored, as map_server does. Throws InputError naming the file and the
-/// line or key at fault.
-OccupancyGrid load_ros_map(const std::filesystem::path& yaml, const RosMapOptions& options = {});
+/// line or key at fault. With `image_read`, the image file's path (as resolved) is put there.
+OccupancyGrid load_ros_map(const std::filesystem::path& yaml, const RosMapOptions& options = {},
+                           std::filesystem::path* image_read = nullptr);
 
 /// Loads an image without a yaml as the old `map_server <image> <resolution>` did (e.g. the
 /// Willow Garage floor plans): origin (0, 0, 0), negate 0, occupied_thresh 0.65,

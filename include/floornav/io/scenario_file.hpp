@@ -24,6 +24,9 @@ struct ScenarioOverride {
   std::string assignment;
   std::string file;
   std::string where;
+  /// VALUE is text set as a string node as it stands (a path a batch source sets), never read as
+  /// YAML: a '#', ': ' or quote in it is part of the text, not a comment or a mapping.
+  bool text{false};
 };
 
 /// The user's `--set` values as overrides that errors blame on their `--set`.

@@ -19,6 +19,11 @@
 
 namespace floornav {
 
+/// The most cases a sweep may have (the largest --limit), and the most shards it may be split
+/// into. sweep.json files claiming more are refused before anything is sized by them.
+inline constexpr std::size_t kMaxSweepCases = 1000000000;
+inline constexpr int kMaxShards = 1000000;
+
 /// Which cases of a batch get pictures (an SVG and an HTML replay), or bags (--mcap).
 enum class BatchPictures { None, Failed, All };
 /// Which sweep a batch belongs to. The id is a fingerprint of everything the sweep's lines depend

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "floornav/runner/run_summary.hpp"
 #include "floornav/scenario/scenario.hpp"
@@ -14,6 +15,10 @@
 #include "floornav/sim/run_result.hpp"
 
 namespace floornav {
+
+/// Every file a run's output folder may hold (write_run_outputs, write_fleet_outputs): a run
+/// into the folder of an earlier run removes those of them it does not write itself.
+const std::vector<std::string>& run_output_files();
 
 /// Which files `write_run_outputs` writes.
 struct OutputSelection {

@@ -39,6 +39,11 @@ struct Scenario {
   CrowdSpec crowd{};
   /// The file behind `world`'s map, if it has one (see WorldMapSource).
   std::optional<WorldMapSource> world_map;
+  /// Every file the io layer read to make the scenario, in the order read: the scenario file, its
+  /// map (and a map yaml's image), its people_file. A sweep's id fingerprints their content, so
+  /// that a folder of results is resumed or merged only with the very inputs it was made from.
+  /// Empty for a scenario built in code.
+  std::vector<std::string> input_files;
 
   /// Outputs and runs as a fleet (FleetSimulation) rather than a lone robot (Simulation): also
   /// a lone robot among people or forklifts (only a fleet simulates them).

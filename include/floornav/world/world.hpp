@@ -78,7 +78,8 @@ class World {
                           FanScratch& scratch) const;
 
   /// Signed distance from `p` to the nearest obstacle surface: negative inside an obstacle or
-  /// outside the bounds. +infinity in an empty, unbounded world.
+  /// outside the bounds (or, for a map without bounds, off the map: its edge is a wall).
+  /// +infinity in an empty, unbounded world.
   double clearance(const Vec2& p) const;
   /// `clearance(p)`, bit for bit, reusing and then updating `hint` (see ClearanceHint).
   double clearance(const Vec2& p, ClearanceHint& hint) const;
@@ -101,6 +102,9 @@ class World {
   std::span<const Segment> segments() const { return segments_; }  ///< walls + polygon edges
   const std::vector<std::vector<Vec2>>& polygons() const { return polygons_; }
   const OccupancyGrid* grid() const { return grid_.get(); }
+  /// The outline of a map that has no bounds (its four corners, counter-clockwise): off the map
+  /// is solid, as outside the bounds is. Empty when the world has bounds or no map.
+  std::span<const Vec2> map_edge() const { return map_edge_; }
   const std::shared_ptr<const OccupancyGrid>& shared_grid() const { return grid_; }
   /// The box that holds every obstacle and the bounds (empty box for an empty world).
   const Box2& extent() const { return extent_; }
@@ -142,6 +146,10 @@ class World {
                      const Box2* ray_box = nullptr) const;
 
   std::optional<Box2> bounds_;
+  /// The map's outline (its corners, counter-clockwise) when the world is a map without bounds:
+  /// a wall, outside of which is solid, as outside the bounds is. Empty otherwise.
+  std::vector<Vec2> map_edge_;
+  Box2 map_edge_box_;
   std::vector<Circle> circles_;
   std::vector<Segment> segments_;
   std::vector<std::vector<Vec2>> polygons_;

@@ -15,6 +15,7 @@
 #include "io/input_file.hpp"
 #include "io/maps/raster_image.hpp"
 #include "io/maps/text_parse.hpp"
+#include "io/utf8_input.hpp"
 
 namespace floornav {
 namespace {
@@ -177,6 +178,8 @@ std::vector<MovingAiCase> load_movingai_scen(const std::filesystem::path& scen) 
   std::vector<MovingAiCase> cases;
   while (in.next(line)) {
     if (io_detail::trim(line).empty()) continue;
+    // The map's name reaches the outputs (JSON): text, so UTF-8.
+    io_detail::check_utf8_value(line, in.file(), in.where());
     std::vector<std::string_view> f;
     std::string_view rest(line);
     for (;;) {
@@ -220,6 +223,15 @@ std::vector<MovingAiCase> load_movingai_scen(const std::filesystem::path& scen) 
       }
       in.fail(what);
     }
+    // An optimum below the straight line between the cell centres (or 0 between two cells) is not
+    // a path length: path efficiencies against it would be meaningless. 1e-6 allows the rounding
+    // of the 8 decimals MovingAI prints.
+    const double straight = std::hypot(c.goal_x - c.start_x, c.goal_y - c.start_y);
+    if (*length < straight * (1.0 - 1e-6) || (straight > 0.0 && !(*length > 0.0)))
+      in.fail(
+          fmt::format("optimal length {} is shorter than the straight line from the start to "
+                      "the goal ({:.8g} cells): not the length of a path between them",
+                      io_detail::quote_input(f[8]), straight));
     c.optimal_length = *length;
     cases.push_back(std::move(c));
   }

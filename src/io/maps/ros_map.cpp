@@ -18,6 +18,7 @@
 #include "io/input_file.hpp"
 #include "io/maps/raster_image.hpp"
 #include "io/maps/text_parse.hpp"
+#include "io/utf8_input.hpp"
 #include "io/yaml_reader.hpp"
 
 namespace floornav {
@@ -97,6 +98,7 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
   const std::string file = yaml.string();
   const std::string text =
       io_detail::read_input_file(yaml, "ROS map yaml", io_detail::kMaxMapYamlBytes);
+  io_detail::check_utf8_text(text, file);
   YAML::Node root;
   try {
     const io_detail::OneDocument doc = io_detail::load_one_document(text);
@@ -248,8 +250,10 @@ OccupancyGrid to_grid(const io_detail::RasterImage& img, const RosMapMeta& m,
 
 }  // namespace
 
-OccupancyGrid load_ros_map(const std::filesystem::path& yaml, const RosMapOptions& options) {
+OccupancyGrid load_ros_map(const std::filesystem::path& yaml, const RosMapOptions& options,
+                           std::filesystem::path* image_read) {
   const RosMapMeta meta = read_meta(yaml);
+  if (image_read != nullptr) *image_read = meta.image;
   return to_grid(io_detail::read_raster_image(meta.image), meta, options);
 }
 

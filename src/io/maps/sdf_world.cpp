@@ -3,9 +3,15 @@
 #include <fmt/format.h>
 #include <tinyxml2.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -20,6 +26,62 @@ namespace floornav {
 namespace {
 
 using tinyxml2::XMLElement;
+
+// The elements SDF allows where floornav reads (sdformat.org/spec, 1.4 to 1.11), by parent. Any
+// other child is refused with a "did you mean": a misspelt <modle>, <lnk> or <colision> would
+// otherwise drop the obstacle it holds without a word. Of the allowed ones, those that can hold
+// something a robot could hit and that floornav does not read (a <population>, an <actor> with
+// collisions, an <include>) are reported in `skipped`; the rest (lights, physics, the GUI, ...)
+// hold nothing to hit.
+constexpr std::string_view kSdfChildren[] = {"world", "model", "actor", "light"};
+constexpr std::string_view kWorldChildren[] = {
+    "model",  "include", "actor",   "population",     "state",
+    "audio",  "wind",    "gravity", "magnetic_field", "atmosphere",
+    "gui",    "physics", "scene",   "light",          "spherical_coordinates",
+    "plugin", "frame",   "road",    "joint"};
+constexpr std::string_view kModelChildren[] = {
+    "static",       "pose",  "link",    "model",   "joint",       "plugin",
+    "self_collide", "frame", "gripper", "include", "enable_wind", "allow_auto_disable"};
+constexpr std::string_view kLinkChildren[] = {"pose",
+                                              "inertial",
+                                              "collision",
+                                              "visual",
+                                              "sensor",
+                                              "gravity",
+                                              "self_collide",
+                                              "kinematic",
+                                              "must_be_base_link",
+                                              "velocity_decay",
+                                              "projector",
+                                              "audio_sink",
+                                              "audio_source",
+                                              "battery",
+                                              "light",
+                                              "particle_emitter",
+                                              "enable_wind"};
+constexpr std::string_view kCollisionChildren[] = {"pose", "geometry", "laser_retro",
+                                                   "max_contacts", "surface"};
+constexpr std::string_view kShapes[] = {"box",   "cylinder", "sphere",    "plane",
+                                        "mesh",  "capsule",  "ellipsoid", "heightmap",
+                                        "image", "polyline", "empty"};
+
+constexpr std::string_view kBoxChildren[] = {"size"};
+constexpr std::string_view kCylinderChildren[] = {"radius", "length"};
+constexpr std::string_view kSphereChildren[] = {"radius"};
+
+/// Throws for the first child of `parent` not in `allowed`, naming it and the closest allowed.
+void check_known(const XMLElement* parent, std::span<const std::string_view> allowed,
+                 const std::string& file) {
+  for (const XMLElement* e = parent->FirstChildElement(); e != nullptr;
+       e = e->NextSiblingElement()) {
+    const std::string_view name = e->Name();
+    if (std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
+    throw InputError(file, io_detail::where_of(e),
+                     "unknown element <" + std::string(name.substr(0, 64)) + "> in <" +
+                         parent->Name() + ">" + io_detail::did_you_mean(name, allowed) +
+                         ": what it holds would not be read");
+  }
+}
 
 /// The whitespace-separated numbers of an element's text; throws unless there are `count`.
 std::vector<double> numbers(const XMLElement* e, std::size_t count, const std::string& file) {
@@ -50,8 +112,21 @@ std::vector<double> numbers(const XMLElement* e, std::size_t count, const std::s
   return out;
 }
 
-/// A `<pose>` "x y z roll pitch yaw" as the planar pose (x, y, yaw).
-Pose2 parse_pose(const XMLElement* pose, const std::string& file) {
+/// A frame in both forms: the planar pose (x, y, yaw) composed in 2D, exactly as an upright world
+/// has always been read, and the full 3D transform, which decides once anything in the chain is
+/// tilted (roll or pitch not 0).
+struct Frame {
+  Pose2 planar;
+  Eigen::Isometry3d spatial{Eigen::Isometry3d::Identity()};
+  bool tilted{false};
+
+  Frame compose(const Frame& child) const {
+    return {planar.compose(child.planar), spatial * child.spatial, tilted || child.tilted};
+  }
+};
+
+/// A `<pose>` "x y z roll pitch yaw" (SDF: rotation Rz(yaw) Ry(pitch) Rx(roll)).
+Frame parse_pose(const XMLElement* pose, const std::string& file) {
   for (const char* attr : {"relative_to", "frame"}) {
     const char* frame = pose->Attribute(attr);
     if (frame != nullptr && *frame != '\0') {
@@ -77,13 +152,21 @@ Pose2 parse_pose(const XMLElement* pose, const std::string& file) {
                            "'>: expected true, false, 1 or 0 (SDF's boolean)");
     }
   }
-  return Pose2{{v[0], v[1]}, wrap_angle(degrees ? deg_to_rad(v[5]) : v[5])};
+  const auto angle = [&](double a) { return degrees ? deg_to_rad(a) : a; };
+  Frame f;
+  f.planar = Pose2{{v[0], v[1]}, wrap_angle(angle(v[5]))};
+  f.tilted = v[3] != 0.0 || v[4] != 0.0;
+  f.spatial = Eigen::Translation3d(v[0], v[1], v[2]) *
+              Eigen::AngleAxisd(angle(v[5]), Eigen::Vector3d::UnitZ()) *
+              Eigen::AngleAxisd(angle(v[4]), Eigen::Vector3d::UnitY()) *
+              Eigen::AngleAxisd(angle(v[3]), Eigen::Vector3d::UnitX());
+  return f;
 }
 
-/// The `<pose>` child of `parent`, or the identity.
-Pose2 child_pose(const XMLElement* parent, const std::string& file) {
-  const XMLElement* pose = parent->FirstChildElement("pose");
-  return pose != nullptr ? parse_pose(pose, file) : Pose2{};
+/// The one `<pose>` child of `parent` (a second is an error: which one was meant?), or identity.
+Frame child_pose(const XMLElement* parent, const std::string& file) {
+  const XMLElement* pose = io_detail::single_child(parent, "pose", file);
+  return pose != nullptr ? parse_pose(pose, file) : Frame{};
 }
 
 /// A positive size or radius.
@@ -96,15 +179,38 @@ double positive(const XMLElement* e, double v, const std::string& file) {
   return v;
 }
 
-/// Whether `m` or a model nested in it has a <collision>.
-bool has_collision(const XMLElement* m) {
-  for (const XMLElement* link = m->FirstChildElement("link"); link != nullptr;
-       link = link->NextSiblingElement("link"))
-    if (link->FirstChildElement("collision") != nullptr) return true;
-  for (const XMLElement* sub = m->FirstChildElement("model"); sub != nullptr;
-       sub = sub->NextSiblingElement("model"))
-    if (has_collision(sub)) return true;
+/// Whether `e` holds a <collision> anywhere below it.
+bool holds_collision(const XMLElement* e) {
+  for (const XMLElement* c = e->FirstChildElement(); c != nullptr; c = c->NextSiblingElement())
+    if (std::string_view(c->Name()) == "collision" || holds_collision(c)) return true;
   return false;
+}
+
+/// The convex hull of `pts`, counter-clockwise (Andrew's monotone chain), without collinear
+/// points: the ground shadow of a tilted shape.
+std::vector<Vec2> convex_hull(std::vector<Vec2> pts) {
+  std::sort(pts.begin(), pts.end(), [](const Vec2& a, const Vec2& b) {
+    return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y();
+  });
+  const auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Vec2> hull(2 * pts.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0.0) --k;
+    hull[k++] = pts[i];
+  }
+  for (std::size_t i = pts.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0.0) --k;
+    hull[k++] = pts[i];
+  }
+  hull.resize(k > 0 ? k - 1 : 0);
+  return hull;
+}
+
+Vec2 ground(const Eigen::Vector3d& p) {
+  return {p.x(), p.y()};
 }
 
 class SdfReader {
@@ -112,11 +218,12 @@ class SdfReader {
   SdfReader(std::string file, SdfWorld& out) : file_(std::move(file)), out_(out) {}
 
   /// A model (and its nested models) whose parent frame is `parent`.
-  void model(const XMLElement* m, const Pose2& parent, bool parent_static, const std::string& name,
-             const std::optional<Pose2>& state_pose) {
-    const Pose2 pose = parent.compose(state_pose ? *state_pose : child_pose(m, file_));
+  void model(const XMLElement* m, const Frame& parent, bool parent_static, const std::string& name,
+             const std::optional<Frame>& state_pose) {
+    check_structure(m);
+    const Frame pose = parent.compose(state_pose ? *state_pose : child_pose(m, file_));
     bool is_static = parent_static;
-    if (const XMLElement* s = m->FirstChildElement("static")) {
+    if (const XMLElement* s = io_detail::single_child(m, "static", file_)) {
       const char* text = s->GetText();
       const std::string_view t = io_detail::trim(text != nullptr ? text : "");
       if (t == "1" || t == "true") {
@@ -129,14 +236,18 @@ class SdfReader {
     if (!is_static) {
       // A model that may move: its collisions are not a fixed obstacle. Reported (a robot would
       // drive through it) unless it has none.
-      if (has_collision(m))
+      if (holds_collision(m))
         out_.skipped.push_back(io_detail::where_of(m) + ": model '" + name +
                                "' is not static, so its collisions are not read");
       return;
     }
+    for (const XMLElement* inc = m->FirstChildElement("include"); inc != nullptr;
+         inc = inc->NextSiblingElement("include"))
+      out_.skipped.push_back(io_detail::where_of(inc) + ": model '" + name +
+                             "': an <include> is not read (only models written in the file are)");
     for (const XMLElement* link = m->FirstChildElement("link"); link != nullptr;
          link = link->NextSiblingElement("link")) {
-      const Pose2 link_pose = pose.compose(child_pose(link, file_));
+      const Frame link_pose = pose.compose(child_pose(link, file_));
       const char* link_name = link->Attribute("name");
       for (const XMLElement* c = link->FirstChildElement("collision"); c != nullptr;
            c = c->NextSiblingElement("collision")) {
@@ -153,7 +264,33 @@ class SdfReader {
   }
 
  private:
-  void collision(const XMLElement* c, const Pose2& pose, const std::string& owner) {
+  /// Every element of a model's tree is one SDF allows there, and a link, collision or geometry
+  /// holds what it may once: checked for static and moving models alike.
+  void check_structure(const XMLElement* m) {
+    check_known(m, kModelChildren, file_);
+    io_detail::single_child(m, "pose", file_);
+    for (const XMLElement* link = m->FirstChildElement("link"); link != nullptr;
+         link = link->NextSiblingElement("link")) {
+      check_known(link, kLinkChildren, file_);
+      io_detail::single_child(link, "pose", file_);
+      for (const XMLElement* c = link->FirstChildElement("collision"); c != nullptr;
+           c = c->NextSiblingElement("collision")) {
+        check_known(c, kCollisionChildren, file_);
+        io_detail::single_child(c, "pose", file_);
+        if (const XMLElement* g = io_detail::single_child(c, "geometry", file_)) {
+          check_known(g, kShapes, file_);
+          const XMLElement* first = g->FirstChildElement();
+          if (first != nullptr && first->NextSiblingElement() != nullptr)
+            throw InputError(file_, io_detail::where_of(first->NextSiblingElement()),
+                             std::string("<geometry> holds <") + first->Name() + "> and <" +
+                                 first->NextSiblingElement()->Name() +
+                                 ">: a geometry is one shape (give each its own <collision>)");
+        }
+      }
+    }
+  }
+
+  void collision(const XMLElement* c, const Frame& pose, const std::string& owner) {
     const XMLElement* geometry = c->FirstChildElement("geometry");
     const XMLElement* shape = geometry != nullptr ? geometry->FirstChildElement() : nullptr;
     if (shape == nullptr) {
@@ -161,31 +298,77 @@ class SdfReader {
     }
     const std::string kind = shape->Name();
     if (kind == "box") {
-      const XMLElement* size = shape->FirstChildElement("size");
+      check_known(shape, kBoxChildren, file_);
+      const XMLElement* size = io_detail::single_child(shape, "size", file_);
       if (size == nullptr)
         throw InputError(file_, io_detail::where_of(shape), "<box> lacks <size>");
       const std::vector<double> s = numbers(size, 3, file_);
       const double hx = 0.5 * positive(size, s[0], file_);
       const double hy = 0.5 * positive(size, s[1], file_);
-      positive(size, s[2], file_);
-      out_.polygons.push_back({pose.transform_point({-hx, -hy}), pose.transform_point({hx, -hy}),
-                               pose.transform_point({hx, hy}), pose.transform_point({-hx, hy})});
+      const double hz = 0.5 * positive(size, s[2], file_);
+      if (!pose.tilted) {
+        const Pose2& p = pose.planar;
+        out_.polygons.push_back({p.transform_point({-hx, -hy}), p.transform_point({hx, -hy}),
+                                 p.transform_point({hx, hy}), p.transform_point({-hx, hy})});
+        return;
+      }
+      // Tilted: the ground shadow of its eight corners.
+      std::vector<Vec2> corners;
+      for (const double x : {-hx, hx})
+        for (const double y : {-hy, hy})
+          for (const double z : {-hz, hz})
+            corners.push_back(ground(pose.spatial * Eigen::Vector3d(x, y, z)));
+      out_.polygons.push_back(convex_hull(std::move(corners)));
     } else if (kind == "cylinder" || kind == "sphere") {
-      const XMLElement* radius = shape->FirstChildElement("radius");
+      if (kind == "cylinder")
+        check_known(shape, kCylinderChildren, file_);
+      else
+        check_known(shape, kSphereChildren, file_);
+      const XMLElement* radius = io_detail::single_child(shape, "radius", file_);
       if (radius == nullptr) {
         throw InputError(file_, io_detail::where_of(shape), "<" + kind + "> lacks <radius>");
       }
-      out_.circles.push_back(
-          Circle{pose.position, positive(radius, numbers(radius, 1, file_)[0], file_)});
+      const double r = positive(radius, numbers(radius, 1, file_)[0], file_);
+      const Eigen::Vector3d axis = pose.spatial.linear() * Eigen::Vector3d::UnitZ();
+      if (!pose.tilted) {
+        out_.circles.push_back(Circle{pose.planar.position, r});
+        return;
+      }
+      const Eigen::Vector3d centre = pose.spatial.translation();
+      if (kind == "sphere" || std::abs(axis.z()) >= 1.0 - 1e-12) {  // upright after all
+        out_.circles.push_back(Circle{ground(centre), r});
+        return;
+      }
+      // A cylinder on its side (or leaning): the shadow of its two end discs, each taken as the
+      // 32-gon around it (its projection holds the disc's, so the footprint is never smaller).
+      const XMLElement* length = io_detail::single_child(shape, "length", file_);
+      if (length == nullptr)
+        throw InputError(file_, io_detail::where_of(shape),
+                         "<cylinder> lacks <length>, which a tilted cylinder's footprint needs");
+      const double half = 0.5 * positive(length, numbers(length, 1, file_)[0], file_);
+      const Eigen::Vector3d u = axis.unitOrthogonal(), v = axis.cross(u);
+      constexpr int kSides = 32;
+      const double outer = r / std::cos(kPi / kSides);
+      std::vector<Vec2> pts;
+      for (const double end : {-half, half})
+        for (int k = 0; k < kSides; ++k) {
+          const double a = 2.0 * kPi * k / kSides;
+          pts.push_back(ground(centre + end * axis + outer * (std::cos(a) * u + std::sin(a) * v)));
+        }
+      out_.polygons.push_back(convex_hull(std::move(pts)));
     } else if (kind == "plane") {
       // The ground, unless it stands up: a vertical plane is a wall floornav cannot represent.
       if (const XMLElement* normal = shape->FirstChildElement("normal")) {
         const std::vector<double> n = numbers(normal, 3, file_);
-        if (n[0] != 0.0 || n[1] != 0.0)
+        const Eigen::Vector3d up = pose.spatial.linear() * Eigen::Vector3d(n[0], n[1], n[2]);
+        if (up.x() != 0.0 || up.y() != 0.0)
           out_.skipped.push_back(io_detail::where_of(shape) + ": model '" + owner +
                                  "': a <plane> that is not the ground (normal not 0 0 1)");
+      } else if (pose.tilted) {
+        out_.skipped.push_back(io_detail::where_of(shape) + ": model '" + owner +
+                               "': a tilted <plane> (not the ground)");
       }
-    } else {
+    } else if (kind != "empty") {
       out_.skipped.push_back(io_detail::where_of(shape) + ": model '" + owner + "': a <" + kind +
                              "> collision cannot be read (only <box>, <cylinder> and "
                              "<sphere>)");
@@ -207,6 +390,7 @@ SdfWorld load_sdf_world(const std::filesystem::path& path) {
     throw InputError(file, sdf != nullptr ? io_detail::where_of(sdf) : "",
                      "expected an <sdf> root element");
   }
+  check_known(sdf, kSdfChildren, file);
   SdfWorld out;
   SdfReader reader(file, out);
   const XMLElement* world = sdf->FirstChildElement("world");
@@ -218,17 +402,44 @@ SdfWorld load_sdf_world(const std::filesystem::path& path) {
   if (world == nullptr && sdf->FirstChildElement("model") == nullptr) {
     throw InputError(file, io_detail::where_of(sdf), "no <world> or <model> in this file");
   }
+  if (world != nullptr) {
+    check_known(world, kWorldChildren, file);
+    // Beside a <world>, a model is no part of it: it would be left out.
+    for (const XMLElement* m = sdf->FirstChildElement("model"); m != nullptr;
+         m = m->NextSiblingElement("model"))
+      out.skipped.push_back(io_detail::where_of(m) +
+                            ": a <model> outside the <world> is not part of it");
+  }
+  // Things that move or that Gazebo places: never a fixed obstacle floornav could read.
+  for (const XMLElement* e = scope->FirstChildElement(); e != nullptr;
+       e = e->NextSiblingElement()) {
+    const std::string_view kind = e->Name();
+    if (kind == "actor" && holds_collision(e))
+      out.skipped.push_back(io_detail::where_of(e) +
+                            ": an <actor> moves, so its collisions are not read");
+    if (kind == "population")
+      out.skipped.push_back(io_detail::where_of(e) +
+                            ": a <population> (models Gazebo places at random) is not read");
+  }
 
   // The saved state: a model's live pose (its <link> poses there are world-frame, not used).
-  std::map<std::string, Pose2> state_poses;
+  std::map<std::string, Frame> state_poses;
   if (world != nullptr) {
     for (const XMLElement* state = world->FirstChildElement("state"); state != nullptr;
          state = state->NextSiblingElement("state")) {
       for (const XMLElement* m = state->FirstChildElement("model"); m != nullptr;
            m = m->NextSiblingElement("model")) {
         const char* name = m->Attribute("name");
-        const XMLElement* pose = m->FirstChildElement("pose");
+        const XMLElement* pose = io_detail::single_child(m, "pose", file);
         if (name != nullptr && pose != nullptr) state_poses[name] = parse_pose(pose, file);
+        // A model scaled in the state has another size than its collisions say.
+        if (const XMLElement* scale = m->FirstChildElement("scale")) {
+          const std::vector<double> s = numbers(scale, 3, file);
+          if (s[0] != 1.0 || s[1] != 1.0 || s[2] != 1.0)
+            out.skipped.push_back(io_detail::where_of(scale) + ": model '" +
+                                  (name != nullptr ? name : "") +
+                                  "' is scaled in the <state>, which is not read");
+        }
       }
     }
   }
@@ -256,8 +467,8 @@ SdfWorld load_sdf_world(const std::filesystem::path& path) {
       throw InputError(file, io_detail::where_of(e), "duplicate model name '" + name + "'");
     }
     const auto state = state_poses.find(name);
-    reader.model(e, Pose2{}, false, name,
-                 state != state_poses.end() ? std::optional<Pose2>(state->second) : std::nullopt);
+    reader.model(e, Frame{}, false, name,
+                 state != state_poses.end() ? std::optional<Frame>(state->second) : std::nullopt);
   }
   return out;
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -101,7 +102,7 @@ inline std::size_t edit_distance(std::string_view a, std::string_view b) {
 
 /// " (did you mean 'x'?)" for the candidate within 2 edits of `name`, or "".
 inline std::string did_you_mean(std::string_view name,
-                                std::initializer_list<std::string_view> candidates) {
+                                std::span<const std::string_view> candidates) {
   std::string_view best;
   std::size_t best_distance = 3;
   for (std::string_view c : candidates) {
@@ -109,6 +110,11 @@ inline std::string did_you_mean(std::string_view name,
     if (d < best_distance) best_distance = d, best = c;
   }
   return best.empty() ? std::string() : " (did you mean '" + std::string(best) + "'?)";
+}
+inline std::string did_you_mean(std::string_view name,
+                                std::initializer_list<std::string_view> candidates) {
+  return did_you_mean(name,
+                      std::span<const std::string_view>(candidates.begin(), candidates.size()));
 }
 
 }  // namespace floornav::io_detail

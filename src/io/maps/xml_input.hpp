@@ -13,6 +13,7 @@
 #include "floornav/core/input_error.hpp"
 #include "io/input_file.hpp"
 #include "io/maps/text_parse.hpp"
+#include "io/utf8_input.hpp"
 
 namespace floornav::io_detail {
 
@@ -26,6 +27,7 @@ inline std::string where_of(const tinyxml2::XMLElement* e) {
 inline void load_xml(const std::filesystem::path& path, tinyxml2::XMLDocument& doc) {
   const std::string file = path.string();
   const std::string text = read_input_file(path, "XML world", kMaxXmlBytes);
+  check_utf8_text(text, file);
   const tinyxml2::XMLError err = doc.Parse(text.data(), text.size());
   if (err != tinyxml2::XML_SUCCESS) {
     throw InputError(file, "line " + std::to_string(doc.ErrorLineNum()),
