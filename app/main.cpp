@@ -293,12 +293,16 @@ int run_sweep(const CaseSource& source, SweepHasher& hash, const BatchRequest& r
 void check_arguments_are_utf8(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
+    // Named by its option where it has one ("--set name=..."), else by its place.
+    const std::string_view option = i > 1 ? std::string_view(argv[i - 1]) : std::string_view();
+    const bool after_option = option.size() > 2 && option.substr(0, 2) == "--" &&
+                              option.find('=') == std::string_view::npos;
     if (const auto at = first_non_utf8(arg))
-      throw InputError("", fmt::format("argument {} '{}'", i, arg),
-                       fmt::format("byte 0x{:02x} at position {} is not UTF-8: floornav reads "
-                                   "text as UTF-8 (names and paths are written to JSON, which "
-                                   "holds nothing else)",
-                                   static_cast<unsigned char>(arg[*at]), *at + 1));
+      throw InputError(
+          "",
+          after_option ? fmt::format("{} {}", option, arg)
+                       : fmt::format("argument {} '{}'", i, arg),
+          fmt::format("{} (position {}): {}", describe_non_utf8(arg, *at), *at + 1, kWhyUtf8));
   }
 }
 

@@ -22,7 +22,10 @@ whose message is the command line's one line. See docs/PYTHON.md.
 
 from __future__ import annotations
 
+import hashlib
+import numbers
 import os
+import pathlib
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Any, Callable, Optional, Union
 
@@ -54,7 +57,7 @@ from ._floornav import (
     make_navigation_input,
     navigation_input,
 )
-from ._overrides import render_overrides, render_value
+from ._overrides import encode_text, render_overrides, render_value
 from ._parallel_env import ParallelEnv
 from ._spaces import Box, Dict
 from ._vec_env import STATUS_NAMES, VecEnv
@@ -117,12 +120,21 @@ def load_scenario(path: PathLike, overrides: Overrides = None) -> Scenario:
     dicts) and set in the file's YAML before it is read. A list of ``"key=value"`` texts works
     too. Bad input raises :class:`InputError` with the command line's one-line message.
     """
-    return _floornav._load_scenario(os.fspath(path), render_overrides(overrides))
+    file = os.fspath(path)
+    sets = render_overrides(overrides)
+    return _floornav._load_scenario(
+        encode_text(file, "", file), [encode_text(o, "--set " + o) for o in sets]
+    )
 
 
 def parse_scenario(text: str, overrides: Overrides = None, origin: PathLike = "scenario.yaml") -> Scenario:
     """A scenario from YAML text; ``origin`` names it in errors and anchors relative paths."""
-    return _floornav._parse_scenario(text, os.fspath(origin), render_overrides(overrides))
+    name = os.fspath(origin)
+    sets = render_overrides(overrides)
+    return _floornav._parse_scenario(
+        encode_text(text, "", name), encode_text(name, "", name),
+        [encode_text(o, "--set " + o) for o in sets],
+    )
 
 
 def _as_scenario(s: Union[Scenario, PathLike]) -> Scenario:
@@ -179,15 +191,23 @@ def batch(
     optimum: bool = True,
     out: Optional[PathLike] = None,
     ids: Optional[Sequence[int]] = None,
+    shard: Optional[tuple] = None,
 ) -> BatchResults:
     """Runs every scenario (a :class:`Scenario` or a path) on ``jobs`` threads (None: all
     cores), with the GIL released, and returns one summary dict per scenario, in order: the
     lines the command line's ``floornav batch`` writes to ``results.jsonl`` (``case`` numbers
     from 0, ``source`` the path the scenario was loaded from). ``timing=False`` writes
     ``wall_time`` as 0 (``--no-timing``); ``optimum=False`` skips the grid optimum
-    (``--no-optimum``). With ``out``, ``results.jsonl`` and ``aggregate.json`` are written there
-    once every case has run. ``ids`` numbers the cases (default 0, 1, ...): a shard of a
+    (``--no-optimum``). ``ids`` numbers the cases (default 0, 1, ...; each once): a shard of a
     bigger sweep keeps the sweep's numbers, and its lines merge by them (docs/PYTHON.md: Dask).
+
+    ``shard=(k, n)`` runs shard k of n of the sweep ``scenarios`` (cases k - 1, k - 1 + n, ...,
+    as ``--shard K/N``). With ``out``, ``results.jsonl``, ``aggregate.json`` and ``sweep.json``
+    are written there, together, once every case has run: ``sweep.json`` carries a fingerprint
+    of every scenario of the sweep (its source, overrides, resolved settings and the content of
+    the files it read), so that ``floornav merge`` joins the shards of one sweep and ``--resume``
+    checks it. A folder is the whole sweep or a ``shard`` of it: ``ids`` with ``out`` is refused
+    (merge could not check such a folder).
 
     Scenarios driven by a Python controller run on one thread (each step takes the GIL). An
     exception in a controller ends the batch and is raised here; nothing is written.
@@ -196,14 +216,77 @@ def batch(
     items = [_as_scenario(s) for s in scenarios]
     if jobs is not None and (not isinstance(jobs, int) or isinstance(jobs, bool) or jobs < 1):
         raise ValueError(f"jobs must be a positive integer or None, got {jobs!r}")
+    if ids is not None and shard is not None:
+        raise ValueError("give ids or shard, not both (a shard numbers its own cases)")
     if ids is not None:
-        ids = [int(i) for i in ids]
-        if len(ids) != len(items) or any(i < 0 for i in ids):
+        ids = [_case_id(i) for i in ids]
+        if len(ids) != len(items):
             raise ValueError(f"ids: one non-negative case number per scenario ({len(items)})")
+        if len(set(ids)) != len(ids):
+            twice = sorted(i for i in set(ids) if ids.count(i) > 1)[0]
+            raise ValueError(f"ids: case {twice} is given twice (each case once)")
+        if out is not None:
+            raise ValueError("out= with ids=: a folder holds a whole sweep or a shard of it; "
+                             "pass every scenario of the sweep and shard=(k, n)")
+    sweep = None
+    run_items = items
+    if shard is not None:
+        k, n = _shard(shard)
+        ids = list(range(k - 1, len(items), n))
+        run_items = [items[i] for i in ids]
+    if out is not None:
+        k, n = (1, 1) if shard is None else _shard(shard)
+        sweep = (_sweep_id(items, timing, optimum), k, n, len(items))
     lines, aggregate = _floornav._batch(
-        items, jobs or 0, timing, optimum, None if out is None else os.fspath(out), ids
+        run_items, jobs or 0, timing, optimum, None if out is None else os.fspath(out), ids, sweep
     )
     return BatchResults(lines, aggregate)
+
+
+def _case_id(i: Any) -> int:
+    if isinstance(i, bool) or not isinstance(i, (int, numbers.Integral)) or not 0 <= i < 2**63:
+        raise ValueError(f"ids: a case number is an integer in [0, 2**63), got {i!r}")
+    return int(i)
+
+
+def _shard(shard: Any) -> tuple:
+    try:
+        k, n = shard
+    except (TypeError, ValueError):
+        raise ValueError(f"shard is (k, n) with 1 <= k <= n, got {shard!r}") from None
+    if not all(isinstance(v, (int, numbers.Integral)) and not isinstance(v, bool) for v in (k, n)) \
+            or not 1 <= k <= n <= 1_000_000:
+        raise ValueError(f"shard is (k, n) with 1 <= k <= n <= 1000000, got {shard!r}")
+    return int(k), int(n)
+
+
+def _sweep_id(items: list, timing: bool, optimum: bool) -> str:
+    """A fingerprint of a Python sweep, as the command line's of its inputs: every scenario's
+    source, overrides and resolved settings, and the content of every file it read."""
+    h = hashlib.sha256()
+
+    def add(label: str, data: bytes) -> None:
+        h.update(f"{len(label)}:{label}:{len(data)}:".encode())
+        h.update(data)
+
+    add("format", b"floornav-python-sweep-1")
+    add("floornav_version", __version__.encode())
+    add("timing", b"on" if timing else b"off")
+    add("optimum", b"on" if optimum else b"off")
+    contents: dict = {}
+    for s in items:
+        add("source", s.source.encode())
+        for o in s.overrides:
+            add("--set", o.encode())
+        add("config", s._config_yaml.encode())
+        for f in s.input_files:
+            if f not in contents:
+                try:
+                    contents[f] = hashlib.sha256(pathlib.Path(f).read_bytes()).digest()
+                except OSError:
+                    contents[f] = b""
+            add("reads", contents[f])
+    return "py" + h.hexdigest()[:14]
 
 
 def plot(result: RunResult, ax: Any = None, **kwargs: Any) -> Any:

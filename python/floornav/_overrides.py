@@ -72,3 +72,27 @@ def render_overrides(overrides: Mapping[str, Any] | Iterable[str] | None) -> lis
             raise TypeError(f"an override text is 'key=value', got {item!r}")
         out.append(item)
     return out
+
+
+def encode_text(text: Any, where: str, file: str = "") -> bytes:
+    """The bytes the command line would pass for ``text`` (a path, a ``KEY=VALUE``): UTF-8, with
+    the surrogate escapes that stand for bytes that are not UTF-8 (``os.fsdecode``,
+    ``surrogateescape``) turned back into those bytes, so that the loader refuses them with the
+    command line's own message. Any other lone surrogate is no text at all: :class:`InputError`
+    naming ``file`` and ``where``, as the command line names its inputs."""
+    if isinstance(text, bytes):
+        return text
+    try:
+        return text.encode("utf-8", "surrogateescape")
+    except UnicodeEncodeError as e:
+        from ._floornav import InputError
+
+        shown = lambda t: t.encode("utf-8", "backslashreplace").decode("ascii", "replace")
+        place = ":".join(p for p in (shown(file), shown(where)) if p)
+        detail = (f"character U+{ord(text[e.start]):04X} at position {e.start + 1} is a lone "
+                  "surrogate, which is not text (UTF-8 cannot hold it)")
+        err = InputError(f"floornav: error: {place}: {detail}" if place else
+                         f"floornav: error: {detail}")
+        err.file, err.where, err.detail = shown(file), shown(where), detail
+        raise err from None
+

@@ -93,15 +93,17 @@ class VecEnv:
         if isinstance(scenario, Scenario):
             if n_envs is None:
                 raise ValueError("VecEnv(scenario, n_envs): how many copies?")
-            scenarios = [scenario] * _positive(n_envs, "n_envs")
+            scenarios = [scenario] * _positive(n_envs, "n_envs", MAX_ENVS)
         else:
             scenarios = list(scenario)
             if not scenarios or not all(isinstance(s, Scenario) for s in scenarios):
                 raise ValueError("VecEnv needs a Scenario or a non-empty list of Scenarios")
             if n_envs is not None and n_envs != len(scenarios):
                 raise ValueError(f"n_envs={n_envs} but {len(scenarios)} scenarios were given")
+            if len(scenarios) > MAX_ENVS:
+                raise ValueError(f"at most {MAX_ENVS} scenarios, got {len(scenarios)}")
         if threads is not None:
-            _positive(threads, "threads")
+            _positive(threads, "threads", MAX_THREADS)
         self._reward_fn: Optional[RewardFn] = None
         if callable(reward) and not isinstance(reward, (RewardParams, Mapping)):
             params = RewardParams()
@@ -205,15 +207,26 @@ class VecEnv:
                 f"{self._core.beam_count} beams, {self.threads} threads>")
 
 
-def _positive(n: Any, what: str) -> int:
+#: The most copies a VecEnv holds (as many as a fleet may have robots), and the most threads
+#: that step them (as the command line's --threads): bounds checked before anything is allocated
+#: or started.
+MAX_ENVS: int = 100_000
+MAX_THREADS: int = 1024
+
+
+def _positive(n: Any, what: str, most: Optional[int] = None) -> int:
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"{what} must be a positive integer, got {n!r}")
+    if most is not None and n > most:
+        raise ValueError(f"{what} must be at most {most}, got {n!r}")
     return int(n)
 
 
 def _seed(seed: Any) -> int:
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise ValueError(f"seed must be a non-negative integer, got {seed!r}")
+    if seed > 2**64 - 1:
+        raise ValueError(f"seed must be below 2**64, got {seed!r}")
     return int(seed)
 
 
@@ -224,6 +237,10 @@ def reward_params(reward: Any, what: str = "RewardParams or a dict of its weight
     if isinstance(reward, RewardParams):
         return reward
     if isinstance(reward, Mapping):
+        unknown = set(reward) - {"progress", "goal", "collision", "time"}
+        if unknown:
+            raise ValueError(f"unknown reward weight(s) {sorted(unknown)}: the weights are "
+                             "progress, goal, collision and time")
         return RewardParams(**reward)
     raise ValueError(f"reward is {what}, got {reward!r}")
 

@@ -72,6 +72,11 @@ py::object json_to_python(const nlohmann::ordered_json& j);
 /// Two numbers (a tuple, a list, a numpy array of shape (2,)) -> Vec2; ValueError naming `what`
 /// otherwise.
 Vec2 to_vec2(py::handle h, const char* what);
+
+/// A seed: a Python int (not a bool) in [0, 2^64); anything else, a float, a negative number or
+/// one of 2^64 or more, is a ValueError naming `what` (never pybind11's TypeError about
+/// "incompatible function arguments", nor an OverflowError).
+std::uint64_t to_seed(py::handle h, const char* what);
 inline py::tuple vec2_tuple(const Vec2& v) {
   return py::make_tuple(v.x(), v.y());
 }

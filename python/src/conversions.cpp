@@ -314,4 +314,25 @@ py::object robot_info(const RobotSpec& r, std::string_view name) {
   return types.attr("SimpleNamespace")(**d);
 }
 
+std::uint64_t to_seed(py::handle h, const char* what) {
+  const bool integer =
+      PyLong_Check(h.ptr()) || py::isinstance(h, py::module_::import("numbers").attr("Integral"));
+  if (!integer || PyBool_Check(h.ptr()))
+    throw py::value_error(fmt::format("{} must be a non-negative integer, got {}", what,
+                                      py::repr(h).cast<std::string>()));
+  const py::int_ v = py::reinterpret_borrow<py::object>(h);
+  int overflow = 0;
+  const long long small = PyLong_AsLongLongAndOverflow(v.ptr(), &overflow);
+  if (overflow < 0 || (overflow == 0 && small < 0))
+    throw py::value_error(fmt::format("{} must be a non-negative integer, got {}", what,
+                                      py::repr(h).cast<std::string>()));
+  const unsigned long long out = PyLong_AsUnsignedLongLong(v.ptr());
+  if (out == static_cast<unsigned long long>(-1) && PyErr_Occurred()) {
+    PyErr_Clear();
+    throw py::value_error(
+        fmt::format("{} must be below 2**64, got {}", what, py::repr(h).cast<std::string>()));
+  }
+  return static_cast<std::uint64_t>(out);
+}
+
 }  // namespace floornav::python

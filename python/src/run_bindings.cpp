@@ -5,12 +5,14 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <tuple>
 
 #include "bindings.hpp"
 #include "floornav/io/atomic_file.hpp"
@@ -227,10 +229,17 @@ void write_outputs(PyRunResult& r, const std::filesystem::path& dir, bool mcap) 
 // Cases on `jobs` worker threads (the GIL released); the calling thread watches for Ctrl-C.
 py::tuple batch(const std::vector<ScenarioPtr>& scenarios, int jobs, bool timing, bool optimum,
                 const std::optional<std::filesystem::path>& out,
-                const std::optional<std::vector<std::size_t>>& ids) {
+                const std::optional<std::vector<std::size_t>>& ids,
+                const std::optional<std::tuple<std::string, int, int, std::size_t>>& sweep) {
   const std::size_t n = scenarios.size();
   if (ids && ids->size() != n)
     throw py::value_error(fmt::format("batch: {} case ids for {} scenarios", ids->size(), n));
+  if (ids) {  // each case once: two lines of one case in results.jsonl would each claim it
+    std::vector<std::size_t> sorted = *ids;
+    std::sort(sorted.begin(), sorted.end());
+    if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+      throw py::value_error(fmt::format("batch: case id {} is given twice", *twice));
+  }
   std::vector<BatchCase> cases;
   cases.reserve(n);
   bool python = false;
@@ -298,17 +307,21 @@ py::tuple batch(const std::vector<ScenarioPtr>& scenarios, int jobs, bool timing
   if (error) std::rethrow_exception(error);
 
   nlohmann::ordered_json aggregate = aggregate_results(lines);
-  // The CLI's keys: a Python batch is no CLI sweep (its inputs are objects, not files), so it has
-  // no sweep id; shards made with `ids` are joined by the caller.
-  aggregate["sweep_id"] = nullptr;
+  // The CLI's keys. The sweep id is the caller's fingerprint of the whole sweep (floornav.batch
+  // computes one when it writes a folder), else none.
+  aggregate["sweep_id"] = sweep ? nlohmann::ordered_json(std::get<0>(*sweep)) : nullptr;
   aggregate["complete"] = true;
-  if (out) {  // the CLI's two files, written only once every case has run
+  if (out) {  // the CLI's three files, together, only once every case has run
+    if (!sweep) throw py::value_error("batch: a folder is written with its sweep (sweep.json)");
+    const auto& [id, k, shards, cases] = *sweep;
     py::gil_scoped_release nogil;
-    ensure_directory(*out);
-    std::string text;
-    for (const auto& l : lines) text += l.dump() + "\n";
-    write_file_atomically(*out / "results.jsonl", text);
-    write_file_atomically(*out / "aggregate.json", aggregate.dump(2) + "\n");
+    OutputFolder folder(*out, {"results.jsonl", "aggregate.json", "sweep.json"});
+    folder.write("results.jsonl", [&](const std::function<void(std::string_view)>& sink) {
+      for (const auto& l : lines) sink(l.dump() + "\n");
+    });
+    folder.write("aggregate.json", aggregate.dump(2) + "\n");
+    folder.write("sweep.json", sweep_json_text(SweepInfo{id, k, shards, cases}, n));
+    folder.commit();
   }
   py::list result;
   for (const auto& l : lines) result.append(json_to_python(l));
@@ -404,7 +417,8 @@ void bind_run(py::module_& m) {
 
   m.def("_run", &run, py::arg("scenario"), py::arg("threads") = 0, py::arg("mcap") = false);
   m.def("_batch", &batch, py::arg("scenarios"), py::arg("jobs"), py::arg("timing"),
-        py::arg("optimum"), py::arg("out"), py::arg("ids") = py::none());
+        py::arg("optimum"), py::arg("out"), py::arg("ids") = py::none(),
+        py::arg("sweep") = py::none());
 }
 
 }  // namespace floornav::python

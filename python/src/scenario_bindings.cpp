@@ -13,6 +13,7 @@
 #include "floornav/core/input_error.hpp"
 #include "floornav/core/output_error.hpp"
 #include "floornav/io/scenario_file.hpp"
+#include "floornav/io/scenario_writer.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "py_controller.hpp"
 
@@ -173,9 +174,15 @@ void bind_scenario(py::module_& m) {
     } catch (const InputError& e) {
       const std::string line = std::string(kCliPrefix) + e.what();
       py::object exc = g_input_error(line);
-      exc.attr("file") = e.file;
-      exc.attr("where") = e.where;
-      exc.attr("detail") = e.detail;
+      // The parts as the input had them: bytes that are not UTF-8 come back as the surrogate
+      // escapes they came in as (os.fsdecode's), never as a UnicodeDecodeError.
+      const auto text = [](const std::string& s) {
+        return py::reinterpret_steal<py::str>(
+            PyUnicode_DecodeUTF8(s.data(), static_cast<Py_ssize_t>(s.size()), "surrogateescape"));
+      };
+      exc.attr("file") = text(e.file);
+      exc.attr("where") = text(e.where);
+      exc.attr("detail") = text(e.detail);
       PyErr_SetObject(g_input_error.ptr(), exc.ptr());
     }
   });
@@ -192,6 +199,13 @@ void bind_scenario(py::module_& m) {
       .def_property_readonly(
           "overrides", [](const PyScenario& s) { return s.overrides; },
           "The overrides applied, as the CLI's --set KEY=VALUE texts.")
+      .def_property_readonly(
+          "input_files", [](const PyScenario& s) { return s.scenario.input_files; },
+          "Every file read to make it (the scenario file, its map and the map's image, its "
+          "people_file), in the order read.")
+      .def_property_readonly(
+          "_config_yaml", [](const PyScenario& s) { return scenario_to_yaml(s.scenario); },
+          "The resolved scenario as YAML (what --config-out writes).")
       .def_property_readonly(
           "is_fleet", [](const PyScenario& s) { return s.scenario.is_fleet(); },
           "True for a `robots:` list (run as a fleet).")
@@ -232,9 +246,9 @@ void bind_scenario(py::module_& m) {
           "params, robot_name, robot_index). `kind` names it in summaries (`controller`).")
       .def(
           "with_seed",
-          [](const PyScenario& s, std::uint64_t seed) {
+          [](const PyScenario& s, const py::object& seed) {
             auto c = std::make_shared<PyScenario>(s);
-            c->scenario.sim.seed = seed;
+            c->scenario.sim.seed = to_seed(seed, "seed");
             return c;
           },
           py::arg("seed"), "A copy with another sim.seed (sensor noise).")

@@ -76,24 +76,36 @@ class PySimulation {
     return c;
   }
 
-  py::dict reset(std::optional<std::uint64_t> seed) {
-    if (seed) sim_config_.seed = *seed;
+  py::dict reset(const py::object& seed) {
+    refuse_inside_step("reset()");
+    if (!seed.is_none()) sim_config_.seed = to_seed(seed, "seed");
     start();
     return observe();
   }
 
   py::dict step(py::handle command) {
+    refuse_inside_step("step()");
     if (finished())
       throw py::value_error(
           fmt::format("the run has ended ({} at t = {} s): call reset() to start another",
                       to_string(agent().result().status), agent().time()));
     std::optional<Command> c;
     if (!command.is_none()) c = to_command(command);
-    advance(c);
+    {
+      // A Python controller runs inside this step: were it to reset() or step() this very
+      // simulation, the run under way would be freed (or re-entered) beneath it.
+      stepping_ = true;
+      struct Done {
+        bool& flag;
+        ~Done() { flag = false; }
+      } done{stepping_};
+      advance(c);
+    }
     return observe();
   }
 
   py::dict observe() {
+    refuse_inside_step("observe()");
     const Observation obs = fleet_ ? fleet_->observe(0) : sim_->observe();
     return observation_dict(obs, status(), robot_, params_);
   }
@@ -147,6 +159,14 @@ class PySimulation {
     start();
   }
 
+  void refuse_inside_step(const char* what) const {
+    if (stepping_)
+      throw std::runtime_error(fmt::format(
+          "Simulation.{} was called from inside this simulation's own step (by its controller): "
+          "a controller cannot restart, step or sense the run it is part of",
+          what));
+  }
+
   void start() {
     const Scenario& s = scenario_->scenario;
     // The old run's controller goes before the new one is made.
@@ -183,6 +203,7 @@ class PySimulation {
   std::optional<Simulation> sim_;
   std::unique_ptr<FleetSimulation> fleet_;   ///< the robot among people and forklifts
   std::vector<std::optional<Command>> log_;  ///< every step's command (none: the controller's)
+  bool stepping_{false};  ///< a step is under way (its controller may call back into Python)
   py::object robot_;
   py::object params_;
 };

@@ -478,20 +478,62 @@ class VecCore {
 
 }  // namespace
 
+/// A weight that is NaN or infinite would make every reward NaN or infinite: refused.
+void check_reward(const RewardParams& r) {
+  const std::pair<const char*, double> weights[] = {
+      {"progress", r.progress}, {"goal", r.goal}, {"collision", r.collision}, {"time", r.time}};
+  for (const auto& [name, v] : weights)
+    if (!std::isfinite(v) || std::abs(v) > 1e9)
+      throw py::value_error(
+          fmt::format("RewardParams {}={}: a reward weight is a finite number of magnitude at "
+                      "most 1e9",
+                      name, v));
+}
+
 void bind_vec_env(py::module_& m) {
   py::class_<RewardParams>(m, "RewardParams",
                            "The default VecEnv reward per copy and step: progress * (d_before - "
                            "d_after) + goal * (goals reached) - collision * (collided) - time * "
                            "dt, d being the distance to the goal current when the step began.")
       .def(py::init([](double progress, double goal, double collision, double time) {
-             return RewardParams{progress, goal, collision, time};
+             const RewardParams r{progress, goal, collision, time};
+             check_reward(r);
+             return r;
            }),
            py::arg("progress") = 1.0, py::arg("goal") = 1.0, py::arg("collision") = 1.0,
            py::arg("time") = 0.0)
-      .def_readwrite("progress", &RewardParams::progress)
-      .def_readwrite("goal", &RewardParams::goal)
-      .def_readwrite("collision", &RewardParams::collision)
-      .def_readwrite("time", &RewardParams::time)
+      .def_property(
+          "progress", [](const RewardParams& r) { return r.progress; },
+          [](RewardParams& r, double v) {
+            RewardParams changed = r;
+            changed.progress = v;
+            check_reward(changed);
+            r = changed;
+          })
+      .def_property(
+          "goal", [](const RewardParams& r) { return r.goal; },
+          [](RewardParams& r, double v) {
+            RewardParams changed = r;
+            changed.goal = v;
+            check_reward(changed);
+            r = changed;
+          })
+      .def_property(
+          "collision", [](const RewardParams& r) { return r.collision; },
+          [](RewardParams& r, double v) {
+            RewardParams changed = r;
+            changed.collision = v;
+            check_reward(changed);
+            r = changed;
+          })
+      .def_property(
+          "time", [](const RewardParams& r) { return r.time; },
+          [](RewardParams& r, double v) {
+            RewardParams changed = r;
+            changed.time = v;
+            check_reward(changed);
+            r = changed;
+          })
       .def("__repr__", [](const RewardParams& r) {
         return fmt::format("RewardParams(progress={}, goal={}, collision={}, time={})", r.progress,
                            r.goal, r.collision, r.time);

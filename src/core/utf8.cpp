@@ -1,5 +1,8 @@
 #include "floornav/core/utf8.hpp"
 
+#include <algorithm>
+#include <cstdio>
+
 namespace floornav {
 
 std::size_t utf8_sequence_length(std::string_view s, std::size_t i) {
@@ -37,6 +40,23 @@ std::optional<std::size_t> first_non_utf8(std::string_view text) {
     i += n;
   }
   return std::nullopt;
+}
+
+std::string describe_non_utf8(std::string_view text, std::size_t at) {
+  const std::size_t line_start = at == 0 ? std::string_view::npos : text.rfind('\n', at - 1);
+  std::size_t from = line_start == std::string_view::npos ? 0 : line_start + 1;
+  from = std::max(from, at > 24 ? at - 24 : std::size_t{0});
+  char byte[8];
+  std::snprintf(byte, sizeof byte, "0x%02x", static_cast<unsigned char>(text[at]));
+  std::string out = "byte ";
+  out += byte;
+  out += " is not UTF-8";
+  if (at > from) {
+    out += " (after '";
+    out += text.substr(from, at - from);
+    out += "')";
+  }
+  return out;
 }
 
 }  // namespace floornav

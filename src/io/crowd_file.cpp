@@ -115,8 +115,9 @@ constexpr std::array kBehaviourKeys = {"type",
 
 Vec2 read_xy(const std::string& file, MapReader& r, std::initializer_list<const char*> ignored) {
   for (const char* key : ignored) r.has(key);  // HuNavSim's height and heading: not used
-  const Vec2 p(read_double(file, r.require("x", "m"), r.path_of("x")),
-               read_double(file, r.require("y", "m"), r.path_of("y")));
+  const double x = read_double(file, r.require("x", "m"), r.path_of("x"));  // x, then y
+  const double y = read_double(file, r.require("y", "m"), r.path_of("y"));
+  const Vec2 p(x, y);
   r.finish();
   return p;
 }

@@ -145,7 +145,9 @@ std::optional<Json> run_case(const BatchCase& c, const BatchOptions& o,
   return case_line(c, run_summary(c.scenario, *r, ctx), o.timing);
 }
 
-std::string sweep_text(const SweepInfo& s, std::size_t shard_cases) {
+}  // namespace
+
+std::string sweep_json_text(const SweepInfo& s, std::size_t shard_cases) {
   Json j = Json::object();
   j["sweep_id"] = s.id;
   j["shard"] = s.shard;
@@ -155,6 +157,8 @@ std::string sweep_text(const SweepInfo& s, std::size_t shard_cases) {
   j["floornav_version"] = floornav_version();
   return j.dump(2) + "\n";
 }
+
+namespace {
 
 /// sweep.json of a folder, or nullopt when it has none. Its numbers are bounded before anything
 /// is sized by them (a 90-byte file may claim 10^12 cases).
@@ -429,7 +433,7 @@ BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
   SweepInfo written = options.sweep;
   written.cases = sweep_cases;
   write_file_atomically(
-      sweep_path, sweep_text(written, shard_size(sweep_cases, written.shard, written.shards)));
+      sweep_path, sweep_json_text(written, shard_size(sweep_cases, written.shard, written.shards)));
 
   std::vector<std::size_t> todo;
   for (std::size_t i = 0; i < n; ++i)
@@ -697,7 +701,7 @@ MergeOutcome merge_batches(std::span<const std::filesystem::path> dirs,
   });
   folder.write("aggregate.json", outcome.aggregate.dump(2) + "\n");
   SweepInfo merged{id, 1, 1, total};
-  folder.write("sweep.json", sweep_text(merged, outcome.merged));
+  folder.write("sweep.json", sweep_json_text(merged, outcome.merged));
   folder.commit();
   return outcome;
 }

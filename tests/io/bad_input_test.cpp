@@ -375,7 +375,7 @@ std::vector<std::string> names_for(const fs::path& file) {
   for (std::string line; std::getline(in, line);) {
     const auto first = line.find_first_not_of(" \t");
     if (first == std::string::npos) continue;
-    for (const std::string_view key : {"map:", "image:"}) {
+    for (const std::string_view key : {"map:", "image:", "people_file:"}) {
       if (line.compare(first, key.size(), key) != 0) continue;
       std::istringstream words(line.substr(first + key.size()));
       std::string target;

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "floornav/core/input_error.hpp"
+#include "floornav/geometry/polygon.hpp"
 #include "floornav/io/barn.hpp"
 #include "support/loader_test_support.hpp"
 
@@ -119,6 +120,60 @@ TEST_F(SdfWorldTest, BareModelFileAndDegrees) {
     </collision></link></model></sdf>)"));
   ASSERT_EQ(w.circles.size(), 1u);
   expect_point(w.circles[0].center, 0.0, 2.0);
+}
+
+/// The bounding box of a polygon.
+std::pair<Vec2, Vec2> extent_of(const std::vector<Vec2>& poly) {
+  Vec2 lo = poly.front(), hi = poly.front();
+  for (const Vec2& p : poly) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  return {lo, hi};
+}
+
+// A tilted shape covers its ground shadow, not its upright footprint: a box on its side, a
+// cylinder lying down (it once kept the footprint it has standing, dropping most of it). A chain
+// of tilts that cancels is upright again, and a sphere is a disc however it is turned.
+TEST_F(SdfWorldTest, TiltedShapesCoverTheirGroundShadow) {
+  auto model = [](const std::string& name, const std::string& pose, const std::string& link_pose,
+                  const std::string& shape) {
+    return "<model name='" + name + "'><static>1</static><pose>" + pose +
+           "</pose><link name='l'><pose>" + link_pose + "</pose><collision name='c'><geometry>" +
+           shape + "</geometry></collision></link></model>\n";
+  };
+  const SdfWorld w = load_sdf_world(write(
+      "tilt.world",
+      "<sdf version='1.6'><world name='w'>\n" +
+          // A 2 x 1 x 0.5 box pitched 90 degrees: 0.5 along x, 1 along y (upright: 2 along x).
+          model("box", "5 0 0 0 1.5707963267948966 0", "0 0 0 0 0 0",
+                "<box><size>2 1 0.5</size></box>") +
+          // A cylinder of radius 0.2 and length 2 lying along y.
+          model("log", "0 5 0 1.5707963267948966 0 0", "0 0 0 0 0 0",
+                "<cylinder><radius>0.2</radius><length>2</length></cylinder>") +
+          // Rolled there and back again: upright, a disc.
+          model("post", "0 -5 0 0.7 0 0", "0 0 0 -0.7 0 0",
+                "<cylinder><radius>0.3</radius><length>1</length></cylinder>") +
+          model("ball", "-5 0 1 0.4 0.9 0", "0 0 0 0 0 0",
+                "<sphere><radius>0.5</radius></sphere>") +
+          "</world></sdf>"));
+  ASSERT_TRUE(w.skipped.empty());
+  ASSERT_EQ(w.polygons.size(), 2u);
+  const auto [box_lo, box_hi] = extent_of(w.polygons[0]);
+  EXPECT_NEAR(box_lo.x(), 4.75, 1e-9);
+  EXPECT_NEAR(box_hi.x(), 5.25, 1e-9);
+  EXPECT_NEAR(box_lo.y(), -0.5, 1e-9);
+  EXPECT_NEAR(box_hi.y(), 0.5, 1e-9);
+  EXPECT_TRUE(is_simple(w.polygons[0]));
+  const auto [log_lo, log_hi] = extent_of(w.polygons[1]);
+  EXPECT_NEAR(log_lo.y(), 4.0, 1e-9);  // the length, lying along y
+  EXPECT_NEAR(log_hi.y(), 6.0, 1e-9);
+  EXPECT_LE(log_lo.x(), -0.2);  // never narrower than the cylinder ...
+  EXPECT_GE(log_hi.x(), 0.2);
+  EXPECT_LT(log_hi.x(), 0.21);                  // ... and barely wider
+  EXPECT_GT(signed_area(w.polygons[1]), 0.79);  // 2 x 0.4 m, counter-clockwise
+  ASSERT_EQ(w.circles.size(), 2u);
+  expect_point(w.circles[0].center, 0.0, -5.0);
+  EXPECT_EQ(w.circles[0].radius, 0.3);
+  expect_point(w.circles[1].center, -5.0, 0.0);
+  EXPECT_EQ(w.circles[1].radius, 0.5);
 }
 
 TEST_F(SdfWorldTest, BadWorlds) {

@@ -67,11 +67,13 @@ def test_out_writes_the_cli_files_byte_for_byte(tmp_path):
     floornav.batch(PATHS, timing=False, out=tmp_path / "py")
     name = "results.jsonl"
     assert (tmp_path / "py" / name).read_bytes() == (cli_out / name).read_bytes(), name
-    # aggregate.json: the same but for the sweep id (none in Python).
+    # aggregate.json: the same but for the sweep id (Python's fingerprints its scenarios).
     ours = json.loads((tmp_path / "py" / "aggregate.json").read_text())
     cli = json.loads((cli_out / "aggregate.json").read_text())
-    assert ours.pop("sweep_id") is None and cli.pop("sweep_id")
+    assert ours.pop("sweep_id").startswith("py") and cli.pop("sweep_id")
     assert ours == cli
+    sweep = json.loads((tmp_path / "py" / "sweep.json").read_text())
+    assert (sweep["shard"], sweep["shards"], sweep["cases"]) == (1, 1, len(PATHS))
 
 
 def test_no_optimum_skips_the_grid_astar(tmp_path):

@@ -104,7 +104,7 @@ def test_every_bad_scenario_of_the_corpus_gives_the_cli_line(path: pathlib.Path,
 
 
 def _set_values() -> list[str]:
-    lines = (BAD / "set_values.txt").read_text().splitlines()
+    lines = (BAD / "set_values.txt").read_text(errors="surrogateescape").splitlines()
     return [l for l in lines if l.strip() and not l.startswith("#")]
 
 

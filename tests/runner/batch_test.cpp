@@ -439,3 +439,89 @@ TEST(Record, ExtraColumnsHoldWhatTheControllerSawAndAskedFor) {
 
 }  // namespace
 }  // namespace floornav
+
+namespace floornav {
+namespace {
+
+/// A folder holding `sweep_json` as its sweep.json and `results` as its results.jsonl.
+fs::path forged_shard(const std::string& name, const std::string& sweep_json,
+                      const std::string& results) {
+  const fs::path dir = fresh_dir(name);
+  fs::create_directories(dir);
+  std::ofstream(dir / "sweep.json") << sweep_json;
+  std::ofstream(dir / "results.jsonl") << results;
+  return dir;
+}
+
+// merge sizes nothing by what sweep.json claims before it is bounded: a 90-byte file claiming
+// 10^12 cases or 2 * 10^9 shards is refused at once (it once allocated gigabytes), and a shard
+// of 10^9 cases with 2 lines is reported incomplete without listing its cases.
+TEST(BatchState, MergeBoundsSweepJsonBeforeAllocating) {
+  const std::string line =
+      "{\"case\":0,\"source\":\"x\",\"status\":\"reached\",\"sim_time\":1.0}\n";
+  const fs::path out = fresh_dir("merge_forged_out");
+  struct Case {
+    std::string sweep, needle;
+  };
+  const std::vector<Case> cases = {
+      {R"({"sweep_id":"a","shard":1,"shards":1,"cases":1000000000000})",
+       "cases: 1000000000000 is more than the 1000000000 cases a sweep may have"},
+      {R"({"sweep_id":"a","shard":1,"shards":2000000000,"cases":5})",
+       "shards: 2000000000 is not in [1, 1000000]"},
+      {R"({"sweep_id":"a","shard":3,"shards":2,"cases":5})", "shard: 3 is not in [1, shards = 2]"},
+      {R"({"sweep_id":"a","shard":1,"shards":1,"cases":-5})", "not a sweep.json"},
+      {R"({"sweep_id":"a","shard":1,"shards":1,"cases":1000000000})",
+       "shard 1/1 is incomplete: 999999999 of its 1000000000 cases are missing (case 1, 2, 3, 4, "
+       "5 and 999999994 more)"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.sweep);
+    const fs::path dir = forged_shard("merge_forged", c.sweep, line);
+    const std::string error = merge_error({dir}, out);
+    EXPECT_NE(error.find(c.needle), std::string::npos) << error;
+    EXPECT_FALSE(fs::exists(out));
+    fs::remove_all(dir);
+  }
+}
+
+// A case given twice in one results file is refused by merge and by resume (which line is the
+// result?), and a line without a result is not a finished case: merge refuses it, resume runs
+// the case again.
+TEST(BatchState, DuplicateCasesAndLinesWithoutAResult) {
+  const std::string sweep = R"({"sweep_id":"a","shard":1,"shards":1,"cases":2})";
+  const std::string l0 = "{\"case\":0,\"source\":\"x\",\"status\":\"reached\",\"sim_time\":1.0}\n";
+  const std::string l1 = "{\"case\":1,\"source\":\"x\",\"status\":\"timeout\",\"sim_time\":2.0}\n";
+  const fs::path out = fresh_dir("merge_dup_out");
+  fs::path dir = forged_shard("merge_dup", sweep, l0 + l1 + l0);
+  std::string error = merge_error({dir}, out);
+  EXPECT_NE(error.find("line 3: case 0 again (also on line 1)"), std::string::npos) << error;
+  fs::remove_all(dir);
+  dir = forged_shard("merge_noresult", sweep, l0 + "{\"case\":1}\n");
+  error = merge_error({dir}, out);
+  EXPECT_NE(error.find("line 2: not a finished case's line"), std::string::npos) << error;
+  fs::remove_all(dir);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// An exception on the thread that writes results.jsonl (here: a name that is not UTF-8, which
+// input checks keep out of every file-made scenario but a program can still build) leaves
+// run_batch as an exception with every worker joined, never std::terminate with threads running.
+TEST(BatchState, AWriterExceptionLeavesNoThreadRunning) {
+  const fs::path dir = fresh_dir("writer_throws");
+  std::vector<BatchCase> cases;
+  for (std::size_t i = 0; i < 6; ++i) {
+    BatchCase c;
+    c.scenario = load_scenario_file(std::string(FLOORNAV_SCENARIO_DIR) + "/rectangle.yaml");
+    c.scenario.sim.t_max = 0.5;
+    c.id = i;
+    c.source = i == 2 ? std::string("caf\xe9") : std::string("ok");
+    cases.push_back(std::move(c));
+  }
+  BatchOptions o = options_for(dir);
+  o.jobs = 3;
+  EXPECT_THROW(run_batch(cases, o), std::exception);  // and the test process is still here
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace floornav

@@ -18,6 +18,7 @@
 #include "floornav/core/input_error.hpp"
 #include "floornav/core/output_error.hpp"
 #include "floornav/io/atomic_file.hpp"
+#include "floornav/io/crowd_csv.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
 #include "floornav/render/trajectory_svg.hpp"
@@ -346,6 +347,61 @@ TEST(TrajectorySvg, LongRunsAreDecimated) {
   const std::string svg = render_trajectory_svg(small_scenario(), r);
   EXPECT_LT(svg.size(), 200'000u);
   EXPECT_EQ(count_of(svg, "<polyline"), 4u);
+}
+
+// ---- crowd.csv ----------------------------------------------------------------------------------
+
+/// The records of RFC 4180 CSV text: fields split at commas outside quotes, "" for a quote.
+std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows(1, std::vector<std::string>(1));
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+        rows.back().back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        rows.back().back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      rows.back().emplace_back();
+    } else if (c == '\n') {
+      rows.emplace_back(1);
+    } else {
+      rows.back().back() += c;
+    }
+  }
+  if (rows.back().size() == 1 && rows.back()[0].empty()) rows.pop_back();
+  return rows;
+}
+
+// A name holding a comma, a quote or a line break stays one field of one row: it cannot forge
+// rows or columns (crowd.csv is quoted as trajectory.csv is).
+TEST(CrowdCsv, NamesNeverForgeRowsOrColumns) {
+  CrowdResult crowd;
+  const std::vector<std::string> names = {"plain", "a,b", "say \"hi\"", "two\nlines",
+                                          "0,person,evil,1,2,3\n9"};
+  for (const std::string& n : names) {
+    CrowdTrack t;
+    t.name = n;
+    t.samples = {{0.0, 1.0, 2.0, 0.5}, {0.1, 1.1, 2.0, 0.5}};
+    crowd.people.push_back(t);
+  }
+  crowd.forklifts.push_back(crowd.people[1]);
+  const auto rows = parse_csv(crowd_to_csv(crowd));
+  ASSERT_EQ(rows.size(), 1u + 2u * (names.size() + 1));  // the header, then every sample once
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"t", "kind", "name", "x", "y", "theta"}));
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    ASSERT_EQ(rows[r].size(), 6u) << r;
+    const std::size_t track = (r - 1) / 2;
+    EXPECT_EQ(rows[r][1], track < names.size() ? "person" : "forklift");
+    EXPECT_EQ(rows[r][2], track < names.size() ? names[track] : names[1]);
+  }
 }
 
 // ---- atomic files ----------------------------------------------------------------------------

@@ -1,7 +1,11 @@
 // Scenario outcome tests: each chapter figure's scenario behaves as the chapter says.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "floornav/io/scenario_file.hpp"
@@ -135,4 +139,35 @@ TEST(Outcomes, StuckAndTimeoutAreReported) {
   const RunResult timeout = run("factory_delivery.yaml", {"sim.t_max=5"});
   EXPECT_EQ(timeout.status, RunStatus::Timeout);
   EXPECT_NEAR(timeout.sim_time, 5.0, 1e-6);
+}
+
+// The run that once lied: a robot on a map without bounds, a wall across the map's whole height
+// between it and its goal. Off the map is solid, so it cannot drive round the wall: the run is
+// never `reached` (the grid optimum already said no path exists).
+TEST(MapWithoutBounds, NoRobotDrivesRoundAWallOffTheMap) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("floornav_offmap_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "wall.map") << "type octile\nheight 6\nwidth 9\nmap\n"
+                                     "....@....\n....@....\n....@....\n"
+                                     "....@....\n....@....\n....@....\n";
+  for (const char* kind : {"hybrid", "go_to_goal"}) {
+    SCOPED_TRACE(kind);
+    const std::string text = std::string("world: {map: wall.map, cell_size: 0.5}\n") +
+                             "robot: {start: [0.75, 1.5, 0]}\ngoal: [3.75, 1.5]\n" +
+                             "controller: {kind: " + kind + "}\nsim: {t_max: 60}\n";
+    const Scenario s = load_scenario_text(text, dir / "offmap.yaml");
+    const RunResult r = simulate(s);
+    EXPECT_NE(r.status, RunStatus::Reached) << to_string(r.status);
+    double lowest = 1e9, highest = -1e9;
+    for (const TrajectorySample& p : r.trajectory) {
+      lowest = std::min(lowest, p.y);
+      highest = std::max(highest, p.y);
+    }
+    if (!r.trajectory.empty()) {
+      EXPECT_GE(lowest, 0.0);   // never below the map
+      EXPECT_LE(highest, 3.0);  // nor above it
+    }
+  }
+  std::filesystem::remove_all(dir);
 }

@@ -160,3 +160,41 @@ TEST(World, ClearanceHintIsUnusedWithAGrid) {
     EXPECT_FALSE(hint.valid);
   }
 }
+
+// A map without bounds is the whole world: off the map is solid, its edge a wall (it once counted
+// as free floor, and a robot drove round a full-height wall by leaving the map). With bounds, the
+// bounds decide as before.
+TEST(World, OffAMapWithoutBoundsIsSolid) {
+  // 10 x 4 cells of 0.5 m, free but for a full-height wall in column 5; origin (1, 2), turned.
+  for (const double yaw : {0.0, 0.3}) {
+    SCOPED_TRACE(yaw);
+    std::vector<std::uint8_t> occ(40, 0);
+    for (int y = 0; y < 4; ++y) occ[static_cast<std::size_t>(y * 10 + 5)] = 1;
+    const Pose2 origin{{1.0, 2.0}, yaw};
+    WorldDesc d;
+    d.grid = std::make_shared<const OccupancyGrid>(10, 4, 0.5, origin, std::move(occ));
+    const World w(d);
+    const auto at = [&](double gx, double gy) { return origin.transform_point({gx, gy}); };
+    EXPECT_FALSE(w.is_inside_obstacle(at(1.0, 1.0)));   // on the map, free
+    EXPECT_NEAR(w.clearance(at(1.0, 1.0)), 1.0, 1e-9);  // the map's lower and upper edges
+    for (const Vec2& off : {at(2.75, -0.5), at(2.75, 2.5), at(-0.5, 1.0), at(5.5, 3.0)}) {
+      EXPECT_TRUE(w.is_inside_obstacle(off));
+      EXPECT_LT(w.clearance(off), 0.0);
+      EXPECT_LT(w.clearance_brute_force(off), 0.0);
+    }
+    // A ray from the map towards the outside stops at the edge.
+    const Vec2 down = Vec2(std::sin(yaw), -std::cos(yaw));
+    EXPECT_NEAR(w.cast_ray(at(1.0, 1.0), down, 10.0), 1.0, 1e-9);
+    EXPECT_NEAR(w.cast_ray_brute_force(at(1.0, 1.0), down, 10.0), 1.0, 1e-9);
+    // Nothing off the map is reachable on the free-cell raster either.
+    EXPECT_TRUE(w.map_edge().size() == 4);
+    EXPECT_FALSE(w.bounds().has_value());  // the scenario's bounds stay as given
+  }
+  // With bounds the map's edge is no wall: the bounds are.
+  WorldDesc d;
+  d.grid = std::make_shared<const OccupancyGrid>(2, 2, 1.0, Pose2{}, std::vector<std::uint8_t>(4));
+  d.bounds = Box2{{-5.0, -5.0}, {5.0, 5.0}};
+  const World w(d);
+  EXPECT_TRUE(w.map_edge().empty());
+  EXPECT_FALSE(w.is_inside_obstacle({3.0, 3.0}));
+}

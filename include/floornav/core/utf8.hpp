@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <string_view>
 
 namespace floornav {
@@ -18,5 +19,13 @@ std::size_t utf8_sequence_length(std::string_view text, std::size_t i);
 /// The offset of the first byte of `text` that does not start a well-formed UTF-8 character, or
 /// nullopt when all of it is UTF-8.
 std::optional<std::size_t> first_non_utf8(std::string_view text);
+
+/// "byte 0xe9 is not UTF-8 (after 'caf')": the byte at `at` and a little of what comes before it
+/// on its line, for an error message (InputError escapes what is not printable).
+std::string describe_non_utf8(std::string_view text, std::size_t at);
+
+/// Why text must be UTF-8, for the end of such a message.
+inline constexpr const char* kWhyUtf8 =
+    "floornav reads text as UTF-8 (names and paths are written to JSON, which holds nothing else)";
 
 }  // namespace floornav

@@ -123,6 +123,10 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
 /// exception) passes through.
 nlohmann::ordered_json run_batch_case(const BatchCase& c, const BatchOptions& options);
 
+/// The text of a batch folder's sweep.json for shard `sweep.shard` of `sweep.shards` of the sweep,
+/// holding `shard_cases` of its cases (what run_batch writes; merge and --resume read it).
+std::string sweep_json_text(const SweepInfo& sweep, std::size_t shard_cases);
+
 /// The totals of a list of result lines (as written to results.jsonl).
 nlohmann::ordered_json aggregate_results(const std::vector<nlohmann::ordered_json>& lines);
 

@@ -58,6 +58,12 @@ class PgmTokenizer {
 
   std::string where() const { return "line " + std::to_string(line_); }
 
+  /// Whether only whitespace and comments are left.
+  bool at_end() {
+    skip_space_and_comments();
+    return in_.peek() == std::char_traits<char>::eof();
+  }
+
  private:
   void skip_space_and_comments() {
     for (;;) {
@@ -178,6 +184,22 @@ RasterImage read_pgm(const std::filesystem::path& path) {
       check_max(v, tok.where());
       image.samples[i] = to_8bit(v);
     }
+  }
+  // The raster is all of the file: anything after it (a second image, pixels of a wrong size in
+  // the header, a stray row) means the map is not what the header says. Whitespace (and, in a
+  // plain PGM, comments) may close the file.
+  if (binary) {
+    const auto after = static_cast<std::uint64_t>(in.tellg());
+    for (int c; (c = in.get()) != std::char_traits<char>::eof();)
+      if (c != ' ' && c != '\t' && c != '\n' && c != '\r')
+        throw InputError(file, "",
+                         "data after the raster (from byte " + std::to_string(after) +
+                             "): the file holds more than the " + std::to_string(width) + " x " +
+                             std::to_string(height) + " pixels its header gives");
+  } else if (!tok.at_end()) {
+    throw InputError(file, tok.where(),
+                     "more pixel values than the " + std::to_string(width) + " x " +
+                         std::to_string(height) + " the header gives");
   }
   return image;
 }
