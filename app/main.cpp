@@ -45,11 +45,6 @@ extern "C" void on_signal(int) {
   g_stop.store(true);
 }
 
-// A run records at most this many trajectory rows (robots x steps) and this many numbers in all
-// (rows x columns): 1e7 rows hold about 0.7 GB in memory and 1 GB of CSV.
-constexpr double kMaxRecordedRows = 1e7;
-constexpr double kMaxRecordedValues = 2e8;
-
 /// The `--record` list: command, heading, clearance, goal, ranges, or all.
 RecordOptions parse_record(const std::string& list) {
   RecordOptions r;
@@ -74,31 +69,6 @@ RecordOptions parse_record(const std::string& list) {
                                    item.substr(0, 40)));
   }
   return r;
-}
-
-/// Refuses a run whose recording would not fit in memory, before it starts.
-void check_recording(const Scenario& s, const std::string& file) {
-  if (!s.sim.record_trajectory) return;
-  const double rows =
-      static_cast<double>(s.robots.size()) * (std::ceil(s.sim.t_max / s.sim.dt) + 1);
-  if (rows > kMaxRecordedRows)
-    throw InputError(
-        file, "sim.record_trajectory",
-        fmt::format("recording {} robot(s) for {:.6g} steps is {:.3g} trajectory rows, "
-                    "more than the {:.0e} a run may record: set "
-                    "sim.record_trajectory: false (the summary is still written) or "
-                    "a shorter sim.t_max",
-                    s.robots.size(), s.sim.t_max / s.sim.dt, rows, kMaxRecordedRows));
-  std::size_t sensors = 0;
-  for (const RobotTask& t : s.robots) sensors = std::max(sensors, t.robot.sensors.size());
-  const RecordOptions& o = s.sim.record;
-  const double columns = 9.0 + 4.0 * o.command + 2.0 * o.heading + o.clearance + 3.0 * o.goal +
-                         (o.ranges ? static_cast<double>(sensors) : 0.0);
-  if (rows * columns > kMaxRecordedValues)
-    throw InputError("", "--record",
-                     fmt::format("{:.3g} rows of {} columns is more than the {:.0e} numbers a run "
-                                 "may record: record fewer columns or a shorter run",
-                                 rows, columns, kMaxRecordedValues));
 }
 
 /// Outputs appear whole: SIGINT and SIGTERM wait while they are written and moved into place.
@@ -144,7 +114,7 @@ int run_one(Scenario scenario, const RunRequest& rq) {
   // describe the scenario as given, so that its provenance is the same with or without them.
   Scenario recorded = scenario;
   prepare_outputs(recorded, which);
-  check_recording(recorded, rq.file);
+  check_recording_limits(recorded, rq.file);
   if (!rq.config_out.empty()) write_file_atomically(rq.config_out, scenario_to_yaml(scenario));
   RunContext context;
   context.overrides = rq.sets;

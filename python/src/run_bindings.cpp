@@ -181,18 +181,19 @@ void check_signals() {
 // As run_timed / run_fleet_timed (the same simulation, the same result), in pieces between which
 // a pending Ctrl-C stops the run.
 std::shared_ptr<PyRunResult> run(const ScenarioPtr& s, int threads, bool mcap) {
+  // For a bag, the run records the trajectory and the sensor ranges (prepare_outputs); the
+  // result keeps the scenario as given.
+  std::optional<Scenario> prepared;
+  if (mcap) {
+    prepared = s->scenario;
+    prepare_outputs(*prepared, OutputSelection{.mcap = true});
+  }
+  const Scenario& scenario = prepared ? *prepared : s->scenario;
+  check_recording_limits(scenario, s->source);  // as the command line: before it starts
   auto r = std::make_shared<PyRunResult>();
   r->scenario = s;
   {
     py::gil_scoped_release nogil;  // a Python controller takes it back per step
-    // For a bag, the run records the trajectory and the sensor ranges (prepare_outputs); the
-    // result keeps the scenario as given.
-    std::optional<Scenario> prepared;
-    if (mcap) {
-      prepared = s->scenario;
-      prepare_outputs(*prepared, OutputSelection{.mcap = true});
-    }
-    const Scenario& scenario = prepared ? *prepared : s->scenario;
     const auto t0 = std::chrono::steady_clock::now();
     const auto elapsed = [&] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

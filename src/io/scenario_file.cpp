@@ -655,6 +655,14 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
   io_detail::read_crowd(file, top, origin, s.crowd, s.input_files);
   const std::optional<RandomPeopleSpec> random_people = io_detail::read_random_people(file, top);
   top.finish();
+  // Every robot is checked against every person and forklift every step (contacts, gaps), and
+  // keeps a byte per pair: bounded before anything is made for them.
+  const std::size_t movers = s.crowd.people.size() + s.crowd.forklifts.size();
+  if (movers > 0 && s.robots.size() * movers > kMaxRobotMoverPairs)
+    fail(file, root, "people",
+         fmt::format("{} robots among {} people and forklifts make {} robot-mover pairs, more "
+                     "than the {} a scenario may have (each pair is checked every step)",
+                     s.robots.size(), movers, s.robots.size() * movers, kMaxRobotMoverPairs));
   s.world = std::make_shared<const World>(std::move(desc));
   if (random_people) io_detail::add_random_people(file, root, *random_people, s);
   validate_scenario(s, file);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <future>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/crowd_csv.hpp"
 #include "floornav/io/run_mcap.hpp"
@@ -40,6 +41,32 @@ const std::vector<std::string>& run_output_files() {
       "summary.json",    "trajectory.csv", "transitions.csv", "trajectory.svg",
       "trajectory.html", "crowd.csv",      "run.mcap"};
   return names;
+}
+
+void check_recording_limits(const Scenario& s, const std::string& file) {
+  if (!s.sim.record_trajectory) return;
+  const double steps = std::ceil(s.sim.t_max / s.sim.dt) + 1;
+  const double movers = static_cast<double>(s.crowd.people.size() + s.crowd.forklifts.size());
+  const double rows = (static_cast<double>(s.robots.size()) + movers) * steps;
+  if (rows > kMaxRecordedRows)
+    throw InputError(
+        file, "sim.record_trajectory",
+        fmt::format("recording {} robot(s){} for {:.6g} steps is {:.3g} rows, more than the "
+                    "{:.0e} a run may record: set sim.record_trajectory: false (the summary is "
+                    "still written) or a shorter sim.t_max",
+                    s.robots.size(),
+                    movers > 0 ? fmt::format(" and {} people and forklifts", movers) : "",
+                    steps - 1, rows, kMaxRecordedRows));
+  std::size_t sensors = 0;
+  for (const RobotTask& t : s.robots) sensors = std::max(sensors, t.robot.sensors.size());
+  const RecordOptions& o = s.sim.record;
+  const double columns = 9.0 + 4.0 * o.command + 2.0 * o.heading + o.clearance + 3.0 * o.goal +
+                         (o.ranges ? static_cast<double>(sensors) : 0.0);
+  if (rows * columns > kMaxRecordedValues)
+    throw InputError("", "--record",
+                     fmt::format("{:.3g} rows of {} columns is more than the {:.0e} numbers a run "
+                                 "may record: record fewer columns or a shorter run",
+                                 rows, columns, kMaxRecordedValues));
 }
 
 void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenario,

@@ -101,9 +101,57 @@ void Crowd::step(double t, double dt, const RobotBodies& robots) {
   if (record_) save(t_);
 }
 
+void Crowd::build_person_grid() {
+  const std::size_t n = bodies_.size();
+  if (n == 0) return;
+  Vec2 lo = bodies_[0].center, hi = lo;
+  for (const Circle& c : bodies_) lo = lo.cwiseMin(c.center), hi = hi.cwiseMax(c.center);
+  // Cells of at least the reach (so that the 3 x 3 around a person hold everyone who can push
+  // it), coarser when the people are spread far apart: at most 4 cells a person.
+  double cell = kPersonReach * (1.0 + 1e-9);  // above the reach, whatever the rounding
+  const double max_cells = 4.0 * static_cast<double>(n) + 16.0;
+  const auto count = [&](double c) {
+    return (std::floor((hi.x() - lo.x()) / c) + 1.0) * (std::floor((hi.y() - lo.y()) / c) + 1.0);
+  };
+  while (count(cell) > max_cells) cell *= 2.0;
+  grid_origin_ = lo;
+  grid_cell_ = cell;
+  grid_nx_ = static_cast<int>(std::floor((hi.x() - lo.x()) / cell)) + 1;
+  grid_ny_ = static_cast<int>(std::floor((hi.y() - lo.y()) / cell)) + 1;
+  const std::size_t cells = static_cast<std::size_t>(grid_nx_) * static_cast<std::size_t>(grid_ny_);
+  cell_of_.resize(n);
+  cell_start_.assign(cells + 1, 0);
+  for (std::size_t a = 0; a < n; ++a) {
+    const Vec2 q = (bodies_[a].center - lo) / cell;
+    const int ix = std::min(grid_nx_ - 1, static_cast<int>(q.x()));
+    const int iy = std::min(grid_ny_ - 1, static_cast<int>(q.y()));
+    cell_of_[a] = static_cast<std::uint32_t>(iy * grid_nx_ + ix);
+    ++cell_start_[cell_of_[a] + 1];
+  }
+  for (std::size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
+  cell_items_.resize(n);
+  fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::size_t a = 0; a < n; ++a)  // in index order: each cell's list ascends
+    cell_items_[fill_[cell_of_[a]]++] = static_cast<std::uint32_t>(a);
+}
+
+void Crowd::neighbours_of(std::size_t a) {
+  near_.clear();
+  const int cx = static_cast<int>(cell_of_[a]) % grid_nx_;
+  const int cy = static_cast<int>(cell_of_[a]) / grid_nx_;
+  for (int y = std::max(0, cy - 1); y <= std::min(grid_ny_ - 1, cy + 1); ++y)
+    for (int x = std::max(0, cx - 1); x <= std::min(grid_nx_ - 1, cx + 1); ++x) {
+      const std::size_t c = static_cast<std::size_t>(y * grid_nx_ + x);
+      near_.insert(near_.end(), cell_items_.begin() + cell_start_[c],
+                   cell_items_.begin() + cell_start_[c + 1]);
+    }
+  std::sort(near_.begin(), near_.end());
+}
+
 void Crowd::move_people(double dt, const RobotBodies& robots) {
   const SocialForceParams& sf = spec_.social;
   const std::size_t n = bodies_.size();
+  build_person_grid();
   // Forces from the state at the start of the step, for everyone; then everyone moves.
   for (std::size_t a = 0; a < n; ++a) {
     const PersonSpec& spec = spec_.people[a];
@@ -118,7 +166,10 @@ void Crowd::move_people(double dt, const RobotBodies& robots) {
       const Vec2 f = person_repulsion(r, v, sf);
       force += (look.squaredNorm() > 0.0 ? sight_weight(look, f, sf) : 1.0) * f;
     };
-    for (std::size_t b = 0; b < n; ++b)
+    // Only people within kPersonReach push: those of the 3 x 3 grid cells around, in index
+    // order, so that the sum is the all-pairs loop's bit for bit (the others add nothing).
+    neighbours_of(a);
+    for (const std::uint32_t b : near_)
       if (b != a) push(bodies_[b].center, velocity_[b]);
     // A robot is a moving obstacle: people anticipate its step as they do another person's,
     // and keep their bodies off its body as off a wall (the wall potential of the gap).

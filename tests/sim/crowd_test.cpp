@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -395,4 +396,40 @@ TEST(CrowdFleet, ALoneSimulationRefusesPeople) {
       "lone.yaml");
   EXPECT_THROW(make_simulation(s), std::invalid_argument);
   EXPECT_EQ(simulate_fleet(s).robots.size(), 1u);
+}
+
+namespace {
+/// FNV-1a over the bits of every recorded sample of every person.
+std::uint64_t samples_hash(const CrowdResult& r) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&](double v) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    for (int i = 0; i < 8; ++i) h = (h ^ ((bits >> (8 * i)) & 0xffu)) * 1099511628211ull;
+  };
+  for (const CrowdTrack& t : r.people)
+    for (const CrowdSample& s : t.samples) mix(s.x), mix(s.y), mix(s.theta);
+  return h;
+}
+}  // namespace
+
+// People push each other only within kPersonReach, so only the people of nearby cells are
+// visited (10,000 people once cost 10^8 pair tests a step). The sums run in the same order as
+// the all-pairs loop: the tracks are the same bit for bit (the hash was taken with that loop).
+TEST(Crowd, ThePeoplesGridGivesTheAllPairsTracksBitForBit) {
+  const World w = room(30, 30);
+  CrowdSpec spec;
+  Rng rng(11);
+  for (int i = 0; i < 300; ++i) {
+    const Vec2 start(rng.uniform(1.0, 29.0), rng.uniform(1.0, 29.0));
+    const Vec2 goal(rng.uniform(1.0, 29.0), rng.uniform(1.0, 29.0));
+    std::string name(1, 'p');
+    name += std::to_string(i);
+    spec.people.push_back({name, start, {goal}, rng.uniform(0.8, 1.4), 0.25, 0.3, true});
+  }
+  NoRobots none;
+  Crowd crowd(spec, w, 0, true);
+  for (int k = 0; k < 300; ++k) crowd.step(0.02 * k, 0.02, none.bodies());
+  EXPECT_EQ(samples_hash(crowd.result()), 0x8c7286a71575957cull)
+      << std::hex << samples_hash(crowd.result());
 }

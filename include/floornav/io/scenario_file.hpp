@@ -58,5 +58,7 @@ inline constexpr std::size_t kMaxSensorsPerRobot = 4096;
 inline constexpr std::size_t kMaxRaysPerRobot = 4096;
 /// Rays a whole fleet casts per step.
 inline constexpr std::size_t kMaxRaysInAll = 20000000;
+/// Robots times people and forklifts (each pair is checked every step).
+inline constexpr std::size_t kMaxRobotMoverPairs = 10000000;
 
 }  // namespace floornav

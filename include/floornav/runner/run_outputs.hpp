@@ -20,6 +20,16 @@ namespace floornav {
 /// into the folder of an earlier run removes those of them it does not write itself.
 const std::vector<std::string>& run_output_files();
 
+/// A run records at most this many rows (robots, people and forklifts, times steps) and this
+/// many numbers in all (rows x columns): 1e7 rows hold about 0.7 GB in memory and 1 GB of CSV.
+inline constexpr double kMaxRecordedRows = 1e7;
+inline constexpr double kMaxRecordedValues = 2e8;
+
+/// Refuses (InputError naming `file` and sim.record_trajectory or --record) a run whose
+/// recording would exceed those limits, before it starts: every robot's trajectory rows, every
+/// person's and forklift's crowd.csv rows, the --record columns.
+void check_recording_limits(const Scenario& scenario, const std::string& file);
+
 /// Which files `write_run_outputs` writes.
 struct OutputSelection {
   bool summary{true};

@@ -113,12 +113,9 @@ OccupancyGrid load_movingai_map(const std::filesystem::path& map, double cell_si
   // Each side alone first: the product of two sides near 2^32 would wrap around.
   const auto w64 = static_cast<std::uint64_t>(width);
   const auto h64 = static_cast<std::uint64_t>(height);
-  if (w64 > io_detail::kMaxMapCells || h64 > io_detail::kMaxMapCells ||
-      w64 * h64 > io_detail::kMaxMapCells) {
-    in.fail("map of " + std::to_string(width) + " x " + std::to_string(height) +
-            " cells is too large (limit 2^26 = " + std::to_string(io_detail::kMaxMapCells) +
-            " cells)");
-  }
+  if (const std::string problem = io_detail::map_size_problem(w64, h64, "map", "cells");
+      !problem.empty())
+    in.fail(problem);
   if (!in.next(line) || io_detail::trim(line) != "map") in.fail("expected 'map'");
   // Refuse a header that promises more cells than the file holds before allocating for them.
   std::error_code ec;

@@ -108,13 +108,9 @@ RasterImage read_pgm(const std::filesystem::path& path) {
         file, tok.where(),
         "image size " + std::to_string(width) + " x " + std::to_string(height) + " is empty");
   }
-  // Each side alone first: two sides of up to 2^40 would wrap their product around 2^64.
-  if (width > kMaxMapCells || height > kMaxMapCells || width * height > kMaxMapCells) {
-    throw InputError(file, tok.where(),
-                     "image of " + std::to_string(width) + " x " + std::to_string(height) +
-                         " pixels is too large (limit 2^26 = " + std::to_string(kMaxMapCells) +
-                         " cells)");
-  }
+  if (const std::string problem = map_size_problem(width, height, "image", "pixels");
+      !problem.empty())
+    throw InputError(file, tok.where(), problem);
   if (maxval == 0 || maxval > 65535) {
     throw InputError(file, tok.where(),
                      "maxval must be in 1..65535, got " + std::to_string(maxval));

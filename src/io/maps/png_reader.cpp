@@ -81,12 +81,9 @@ bool read_rows(PngReader* r, png_bytepp rows) {
 
 void check_size(const std::string& file, std::uint64_t width, std::uint64_t height) {
   if (width == 0 || height == 0) throw InputError(file, "header", "empty image");
-  if (width * height > kMaxMapCells) {
-    throw InputError(file, "header",
-                     "image of " + std::to_string(width) + " x " + std::to_string(height) +
-                         " pixels is too large (limit 2^26 = " + std::to_string(kMaxMapCells) +
-                         " cells)");
-  }
+  if (const std::string problem = map_size_problem(width, height, "image", "pixels");
+      !problem.empty())
+    throw InputError(file, "header", problem);
 }
 
 }  // namespace
