@@ -19,8 +19,10 @@ struct Output {
   std::string text;  // stdout and stderr
 };
 
-inline Output floornav(const std::string& args) {
-  const std::string cmd = std::string(FLOORNAV_BINARY) + " " + args + " 2>&1";
+/// `wrapper`, when given, is a command that runs floornav (e.g. one that drops privileges).
+inline Output floornav(const std::string& args, const std::string& wrapper = "") {
+  const std::string cmd =
+      (wrapper.empty() ? "" : wrapper + " ") + std::string(FLOORNAV_BINARY) + " " + args + " 2>&1";
   Output out{0, ""};
   FILE* p = popen(cmd.c_str(), "r");
   std::array<char, 4096> buf{};
