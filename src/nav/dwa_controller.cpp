@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "floornav/geometry/angle.hpp"
 #include "floornav/kinematics/unicycle.hpp"
@@ -53,6 +54,19 @@ void edt_1d(const double* f, double* d, int n, int* v, double* z) {
 }
 }  // namespace
 
+double dwa_footprint_discs(std::span<const Vec2> footprint) {
+  if (footprint.size() < 3) return 1.0;
+  Vec2 lo = footprint[0], hi = footprint[0];
+  for (const Vec2& q : footprint) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  const Vec2 size = hi - lo;
+  const double length = std::max(size.x(), size.y()), width = std::min(size.x(), size.y());
+  return std::max(1.0, std::ceil(length / std::max(width, 1e-9)));
+}
+
+double dwa_roll_out_poses(const DwaParams& p) {
+  return std::max(1.0, std::ceil(p.horizon / p.sim_step));
+}
+
 double dwa_score(const DwaParams& p, double heading_error, double dist, double v, double v_max) {
   const double heading = 1.0 - std::abs(wrap_angle(heading_error)) / kPi;
   const double clearance = std::min(dist, p.max_clearance) / p.max_clearance;
@@ -80,13 +94,16 @@ DwaController::DwaController(const NavigationParams& params, const RobotSpec& ro
   z_.assign(static_cast<std::size_t>(side_) + 2, 0.0);
   v_idx_.assign(static_cast<std::size_t>(side_) + 1, 0);
   // Discs covering the footprint: k along its long side, each round its share of the box.
+  const double count = dwa_footprint_discs(robot.footprint);
+  if (count > kMaxDwaFootprintDiscs)  // validate_scenario refuses it first, with the key
+    throw std::invalid_argument("dwa: the footprint needs more than 64 discs to cover");
   if (robot.footprint.size() >= 3) {
     Vec2 lo = robot.footprint[0], hi = robot.footprint[0];
     for (const Vec2& q : robot.footprint) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
     const Vec2 size = hi - lo;
     const bool along_x = size.x() >= size.y();
     const double length = along_x ? size.x() : size.y(), width = along_x ? size.y() : size.x();
-    const int k = std::max(1, static_cast<int>(std::ceil(length / std::max(width, 1e-9))));
+    const int k = static_cast<int>(count);
     const double piece = length / k;
     const double radius = std::hypot(0.5 * piece, 0.5 * width);
     for (int i = 0; i < k; ++i) {
@@ -161,7 +178,7 @@ Decision DwaController::decide(const Observation& obs) {
   const double w_lo = std::max(-w_max_, w_ - alpha * dt), w_hi = std::min(w_max_, w_ + alpha * dt);
   const DiffDriveParams& drive = robot_->drive;
   const double wheel_v = drive.wheel_radius * drive.max_wheel_speed;
-  const int steps = std::max(1, static_cast<int>(std::ceil(p_.horizon / p_.sim_step)));
+  const int steps = static_cast<int>(dwa_roll_out_poses(p_));
 
   // The footprint's clearance now: a robot already within the margin may still move away.
   auto footprint_gap = [&](const Pose2& q) {

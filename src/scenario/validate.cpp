@@ -9,6 +9,7 @@
 #include "floornav/automaton/hybrid_automaton.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/kinematics/differential_drive.hpp"
+#include "floornav/nav/dwa_controller.hpp"
 #include "floornav/nav/navigation_params.hpp"
 #include "floornav/robot/body_clearance.hpp"
 #include "floornav/sim/robot_neighbour_grid.hpp"
@@ -87,8 +88,11 @@ void validate_planner(const PlannerParams& p, const RobotKeys& k) {
   if (p.max_recoveries < 0 || p.max_recoveries > 1000)
     bad("max_recoveries", fmt::format("must be in [0, 1000], got {}", p.max_recoveries));
   if (!(p.decay > 0.0)) bad("decay", "must be positive");
-  if (p.max_samples < 1 || p.max_samples > 10000000)
-    bad("max_samples", fmt::format("must be in [1, 10000000], got {}", p.max_samples));
+  if (p.max_samples < 1 || p.max_samples > kMaxRrtConnectSamples)
+    bad("max_samples",
+        fmt::format("must be in [1, {}] (a plan's time grows faster than its samples: 10^6 "
+                    "take about 40 s), got {}",
+                    kMaxRrtConnectSamples, p.max_samples));
   if (!(p.guard_horizon >= 0.0 && p.guard_horizon <= 10.0))
     bad("guard_horizon", fmt::format("must be in [0, 10] s (0: off), got {}", p.guard_horizon));
   if (!(p.guard_margin >= 0.0 && p.guard_margin <= 1.0))
@@ -172,6 +176,26 @@ void validate_controller(const NavigationParams& n, const RobotKeys& k) {
   if (!(n.avoidance_margin >= 0.0)) bad("avoidance_margin", "must not be negative");
 }
 
+// controller.kind dwa: the work of a step is bounded before the controller is made (its discs,
+// its roll-outs): a sliver footprint or a fine roll-out of many samples is refused, not run.
+void validate_dwa_work(const RobotTask& t, const RobotKeys& k) {
+  const double discs = dwa_footprint_discs(t.robot.footprint);
+  if (discs > kMaxDwaFootprintDiscs)
+    k.fail(k.robot("footprint"),
+           fmt::format("is {:.3g} times as long as it is wide: the dwa controller would cover it "
+                       "with as many discs, more than the {} allowed",
+                       discs, kMaxDwaFootprintDiscs));
+  const DwaParams& p = t.controller.params.dwa;
+  const double poses = dwa_roll_out_poses(p);
+  const double checks = static_cast<double>(p.v_samples) * p.omega_samples * poses * discs;
+  if (checks > kMaxDwaChecksPerStep)
+    k.fail(k.controller("dwa"),
+           fmt::format("v_samples x omega_samples x horizon / sim_step x footprint discs = "
+                       "{} x {} x {:.6g} x {:.6g} = {:.3g} footprint checks a step, more than the "
+                       "{:.0e} allowed: fewer samples, a shorter horizon or a longer sim_step",
+                       p.v_samples, p.omega_samples, poses, discs, checks, kMaxDwaChecksPerStep));
+}
+
 // m: a robot's protective field (0 with the safety layer off).
 double field_of(const RobotTask& t) {
   return t.controller.params.safety.enabled ? t.controller.params.safety.margin : 0.0;
@@ -197,6 +221,7 @@ void validate_robot(const RobotTask& t, const World& w, const SimConfig& sim, co
   if (!(r.max_angular_acceleration > 0.0))
     k.fail(k.robot("max_angular_acceleration"), "must be positive");
   validate_controller(t.controller.params, k);
+  if (t.controller.is_builtin() && t.controller.kind == kDwaKindName) validate_dwa_work(t, k);
 
   // Without bounds a map is the whole world: off the map is unknown space, not free floor.
   Vec2 map_lo, map_hi;

@@ -19,6 +19,7 @@
 #include "floornav/nav/progress_checker.hpp"
 #include "floornav/nav/rolling_grid.hpp"
 #include "floornav/scenario/presets.hpp"
+#include "floornav/scenario/validate.hpp"
 #include "floornav/world/world.hpp"
 
 namespace floornav {
@@ -371,6 +372,84 @@ TEST(Dwa, NeverDrivesAtAWallItCannotStopBefore) {
     const double t_brake = u.v / robot.max_acceleration;
     EXPECT_LT(u.v * t_brake, 0.15) << k;
   }
+}
+
+// The discs covering a footprint: one per width along its long side. A sliver's count is a large
+// finite number, never an int that overflowed.
+TEST(Dwa, FootprintDiscsAreOnePerWidthAlongTheLongSide) {
+  const auto box = [](double length, double width) {
+    return std::vector<Vec2>{{-length / 2, -width / 2},
+                             {length / 2, -width / 2},
+                             {length / 2, width / 2},
+                             {-length / 2, width / 2}};
+  };
+  EXPECT_EQ(dwa_footprint_discs({}), 1.0);  // the body disc
+  EXPECT_EQ(dwa_footprint_discs(box(0.5, 0.5)), 1.0);
+  EXPECT_EQ(dwa_footprint_discs(box(0.5, 0.25)), 2.0);
+  EXPECT_EQ(dwa_footprint_discs(box(0.25, 0.5)), 2.0);  // the long side along y
+  EXPECT_EQ(dwa_footprint_discs(box(0.5, 0.3)), 2.0);   // 1.67: rounded up
+  EXPECT_EQ(dwa_footprint_discs(box(1.0, 1e-12)), 1e9);
+  EXPECT_EQ(dwa_footprint_discs(box(1e6, 0.0)), 1e15);  // a segment: a width of 1e-9
+}
+
+// A dwa robot's work per step is bounded before the controller is made: the footprint at the
+// disc limit and the roll-outs at the check limit are accepted (and the controller is made),
+// one more of either is refused naming the key.
+TEST(Dwa, WorkPerStepIsBoundedByValidation) {
+  const RobotPreset p = *find_robot_preset("quickbot");
+  Scenario s;
+  WorldDesc desc;
+  desc.bounds = Box2{Vec2(-1, -1), Vec2(5, 3)};
+  s.world = std::make_shared<const World>(std::move(desc));
+  RobotTask& t = s.robots.emplace_back();
+  t.robot = p.robot;
+  t.controller.kind = std::string(kDwaKindName);
+  t.controller.params = p.navigation;
+  t.start = {Vec2(0, 0), 0.0};
+  t.goals = {Vec2(4, 1)};
+  s.sim.dt = 0.01;
+  // 64 x as long as wide, the length of the body's diameter.
+  const double length = 2.0 * t.robot.body_radius, width = length / 64.0;
+  t.robot.footprint = {{-length / 2, -width / 2},
+                       {length / 2, -width / 2},
+                       {length / 2, width / 2},
+                       {-length / 2, width / 2}};
+  DwaParams& d = t.controller.params.dwa;
+  d.v_samples = 25;  // 25 x 25 x 25 poses x 64 discs = 10^6 checks: the limit
+  d.omega_samples = 25;
+  d.horizon = 2.5;
+  d.sim_step = 0.1;
+  EXPECT_NO_THROW(validate_scenario(s, "s.yaml"));
+  EXPECT_NO_THROW(DwaController(t.controller.params, t.robot));
+  d.omega_samples = 26;
+  try {
+    validate_scenario(s, "s.yaml");
+    ADD_FAILURE() << "26 x 25 x 25 x 64 checks a step were accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where, "controller.dwa");
+    EXPECT_NE(e.detail.find("= 25 x 26 x 25 x 64 = 1.04e+06 footprint checks a step, more than "
+                            "the 1e+06 allowed"),
+              std::string::npos)
+        << e.detail;
+  }
+  d.omega_samples = 25;
+  const double thinner = length / 65.0;
+  t.robot.footprint = {{-length / 2, -thinner / 2},
+                       {length / 2, -thinner / 2},
+                       {length / 2, thinner / 2},
+                       {-length / 2, thinner / 2}};
+  try {
+    validate_scenario(s, "s.yaml");
+    ADD_FAILURE() << "a footprint of 65 discs was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where, "robot.footprint");
+    EXPECT_NE(e.detail.find("more than the 64 allowed"), std::string::npos) << e.detail;
+  }
+  // The controller refuses it too, made without validation (a library user's own scenario).
+  EXPECT_THROW(DwaController(t.controller.params, t.robot), std::invalid_argument);
+  // Another controller kind does not cover the footprint with discs: the sliver is its business.
+  t.controller.kind = "hybrid";
+  EXPECT_NO_THROW(validate_scenario(s, "s.yaml"));
 }
 
 // --- PlannerController: the footprint guard ------------------------------------------------------

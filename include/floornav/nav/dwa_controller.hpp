@@ -22,6 +22,7 @@
 ///      brakes and turns towards the goal (mode `dwa_brake`).
 /// Speed is capped at sqrt(2 a d) at distance d from the goal, so it stops there.
 
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -30,6 +31,20 @@
 namespace floornav {
 
 inline constexpr std::string_view kDwaKindName = "dwa";
+
+/// The most discs a footprint may take to cover (one per width along its long side: a footprint
+/// 64 times as long as it is wide). Each disc is checked at every pose of every roll-out.
+inline constexpr double kMaxDwaFootprintDiscs = 64;
+/// The most footprint checks one step of the controller may make: v_samples x omega_samples x
+/// poses per roll-out x discs (the defaults: 9 x 21 x 20 x 1 = 3780). About 10 ms a step at the
+/// limit; validate_scenario refuses settings beyond it before the controller is made.
+inline constexpr double kMaxDwaChecksPerStep = 1e6;
+
+/// How many discs cover `footprint` (robot frame): ceil(long side / short side) of its box, 1 for
+/// the body disc (an empty footprint). A double, so that a sliver's count does not overflow.
+double dwa_footprint_discs(std::span<const Vec2> footprint);
+/// Poses checked along one roll-out: ceil(horizon / sim_step), at least 1.
+double dwa_roll_out_poses(const DwaParams& p);
 
 /// Eq. 15 for one candidate: `heading_error` rad (the goal's bearing at the end of the
 /// roll-out), `dist` m driven before a collision (infinity: none), speed `v` of `v_max`.

@@ -40,6 +40,10 @@ inline std::span<const std::pair<PlannerMap, std::string_view>> enum_names(Plann
   return kNames;
 }
 
+/// The most samples one rrt_connect plan may draw (`max_samples`): a plan's time grows faster than
+/// its samples (the nearest-neighbour search): 1 s for 10^5 and 43 s for 10^6 on an enclosed goal.
+inline constexpr int kMaxRrtConnectSamples = 200000;
+
 struct PlannerParams {
   PlannerKind kind{PlannerKind::None};
   PlannerMap map{PlannerMap::Known};
