@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -121,6 +122,22 @@ CaseSource make_scen_cases(const std::string& template_file, const std::string& 
     throw InputError(scen_file, fmt::format("line {}", first.line),
                      fmt::format("its map '{}' does not exist (looked for {} and {})",
                                  first.map_file, named.string(), beside.string()));
+  // A .scen's rows are cells counted from the top-left corner of a grid without an origin: a
+  // MovingAI .map, or a bare image with --cell-size. A ROS map yaml brings its own resolution and
+  // origin, which the rows know nothing of: the map is at fault, not the cell size.
+  std::string ext = map.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext != ".map" && ext != ".pgm" && ext != ".png")
+    throw InputError(
+        scen_file, fmt::format("line {} (its map)", first.line),
+        fmt::format("'{}' is not a grid a .scen can index: its rows are cells of a MovingAI .map "
+                    "(or of a bare .pgm/.png image, with --cell-size){}",
+                    first.map_file,
+                    ext == ".yaml" || ext == ".yml"
+                        ? "; a ROS map yaml has its own resolution and origin: run it with "
+                          "floornav run or --grid instead"
+                        : ""));
   const std::string map_path = std::filesystem::absolute(map).lexically_normal().string();
   hash.add("mode", "scen");
   add_overrides(hash, overrides);

@@ -223,6 +223,13 @@ void MapReader::finish() const {
       if (!kv.first.IsScalar()) fail(file_, kv.first, path("?"), "keys must be plain names");
       const std::string key = kv.first.Scalar();
       if (known_.count(key)) continue;
+      if (key == "<<")  // yaml-cpp reads a merge key as a key like any other
+        fail(file_, kv.first, l.path.empty() ? std::string("<<") : l.path,
+             std::string("'<<' is a YAML merge key (`<<: *anchor`), which floornav does not read: "
+                         "write the keys out") +
+                 (l.path.rfind("robots[", 0) == 0
+                      ? ", or give what the robots share once, in `robot:` beside `robots:`"
+                      : " (an alias of a whole value, `key: *anchor`, does work)"));
       const std::string hint = closest_known(key);
       const std::string shown = key.size() > 80 ? key.substr(0, 80) + "..." : key;
       fail(file_, kv.first, path(shown),

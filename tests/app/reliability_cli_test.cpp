@@ -313,3 +313,36 @@ TEST(Reliability, AnUnreadableWorldsFolderIsBadInput) {
   EXPECT_FALSE(fs::exists(dir / "out")) << "bad input left a folder";
   fs::remove_all(dir);
 }
+
+// ---- 19: messages that blame the right thing ---------------------------------------------------
+
+// A .scen whose map is a ROS map yaml: the map is at fault (its rows are cells of a MovingAI
+// grid), not a --cell-size the user never gave.
+TEST(Reliability, AScenOnARosMapYamlBlamesTheMapNotTheCellSize) {
+  const fs::path dir = temp_dir("scen_ros_yaml");
+  write(dir / "room.yaml",
+        "image: room.pgm\nresolution: 0.5\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\n"
+        "free_thresh: 0.196\n");
+  std::string pgm = "P2\n6 4\n255\n";
+  for (int i = 0; i < 24; ++i) pgm += "255 ";
+  write(dir / "room.pgm", pgm);
+  write(dir / "room.scen", "version 1\n0\troom.yaml\t6\t4\t1\t1\t4\t2\t3.5\n");
+  write(dir / "template.yaml", kRoomTemplate);
+  write(dir / "room.map", kRoomMap);
+  const Output o = floornav("batch " + q(dir / "template.yaml") + " --scen " +
+                            q(dir / "room.scen") + " --out " + q(dir / "out"));
+  EXPECT_EQ(o.status, 2) << o.text;
+  EXPECT_EQ(lines(o.text), 1) << o.text;
+  EXPECT_NE(o.text.find("room.scen:line 2 (its map): 'room.yaml' is not a grid a .scen can "
+                        "index"),
+            std::string::npos)
+      << o.text;
+  EXPECT_EQ(o.text.find("--cell-size 1"), std::string::npos) << "blamed a default: " << o.text;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  // The same row on the MovingAI map runs.
+  write(dir / "room.scen", "version 1\n0\troom.map\t6\t4\t1\t1\t4\t2\t3.5\n");
+  const Output ok = floornav("batch " + q(dir / "template.yaml") + " --scen " +
+                             q(dir / "room.scen") + " --no-timing --out " + q(dir / "out"));
+  EXPECT_EQ(ok.status, 0) << ok.text;
+  fs::remove_all(dir);
+}
