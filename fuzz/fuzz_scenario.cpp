@@ -1,6 +1,6 @@
 // Scenario YAML text (load_scenario_text) and --set overrides, then a few steps of the simulation
-// of what loaded. Input: the YAML text, then optionally a NUL byte and one --set KEY=VALUE per
-// line.
+// of what loaded (a fleet and its people and forklifts as a fleet). Input: the YAML text, then
+// optionally a NUL byte and one --set KEY=VALUE per line.
 
 #include <algorithm>
 #include <cstddef>
@@ -18,12 +18,7 @@ namespace {
 
 using namespace floornav;
 
-/// Runs at most 20 steps and checks that every number the run reports is finite.
-void simulate_briefly(Scenario s) {
-  if (s.robot().robot.sensors.size() > 1024)
-    return;  // valid, but too slow to be worth a fuzzer's time
-  s.sim.t_max = std::min(s.sim.t_max, 20.0 * s.sim.dt);
-  const RunResult r = simulate(s);
+void check_run(const RunResult& r) {
   for (const TrajectorySample& p : r.trajectory) {
     for (const double v : {p.t, p.x, p.y, p.theta, p.v, p.omega, p.w_left, p.w_right})
       fuzz::check_finite(v, "trajectory value");
@@ -31,6 +26,29 @@ void simulate_briefly(Scenario s) {
   fuzz::check_finite(r.path_length, "path length");
   fuzz::check_finite(r.sim_time, "simulated time");
   if (std::isnan(r.min_clearance)) fuzz::finding("min_clearance is NaN");
+}
+
+/// Runs at most 20 steps and checks that every number the run reports is finite: a lone robot
+/// alone, else (a robots list, people, forklifts) the fleet with its crowd.
+void simulate_briefly(Scenario s) {
+  std::size_t sensors = 0;
+  for (const RobotTask& t : s.robots) sensors += t.robot.sensors.size();
+  if (sensors > 1024 || s.robots.size() > 64 ||
+      s.crowd.people.size() + s.crowd.forklifts.size() > 256)
+    return;  // valid, but too slow to be worth a fuzzer's time
+  s.sim.t_max = std::min(s.sim.t_max, 20.0 * s.sim.dt);
+  if (!s.is_fleet() && s.crowd.people.empty() && s.crowd.forklifts.empty()) {
+    check_run(simulate(s));
+    return;
+  }
+  const FleetResult f = simulate_fleet(s);
+  for (const RunResult& r : f.robots) check_run(r);
+  for (const auto* group : {&f.crowd.people, &f.crowd.forklifts})
+    for (const CrowdTrack& t : *group) {
+      for (const CrowdSample& p : t.samples)
+        for (const double v : {p.t, p.x, p.y, p.theta}) fuzz::check_finite(v, "crowd sample");
+      fuzz::check_finite(t.path_length, "crowd path length");
+    }
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #
 #   scripts/fuzz.sh [SECONDS] [TARGET ...]     targets: scenario ros_map movingai_map
 #                                              movingai_scen sdf_world course_world
+#                                              hunav_agents batch_state
 #
 # New inputs that reach new code collect in build-fuzz/fuzz-corpus/<target>/ (the next run starts
 # from them); findings (crash-*, leak-*, timeout-*, oom-*) in build-fuzz/fuzz-findings/<target>/,
@@ -16,7 +17,8 @@ seconds="${1:-30}"
 [ $# -gt 0 ] && shift
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] ||
-  targets=(scenario ros_map movingai_map movingai_scen sdf_world course_world)
+  targets=(scenario ros_map movingai_map movingai_scen sdf_world course_world hunav_agents
+    batch_state)
 build="${FLOORNAV_FUZZ_BUILD:-$root/build-fuzz}"
 jobs="${FLOORNAV_FUZZ_JOBS:-2}"
 
@@ -38,7 +40,7 @@ cmake --build "$build" -j "$jobs" --target "${targets[@]/#/fuzz_}"
 
 dict_of() {
   case "$1" in
-    scenario | ros_map) echo "$root/fuzz/dict/$1.dict" ;;
+    scenario | ros_map | hunav_agents | batch_state) echo "$root/fuzz/dict/$1.dict" ;;
     movingai_*) echo "$root/fuzz/dict/movingai.dict" ;;
     *) echo "$root/fuzz/dict/xml.dict" ;;
   esac
