@@ -28,12 +28,7 @@ void check_crowd(const Scenario& loaded) {
   Scenario s = loaded;
   s.sim.t_max = std::min(s.sim.t_max, 20.0 * s.sim.dt);
   s.sim.record_trajectory = true;
-  const FleetResult r = simulate_fleet(s);
-  for (const CrowdTrack& t : r.crowd.people) {
-    for (const CrowdSample& p : t.samples)
-      for (const double v : {p.t, p.x, p.y, p.theta}) fuzz::check_finite(v, "person sample");
-    fuzz::check_finite(t.path_length, "person path length");
-  }
+  fuzz::check_crowd(simulate_fleet(s).crowd);
 }
 
 }  // namespace

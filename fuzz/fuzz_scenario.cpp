@@ -43,12 +43,7 @@ void simulate_briefly(Scenario s) {
   }
   const FleetResult f = simulate_fleet(s);
   for (const RunResult& r : f.robots) check_run(r);
-  for (const auto* group : {&f.crowd.people, &f.crowd.forklifts})
-    for (const CrowdTrack& t : *group) {
-      for (const CrowdSample& p : t.samples)
-        for (const double v : {p.t, p.x, p.y, p.theta}) fuzz::check_finite(v, "crowd sample");
-      fuzz::check_finite(t.path_length, "crowd path length");
-    }
+  fuzz::check_crowd(f.crowd);
 }
 
 }  // namespace

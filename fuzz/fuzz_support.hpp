@@ -17,6 +17,7 @@
 
 #include "floornav/core/input_error.hpp"
 #include "floornav/geometry/vec2.hpp"
+#include "floornav/sim/crowd.hpp"
 
 namespace floornav::fuzz {
 
@@ -69,6 +70,16 @@ inline void check_finite(double v, const char* what) {
 inline void check_finite(const Vec2& v, const char* what) {
   check_finite(v.x(), what);
   check_finite(v.y(), what);
+}
+
+/// Every sample and path length of the people's and forklifts' tracks is finite.
+inline void check_crowd(const CrowdResult& crowd) {
+  for (const auto* group : {&crowd.people, &crowd.forklifts})
+    for (const CrowdTrack& t : *group) {
+      for (const CrowdSample& p : t.samples)
+        for (const double v : {p.t, p.x, p.y, p.theta}) check_finite(v, "crowd sample");
+      check_finite(t.path_length, "crowd path length");
+    }
 }
 
 }  // namespace floornav::fuzz
