@@ -13,6 +13,7 @@
 #include "floornav/core/isa_clones.hpp"
 #include "floornav/core/output_error.hpp"
 #include "floornav/core/rng.hpp"
+#include "floornav/core/utf8.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/box2.hpp"
 #include "floornav/geometry/circle.hpp"
