@@ -40,7 +40,8 @@ cmake --build "$build" -j "$jobs" --target "${targets[@]/#/fuzz_}"
 
 dict_of() {
   case "$1" in
-    scenario | ros_map | hunav_agents | batch_state) echo "$root/fuzz/dict/$1.dict" ;;
+    scenario | ros_map | batch_state) echo "$root/fuzz/dict/$1.dict" ;;
+    hunav_agents) echo "$root/fuzz/dict/hunav.dict" ;;
     movingai_*) echo "$root/fuzz/dict/movingai.dict" ;;
     *) echo "$root/fuzz/dict/xml.dict" ;;
   esac
@@ -61,7 +62,11 @@ for t in "${targets[@]}"; do
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$findings/" > "$log" 2>&1 || true
   execs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)"
-  [ -n "$execs" ] || execs="$(grep -o '^#[0-9]*' "$log" | tail -n 1 | tr -d '#')"
+  [ -n "$execs" ] || execs="$(grep -o '^#[0-9]*' "$log" | tail -n 1 | tr -d '#' || true)"
+  if [ -z "$execs" ]; then  # the fuzzer never ran (a missing dictionary, a bad flag): a failure
+    status=1
+    echo "   fuzz_$t did not run:" && head -n 5 "$log" | sed 's/^/   /'
+  fi
   found="$(find "$findings" -type f -newer "$build/fuzz-$t.start" | wc -l)"
   corpus="$(find "$work" -type f | wc -l)"
   summary+=("$(printf '%-14s %12s %9s %8s' "$t" "${execs:-0}" "$corpus" "$found")")
