@@ -61,7 +61,7 @@ CaseSource make_floor_cases(const std::string& template_file, int count, std::ui
 /// 12 robots on routes of 1 to 3 goals, people and a forklift on some; floor seed
 /// `first_seed + i`), every robot the template's robot and controller, sim from the template.
 CaseSource make_shared_floor_cases(const std::string& template_file, int count,
-                                   std::uint64_t first_seed,
-                                   std::span<const std::string> overrides, SweepHasher& hash);
+                                   std::uint64_t first_seed, std::span<const std::string> overrides,
+                                   SweepHasher& hash);
 
 }  // namespace floornav
