@@ -15,27 +15,11 @@
 #include "floornav/render/palette.hpp"
 #include "floornav/sim/episode_draw.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
+#include "status_code.hpp"
 
 namespace floornav::python {
 
 namespace {
-
-constexpr std::int8_t kRunning = 0;
-
-std::int8_t status_code(const RobotAgent& a) {
-  if (!a.finished()) return kRunning;
-  switch (a.result().status) {
-    case RunStatus::Reached:
-      return 1;
-    case RunStatus::Collision:
-      return 2;
-    case RunStatus::Timeout:
-      return 3;
-    case RunStatus::Stuck:
-      return 4;
-  }
-  return 3;
-}
 
 // Steals `value` into `dict[key]`.
 void put(PyObject* dict, PyObject* key, PyObject* value) {

@@ -16,6 +16,7 @@
 #include "floornav/render/frame_raster.hpp"
 #include "floornav/render/palette.hpp"
 #include "floornav/sim/vec_simulation.hpp"
+#include "status_code.hpp"
 
 namespace floornav::python {
 
@@ -30,23 +31,6 @@ struct RewardParams {
   double collision{1.0};  ///< once, on a collision
   double time{0.0};       ///< per second
 };
-
-// Status codes of the status arrays (floornav.STATUS_NAMES).
-constexpr std::int8_t kRunning = 0;
-std::int8_t status_code(const RobotAgent& a) {
-  if (!a.finished()) return kRunning;
-  switch (a.result().status) {
-    case RunStatus::Reached:
-      return 1;
-    case RunStatus::Collision:
-      return 2;
-    case RunStatus::Timeout:
-      return 3;
-    case RunStatus::Stuck:
-      return 4;
-  }
-  return 3;
-}
 
 // The GIL is released while the copies step: a second Python thread stepping the same VecEnv at
 // that time is refused rather than let race.
