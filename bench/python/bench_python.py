@@ -137,8 +137,8 @@ def case_step(command, seconds):
     return timed(burst, seconds)
 
 
-def case_vec(robot, seconds, n=1024):
-    env = floornav.VecEnv(floor(robot), n, seed=1)
+def time_vec_steps(env, n, seconds):
+    """Robot-steps a second of `env` (n copies) driven by fixed random actions."""
     env.reset()
     rng = np.random.default_rng(1)
     actions = np.column_stack([np.full(n, 0.1), rng.uniform(-0.5, 0.5, n)])
@@ -150,23 +150,17 @@ def case_vec(robot, seconds, n=1024):
 
     burst()
     return timed(burst, seconds)
+
+
+def case_vec(robot, seconds, n=1024):
+    return time_vec_steps(floornav.VecEnv(floor(robot), n, seed=1), n, seconds)
 
 
 def case_vec_rand(robot, seconds, n=1024):
     s = floornav.parse_scenario(bench_floor_yaml(robot), {"sim.t_max": 20},
                                 origin=f"bench_floor_{robot}.yaml")
     env = floornav.VecEnv(s, n, seed=1, randomize={"start": "free", "goal": "free"})
-    env.reset()
-    rng = np.random.default_rng(1)
-    actions = np.column_stack([np.full(n, 0.1), rng.uniform(-0.5, 0.5, n)])
-
-    def burst():
-        for _ in range(10):
-            env.step(actions)
-        return 10 * n
-
-    burst()
-    return timed(burst, seconds)
+    return time_vec_steps(env, n, seconds)
 
 
 def case_render(seconds, n=1024):
