@@ -6,15 +6,10 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
+import { launchChromium } from './launch.mjs';
 
 const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'floornav-measure-'));
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  headless: true,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    `--user-data-dir=${profile}`],
-});
+const browser = await launchChromium(puppeteer, profile);
 for (const file of process.argv.slice(2)) {
   const times = [];
   for (let i = 0; i < 5; i++) {

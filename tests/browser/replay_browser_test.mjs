@@ -15,8 +15,9 @@ import os from 'node:os';
 import path from 'node:path';
 import zlib from 'node:zlib';
 import { pathToFileURL } from 'node:url';
+import { CHROMIUM, launchChromium } from './launch.mjs';
 
-const chromium = process.env.CHROMIUM || '/usr/bin/chromium';
+const chromium = CHROMIUM;
 const binary = process.env.FLOORNAV_BINARY;
 const source = process.env.FLOORNAV_SOURCE_DIR || path.resolve(import.meta.dirname, '../..');
 const required = process.env.FLOORNAV_REQUIRE_BROWSER === '1';
@@ -39,16 +40,6 @@ try {
 if (!fs.existsSync(chromium)) skip(`no chromium at ${chromium} (apt-get install chromium)`);
 if (!binary || !fs.existsSync(binary)) skip('FLOORNAV_BINARY does not name the floornav executable');
 
-const LAUNCH_ARGS = [
-  '--headless',
-  '--no-sandbox',
-  '--disable-gpu',
-  '--disable-quic',
-  '--no-first-run',
-  '--disable-background-networking',
-  '--disable-component-update',
-  '--disable-sync',
-];
 const POSITION_TOLERANCE = 0.01; // m: the replay is exact to 1 cm at recorded times
 const HEADING_TOLERANCE = 0.02; // rad
 
@@ -277,11 +268,7 @@ before(async () => {
   fleet = run('fleet_crossing.yaml', path.join(work, 'fleet'));
   map = run(writeMapScenario(), path.join(work, 'map'));
   crowd = run(writeCrowdScenario(), path.join(work, 'crowd'));
-  browser = await puppeteer.launch({
-    executablePath: chromium,
-    headless: true,
-    args: [...LAUNCH_ARGS, `--user-data-dir=${path.join(work, 'profile')}`],
-  });
+  browser = await launchChromium(puppeteer, work);
 });
 after(async () => {
   if (browser) await browser.close();

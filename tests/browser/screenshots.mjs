@@ -8,6 +8,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
+import { launchChromium } from './launch.mjs';
 
 const [binary, outDir] = process.argv.slice(2);
 if (!binary || !outDir) {
@@ -25,13 +26,7 @@ function run(name, scenario, ...sets) {
   return path.join(out, 'trajectory.html');
 }
 
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  headless: true,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    `--user-data-dir=${path.join(work, 'profile')}`],
-});
+const browser = await launchChromium(puppeteer, work);
 
 async function frame(page, file, hash, out, size) {
   await page.setViewport(size);
