@@ -147,14 +147,15 @@ class VecEnv:
         return self._core.threads
 
     def reset(self, seed: Optional[int] = None, options: Optional[dict] = None) -> tuple:
-        """Starts every copy afresh (episode 0 of copy i: seed ``seed + i``; without ``seed``,
-        the one given before) and returns ``(obs, info)``."""
+        """Starts every copy afresh and returns ``(obs, info)``. With ``seed``, episode 0 of copy
+        i has seed ``seed + i``; without, every copy goes on to its next episode, as Gymnasium's
+        ``reset()`` does (the first reset starts from the seed the env was made with)."""
         if options:
             raise ValueError(f"reset(options=...): VecEnv takes no options, got {options!r} "
                              "(randomize is set when the env is made)")
         if seed is not None:
             self.seed = _seed(seed)
-        obs = self._core.reset(self.seed)
+        obs = self._core.reset(None if seed is None and self._started else self.seed)
         self._started = True
         self._return[:] = 0.0
         self._steps[:] = 0

@@ -77,8 +77,14 @@ class VecCore {
 
   py::dict reset(std::optional<std::uint64_t> seed) {
     const Busy busy(busy_);
-    if (seed) base_seed_ = *seed;
-    std::fill(episode_.begin(), episode_.end(), 0);
+    // Gymnasium's convention: a seed starts the episodes over; without one, every copy goes on to
+    // its next episode (the first reset starts from the seed the env was made with).
+    if (seed) {
+      base_seed_ = *seed;
+      std::fill(episode_.begin(), episode_.end(), 0);
+    } else {
+      for (std::size_t i = 0; i < episode_.size(); ++i) episode_[i] += started_[i];
+    }
     const std::size_t n = size();
     std::vector<std::size_t> which(n);
     std::vector<std::uint64_t> seeds(n);

@@ -59,6 +59,22 @@ def test_the_same_seed_draws_the_same_episodes():
     assert not np.any(np.all(other["pose"] == oa["pose"], axis=1))
 
 
+def test_reset_without_a_seed_goes_on_to_new_episodes():
+    # Gymnasium's convention: reset() without a seed continues the episode stream, it does not
+    # repeat the last episodes; the stream itself is reproducible from the first seed.
+    a = floornav.VecEnv(rect(), 8, seed=3, randomize=FREE)
+    b = floornav.VecEnv(rect(), 8, seed=3, randomize=FREE)
+    first, info_a = a.reset()
+    second, info_b = a.reset()
+    assert not np.any(np.all(second["pose"] == first["pose"], axis=1))
+    assert not np.any(info_a["seeds"] == info_b["seeds"])
+    b.reset()
+    again, _ = b.reset()
+    assert np.array_equal(again["pose"], second["pose"])
+    reseeded, _ = a.reset(seed=3)
+    assert np.array_equal(reseeded["pose"], first["pose"])
+
+
 def test_autoreset_draws_a_new_episode():
     env = floornav.VecEnv(rect(**{"sim.t_max": 0.05}), 4, seed=0, randomize=FREE)
     obs, _ = env.reset()
