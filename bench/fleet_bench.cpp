@@ -1,6 +1,7 @@
 // Fleets: robot-steps/s of FleetSimulation, where every robot senses the others' bodies and
 // robot-robot contacts are checked each step, against the number of robots (1 to 100,000) and
-// threads; and one robot's steps/s against the number of lidar beams (5 to 720).
+// threads; RVO2's Circle as shipped; and one robot's steps/s against the number of lidar beams (5
+// to 720).
 //
 //   floornav_bench --benchmark_filter='BM_Fleet|BM_StepBeams'
 //
@@ -8,12 +9,14 @@
 // robot-steps); robots that finish park and no longer count.
 
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include <map>
 #include <memory>
 #include <optional>
 
 #include "bench_cases.hpp"
+#include "floornav/io/scenario_file.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/simulation.hpp"
 
@@ -58,6 +61,26 @@ void BM_Fleet_QuickBotWarehouse(benchmark::State& state) {
 }
 BENCHMARK(BM_Fleet_QuickBotWarehouse)
     ->ArgsProduct({{1, 10, 100, 1000, 10000, 100000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// RVO2's Circle as shipped (scenarios/circle/circle_N.yaml: QuickBots 0.3 m apart on a circle,
+/// each bound for its antipode; the fleet defaults: the automaton, ORCA, the safety layer), the
+/// like-for-like case of bench/peers' `rvo2_driver circle N`; args: robots, threads.
+void BM_Fleet_Circle(benchmark::State& state) {
+  static std::map<int, Scenario> cache;
+  const auto robots = static_cast<int>(state.range(0));
+  auto it = cache.find(robots);
+  if (it == cache.end()) {
+    Scenario s =
+        load_scenario_file(fmt::format("{}/circle/circle_{}.yaml", FLOORNAV_SCENARIO_DIR, robots));
+    s.sim.record_trajectory = false;
+    it = cache.emplace(robots, std::move(s)).first;
+  }
+  step_fleet(state, it->second, static_cast<int>(state.range(1)));
+}
+BENCHMARK(BM_Fleet_Circle)
+    ->ArgsProduct({{100, 1000}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
