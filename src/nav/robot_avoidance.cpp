@@ -235,11 +235,34 @@ Vec2 turn_first(const Vec2& u, const Observation& obs, std::span<const OrcaLine>
   return u * std::max(scale, kTurnOnly / speed);
 }
 
+// A decision's working memory, one per thread rather than per robot (a fleet's robots decide one
+// after another on each thread): 100,000 robots would otherwise carry ~14 KB each (PERFORMANCE.md,
+// memory of 100,000 QuickBots). It grows, never shrinks: the thread that makes the layers has it
+// sized for them (no allocation in its steps); a fleet's other worker threads size theirs at their
+// first decision of each run_steps call.
+struct OrcaWork {
+  std::vector<Vec2> points, sensed;
+  OrcaScratch scratch;
+
+  void fit(std::size_t n) {
+    if (points.size() >= n) return;
+    points.resize(n);
+    sensed.resize(n);
+    scratch.lines.reserve(n + 64);
+    scratch.projected.reserve(n + 64);
+  }
+};
+
+OrcaWork& thread_orca_work() {
+  thread_local OrcaWork work;
+  return work;
+}
+
 class OrcaLayer final : public Controller {
  public:
   OrcaLayer(std::unique_ptr<Controller> inner, const RobotSpec& robot)
       : Controller(inner->mode_names(), inner->guard_names()), inner_(std::move(inner)) {
-    fit(robot.sensors.size() + ObstacleMemory::kCapacity);
+    thread_orca_work().fit(robot.sensors.size() + ObstacleMemory::kCapacity);
   }
 
   Decision decide(const Observation& obs) override {
@@ -248,26 +271,28 @@ class OrcaLayer final : public Controller {
       return inner_->decide(obs);  // nobody to avoid: exactly the wrapped controller
     const NavigationParams& p = *obs.params;
     const double r_self = obs.robot->body_radius;
-    fit(std::max(obs.points.size(), obs.sensed.size()));
+    OrcaWork& work = thread_orca_work();
+    work.fit(std::max(obs.points.size(), obs.sensed.size()));
     // The moving robots leave the observation: only the still world reaches the controller.
     const double tolerance = 1e-6 + 4.0 * obs.robot->sensor_noise;
     Observation still = obs;
-    still.sensed = {sensed_.data(),
-                    drop_robot_points(obs.sensed, obs.robots, tolerance, {}, 0.0, 0.0, sensed_)};
+    still.sensed = {work.sensed.data(), drop_robot_points(obs.sensed, obs.robots, tolerance, {},
+                                                          0.0, 0.0, work.sensed)};
     // Remembered points go when they lie along the way a robot came, widened by how far it could
     // have swerved meanwhile (at this robot's cruise speed).
-    still.points = obs.points.data() == obs.sensed.data()
-                       ? still.sensed
-                       : std::span<const Vec2>(
-                             points_.data(), drop_robot_points(obs.points, obs.robots, tolerance,
-                                                               obs.sensed, p.obstacle_memory,
-                                                               p.v0 * p.obstacle_memory, points_));
+    still.points =
+        obs.points.data() == obs.sensed.data()
+            ? still.sensed
+            : std::span<const Vec2>(
+                  work.points.data(),
+                  drop_robot_points(obs.points, obs.robots, tolerance, obs.sensed,
+                                    p.obstacle_memory, p.v0 * p.obstacle_memory, work.points));
     const Decision d = inner_->decide(still);
     if (d.command.kind() != Command::Kind::Velocity) return d;
 
     // Hard lines: the still points near enough to bind at cruise speed; then one soft line per
     // moving robot.
-    std::vector<OrcaLine>& lines = scratch_.lines;
+    std::vector<OrcaLine>& lines = work.scratch.lines;
     lines.clear();
     const Vec2 x = obs.pose.position;
     // A sensed point lies a little beyond the wall's nearest point (beams are spread): the still
@@ -291,11 +316,11 @@ class OrcaLayer final : public Controller {
     // counter-clockwise round the meeting and leave towards their goals, rather than stand.
     const Vec2 wanted = d.command.u();
     const Vec2 pref = rotate(wanted, -bias_);
-    Vec2 u = solve_orca(lines, hard, pref, p.v0, scratch_.projected);
+    Vec2 u = solve_orca(lines, hard, pref, p.v0, work.scratch.projected);
     // Tries the way to its right (45 degrees) too, and takes it if that lets it move faster.
     if (u.norm() < 0.5 * pref.norm()) {
       const Vec2 right =
-          solve_orca(lines, hard, rotate(pref, -kPi / 4.0), p.v0, scratch_.projected);
+          solve_orca(lines, hard, rotate(pref, -kPi / 4.0), p.v0, work.scratch.projected);
       if (right.norm() > u.norm()) u = right;
     }
     const bool held = u.norm() < 0.5 * wanted.norm();
@@ -310,18 +335,8 @@ class OrcaLayer final : public Controller {
   int mode() const override { return inner_->mode(); }
 
  private:
-  void fit(std::size_t n) {
-    if (points_.size() >= n) return;
-    points_.resize(n);
-    sensed_.resize(n);
-    scratch_.lines.reserve(n + 64);
-    scratch_.projected.reserve(n + 64);
-  }
-
   std::unique_ptr<Controller> inner_;
   double bias_{0.0};  ///< rad: how far right the preferred velocity is turned (keep right)
-  std::vector<Vec2> points_, sensed_;
-  OrcaScratch scratch_;
 };
 
 }  // namespace
