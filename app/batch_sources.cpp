@@ -8,12 +8,12 @@
 #include <memory>
 #include <optional>
 
-#include "bench_cases.hpp"
 #include "floornav/core/input_error.hpp"
 #include "floornav/core/utf8.hpp"
 #include "floornav/io/barn.hpp"
 #include "floornav/io/movingai_map.hpp"
 #include "floornav/io/scenario_file.hpp"
+#include "floornav/scenario/factory_floor.hpp"
 #include "floornav/scenario/shared_floor.hpp"
 #include "floornav/scenario/validate.hpp"
 
@@ -443,20 +443,12 @@ CaseSource make_floor_cases(const std::string& template_file, int count, std::ui
   add_inputs(hash, *base);
   auto make = [base, first_seed, template_file](std::size_t i) {
     const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
-    BenchFloorParams p;
-    p.seed = seed;
-    auto world = std::make_shared<const World>(make_bench_floor(p));
-    // The tour of make_floor_scenario (free start and four goals across the floor) for this seed.
-    const Scenario tour = make_floor_scenario(world, 0, static_cast<int>(seed));
-    Scenario s = *base;
-    s.world = world;
-    for (RobotTask& t : s.robots) {
-      t.start = tour.robot().start;
-      t.goals = tour.robot().goals;
-    }
-    s.name = fmt::format("{}-floor{}", base->name, seed);
-    validate_scenario(s, fmt::format("{} (floor {})", template_file, seed));
-    return BatchCase{std::move(s), fmt::format("floor:{}", seed), i, {}, {}, {}};
+    return BatchCase{make_generated_floor(*base, seed, template_file),
+                     fmt::format("floor:{}", seed),
+                     i,
+                     {},
+                     {},
+                     {}};
   };
   return {static_cast<std::size_t>(count), make, false};
 }
@@ -475,15 +467,12 @@ CaseSource make_shared_floor_cases(const std::string& template_file, int count,
   add_inputs(hash, *base);
   auto make = [base, first_seed, template_file](std::size_t i) {
     const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
-    SharedFloorOptions o;
-    o.robot = &base->robot();
-    o.t_max = base->sim.t_max;
-    Scenario s = make_shared_floor(seed, o);
-    s.sim = base->sim;
-    s.sim.seed = seed;
-    s.name = fmt::format("{}-shared{}", base->name, seed);
-    validate_scenario(s, fmt::format("{} (shared floor {})", template_file, seed));
-    return BatchCase{std::move(s), fmt::format("shared_floor:{}", seed), i, {}, {}, {}};
+    return BatchCase{make_shared_floor_case(*base, seed, template_file),
+                     fmt::format("shared_floor:{}", seed),
+                     i,
+                     {},
+                     {},
+                     {}};
   };
   return {static_cast<std::size_t>(count), make, false};
 }

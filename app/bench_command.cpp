@@ -230,7 +230,7 @@ int run_bench(const BenchOptions& options) {
   // Shared by the cases that use it; built on first use, outside any timing.
   std::shared_ptr<const World> floor;
   const auto floor50 = [&] {
-    if (!floor) floor = std::make_shared<const World>(make_bench_floor({}));
+    if (!floor) floor = std::make_shared<const World>(make_factory_floor({}));
     return floor;
   };
   const auto scenario_file = [&](const char* file, CaseResult& r) -> std::optional<Scenario> {
@@ -246,14 +246,14 @@ int run_bench(const BenchOptions& options) {
       {"quickbot_5ir_50_polygons",
        [&](CaseResult& r) {
          r.what = "QuickBot, 5 IR (0.3 m), 20 x 20 m floor of 50 random polygons";
-         time_stepping(make_floor_scenario(floor50(), 0), budget, r);
+         time_stepping(make_factory_floor_scenario(floor50(), 0), budget, r);
        }},
       {"quickbot_5ir_50_polygons_planner",
        [&](CaseResult& r) {
          r.what =
              "the same QuickBot with the planner (A* on the known floor, a subgoal for the "
              "automaton; plans timed, restarts rebuild the raster untimed)";
-         Scenario s = make_floor_scenario(floor50(), 0);
+         Scenario s = make_factory_floor_scenario(floor50(), 0);
          s.robot().controller.params.planner.kind = PlannerKind::AStar;
          s.robot().controller.params.planner.cell_size = 0.1;  // 200 x 200 planning cells
          time_stepping(s, budget, r);
@@ -261,7 +261,7 @@ int run_bench(const BenchOptions& options) {
       {"lidar180_50_polygons",
        [&](CaseResult& r) {
          r.what = "TurtleBot3 base, 180-beam 360-degree lidar (3.5 m), same floor";
-         time_stepping(make_floor_scenario(floor50(), 180), budget, r);
+         time_stepping(make_factory_floor_scenario(floor50(), 180), budget, r);
        }},
       {"lidar360_aws_warehouse",
        [&](CaseResult& r) {

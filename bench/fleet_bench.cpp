@@ -87,7 +87,7 @@ BENCHMARK(BM_Fleet_Circle)
 /// 100 TurtleBot3 bases with 180-beam lidars sensing each other on the 50-polygon floor.
 void BM_Fleet_100xLidar180_50Polygons(benchmark::State& state) {
   static const Scenario s =
-      make_fleet_scenario(std::make_shared<const World>(make_bench_floor({})), 100, 180);
+      make_fleet_scenario(std::make_shared<const World>(make_factory_floor({})), 100, 180);
   step_fleet(state, s, static_cast<int>(state.range(0)));
 }
 BENCHMARK(BM_Fleet_100xLidar180_50Polygons)->Arg(1)->Arg(2)->UseRealTime();
@@ -99,8 +99,8 @@ void BM_StepBeams_Lidar(benchmark::State& state) {
   auto it = cache.find(beams);
   if (it == cache.end())
     it = cache
-             .emplace(beams, make_floor_scenario(
-                                 std::make_shared<const World>(make_bench_floor({})), beams))
+             .emplace(beams, make_factory_floor_scenario(
+                                 std::make_shared<const World>(make_factory_floor({})), beams))
              .first;
   std::optional<Simulation> sim(std::in_place, *it->second.world, it->second.robot(),
                                 it->second.sim, it->second.name);

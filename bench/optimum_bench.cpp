@@ -34,11 +34,11 @@ const std::vector<FloorCase>& floors() {
   static const std::vector<FloorCase> cases = [] {
     std::vector<FloorCase> out;
     for (int seed = 1; seed <= 40; ++seed) {
-      BenchFloorParams p;
+      FactoryFloorParams p;
       p.seed = static_cast<std::uint64_t>(seed);
       FloorCase c;
-      c.world = std::make_shared<const World>(make_bench_floor(p));
-      c.scenario = make_floor_scenario(c.world, 0, seed);
+      c.world = std::make_shared<const World>(make_factory_floor(p));
+      c.scenario = make_factory_floor_scenario(c.world, 0, seed);
       build_optimum_raster(*c.world, c.scenario.robot().robot.body_radius, {}, c.raster);
       out.push_back(std::move(c));
     }

@@ -26,8 +26,8 @@ std::shared_ptr<const World> floor_world(int edges) {
   static std::map<int, std::shared_ptr<const World>> cache;
   auto& w = cache[edges];
   if (!w) {
-    const BenchFloorParams p = edges > 0 ? bench_floor_with_edges(edges) : BenchFloorParams{};
-    w = std::make_shared<const World>(make_bench_floor(p));
+    const FactoryFloorParams p = edges > 0 ? factory_floor_with_edges(edges) : FactoryFloorParams{};
+    w = std::make_shared<const World>(make_factory_floor(p));
   }
   return w;
 }
@@ -58,11 +58,11 @@ void step_robot(benchmark::State& state, const Scenario& s) {
 }
 
 const Scenario& quickbot_floor() {
-  static const Scenario s = make_floor_scenario(floor_world(0), 0);
+  static const Scenario s = make_factory_floor_scenario(floor_world(0), 0);
   return s;
 }
 const Scenario& lidar180_floor() {
-  static const Scenario s = make_floor_scenario(floor_world(0), 180);
+  static const Scenario s = make_factory_floor_scenario(floor_world(0), 180);
   return s;
 }
 
@@ -76,7 +76,7 @@ BENCHMARK(BM_Step_QuickBot5Ir_50Polygons);
 // restart) are inside the timing, amortised over the run.
 const Scenario& quickbot_floor_planner() {
   static const Scenario s = [] {
-    Scenario p = make_floor_scenario(floor_world(0), 0);
+    Scenario p = make_factory_floor_scenario(floor_world(0), 0);
     p.robot().controller.params.planner.kind = PlannerKind::AStar;
     p.robot().controller.params.planner.cell_size = 0.1;  // 200 x 200 planning cells
     return p;
@@ -114,14 +114,15 @@ BENCHMARK(BM_Step_Lidar360_AwsWarehouse);
 
 /// Steps/s against the obstacle count: the 50-polygon floor's density at 10 .. 10,000 edges.
 void BM_StepEdges_QuickBot5Ir(benchmark::State& state) {
-  const Scenario s = make_floor_scenario(floor_world(static_cast<int>(state.range(0))), 0);
+  const Scenario s = make_factory_floor_scenario(floor_world(static_cast<int>(state.range(0))), 0);
   step_robot(state, s);
   state.counters["edges"] = static_cast<double>(s.world->edge_count());
 }
 BENCHMARK(BM_StepEdges_QuickBot5Ir)->RangeMultiplier(2)->Range(10, 10000);
 
 void BM_StepEdges_Lidar180(benchmark::State& state) {
-  const Scenario s = make_floor_scenario(floor_world(static_cast<int>(state.range(0))), 180);
+  const Scenario s =
+      make_factory_floor_scenario(floor_world(static_cast<int>(state.range(0))), 180);
   step_robot(state, s);
   state.counters["edges"] = static_cast<double>(s.world->edge_count());
 }
@@ -133,7 +134,8 @@ void BM_FleetStep_100xLidar180_50Polygons(benchmark::State& state) {
   constexpr int kRobots = 100;
   static const std::vector<Scenario> scenarios = [] {
     std::vector<Scenario> v;
-    for (int i = 0; i < kRobots; ++i) v.push_back(make_floor_scenario(floor_world(0), 180, i));
+    for (int i = 0; i < kRobots; ++i)
+      v.push_back(make_factory_floor_scenario(floor_world(0), 180, i));
     return v;
   }();
   std::vector<std::optional<Simulation>> sims(kRobots);

@@ -36,7 +36,7 @@ const EdgeFloor& edge_floor(int edges) {
   auto it = cache.find(edges);
   if (it != cache.end()) return it->second;
   EdgeFloor f;
-  f.world = std::make_unique<World>(make_bench_floor(bench_floor_with_edges(edges)));
+  f.world = std::make_unique<World>(make_factory_floor(factory_floor_with_edges(edges)));
   const Vec2 lo = f.world->extent().min, size = f.world->extent().size();
   Rng rng(7);
   while (f.origins.size() < kSamples) {

@@ -56,6 +56,7 @@
 #include "floornav/scenario/random_people.hpp"
 #include "floornav/scenario/ranges_interval.hpp"
 #include "floornav/scenario/scenario.hpp"
+#include "floornav/scenario/factory_floor.hpp"
 #include "floornav/scenario/shared_floor.hpp"
 #include "floornav/scenario/simulate.hpp"
 #include "floornav/scenario/validate.hpp"

@@ -91,6 +91,7 @@ __all__ = [
     "animate",
     "avoid_obstacle_velocity",
     "batch",
+    "factory_floor",
     "blend_velocities",
     "blend_weight",
     "chapter",
@@ -105,6 +106,7 @@ __all__ = [
     "plot",
     "render_overrides",
     "run",
+    "shared_floor",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -135,6 +137,32 @@ def parse_scenario(text: str, overrides: Overrides = None, origin: PathLike = "s
         encode_text(text, "", name), encode_text(name, "", name),
         [encode_text(o, "--set " + o) for o in sets],
     )
+
+
+def _template(template: Union[Scenario, PathLike], overrides: Overrides) -> Scenario:
+    if isinstance(template, Scenario):
+        if overrides:
+            raise ValueError("overrides apply to a template file; a Scenario is already loaded "
+                             "(load it with overrides instead)")
+        return template
+    return load_scenario(template, overrides)
+
+
+def factory_floor(template: Union[Scenario, PathLike], seed: int, overrides: Overrides = None) -> Scenario:
+    """The template's robot, controller and sim on the generated factory floor ``seed``: a walled
+    20 x 20 m hall of 50 random star-shaped obstacles and a tour of four goals across it, drawn
+    from ``seed`` (the case ``floornav batch TEMPLATE --floors N`` runs for that seed). Floors
+    with other seeds are other floors: train on some, hold others out. The result pickles (as
+    the template and the seed). Bad input raises :class:`InputError`."""
+    return _floornav._generated_floor(_template(template, overrides), "factory_floor", seed)
+
+
+def shared_floor(template: Union[Scenario, PathLike], seed: int, overrides: Overrides = None) -> Scenario:
+    """A fleet on the generated shared floor ``seed``: a hall with pillars and boxes, 4 to 12
+    robots (each the template's robot and controller) on routes of 1 to 3 goals, people and a
+    forklift on some floors; the template's sim with ``sim.seed = seed`` (the case ``floornav
+    batch TEMPLATE --shared-floors N`` runs for that seed). For :class:`ParallelEnv`."""
+    return _floornav._generated_floor(_template(template, overrides), "shared_floor", seed)
 
 
 def _as_scenario(s: Union[Scenario, PathLike]) -> Scenario:

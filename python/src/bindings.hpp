@@ -37,6 +37,10 @@ struct PyScenario {
   // anchors the relative paths in it), from which load_scenario_text rebuilds the scenario.
   std::string text;
   std::string origin;
+  // A generated floor: the scenario of `text` as template on floor `floor_seed` of `generator`
+  // ("factory_floor" or "shared_floor"), made again from them by pickle; empty when as read.
+  std::string generator;
+  std::uint64_t floor_seed{0};
 };
 using ScenarioPtr = std::shared_ptr<PyScenario>;  // never changed once made
 

@@ -14,6 +14,8 @@
 #include "floornav/core/output_error.hpp"
 #include "floornav/io/scenario_file.hpp"
 #include "floornav/io/scenario_writer.hpp"
+#include "floornav/scenario/factory_floor.hpp"
+#include "floornav/scenario/shared_floor.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "py_controller.hpp"
 
@@ -119,22 +121,47 @@ ScenarioPtr parse(const std::string& text, const std::string& origin,
   return s;
 }
 
-// pickle: (text, origin, source, overrides, seed); a Python controller is not kept.
+// The template `base` on generated floor `seed` of `generator` (a new scenario; the same floor
+// as `floornav batch --floors` / `--shared-floors` draws for that seed).
+ScenarioPtr generated_floor(const PyScenario& base, const std::string& generator,
+                            std::uint64_t seed) {
+  if (!base.generator.empty())
+    throw py::value_error(fmt::format("scenario '{}' is already generated floor {} of {}",
+                                      base.scenario.name, base.floor_seed, base.generator));
+  auto s = std::make_shared<PyScenario>(base);
+  s->generator = generator;
+  s->floor_seed = seed;
+  py::gil_scoped_release nogil;
+  if (generator == "factory_floor")
+    s->scenario = make_generated_floor(base.scenario, seed, base.source);
+  else if (generator == "shared_floor")
+    s->scenario = make_shared_floor_case(base.scenario, seed, base.source);
+  else
+    throw std::invalid_argument("unknown floor generator " + generator);
+  return s;
+}
+
+// pickle: (text, origin, source, overrides, seed, generator, floor seed); a Python controller is
+// not kept.
 py::tuple scenario_state(const PyScenario& s) {
   if (s.python_controller)
     throw py::type_error(fmt::format(
         "cannot pickle scenario '{}': it has a Python controller (pickle the scenario before "
         "with_controller, and call with_controller again after loading it)",
         s.scenario.name));
-  return py::make_tuple(s.text, s.origin, s.source, s.overrides, s.scenario.sim.seed);
+  return py::make_tuple(s.text, s.origin, s.source, s.overrides, s.scenario.sim.seed, s.generator,
+                        s.floor_seed);
 }
 
 ScenarioPtr scenario_of_state(const py::tuple& t) {
-  if (t.size() != 5)
-    throw py::value_error("a pickled Scenario is (text, origin, source, overrides, seed)");
+  if (t.size() != 7)
+    throw py::value_error(
+        "a pickled Scenario is (text, origin, source, overrides, seed, generator, floor seed)");
   auto s = parse(t[0].cast<std::string>(), t[1].cast<std::string>(),
                  t[3].cast<std::vector<std::string>>());
   s->source = t[2].cast<std::string>();
+  const auto generator = t[5].cast<std::string>();
+  if (!generator.empty()) s = generated_floor(*s, generator, t[6].cast<std::uint64_t>());
   s->scenario.sim.seed = t[4].cast<std::uint64_t>();
   return s;
 }
@@ -264,6 +291,12 @@ void bind_scenario(py::module_& m) {
 
   m.def("_load_scenario", &load, py::arg("path"), py::arg("overrides"));
   m.def("_parse_scenario", &parse, py::arg("text"), py::arg("origin"), py::arg("overrides"));
+  m.def(
+      "_generated_floor",
+      [](const ScenarioPtr& base, const std::string& generator, const py::object& seed) {
+        return generated_floor(*base, generator, to_seed(seed, "seed"));
+      },
+      py::arg("template"), py::arg("generator"), py::arg("seed"));
 }
 
 }  // namespace floornav::python

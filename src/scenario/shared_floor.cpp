@@ -8,11 +8,14 @@
 #include <string_view>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/kinematics/differential_drive.hpp"
 #include "floornav/robot/body_clearance.hpp"
 #include "floornav/scenario/presets.hpp"
+#include "floornav/scenario/validate.hpp"
 
 namespace floornav {
 
@@ -59,9 +62,8 @@ WorldDesc draw_hall(Rng& rng, double w, double h, std::optional<double> lane, do
 
 // A robot of the floor: its preset, controller kind and speed.
 RobotTask draw_robot(Rng& rng, bool mixed, int index, const RobotTask* given) {
-  static constexpr std::array<std::string_view, 5> kPresets{"quickbot", "khepera3",
-                                                            "turtlebot3_burger", "pioneer_p3dx",
-                                                            "jackal"};
+  static constexpr std::array<std::string_view, 5> kPresets{
+      "quickbot", "khepera3", "turtlebot3_burger", "pioneer_p3dx", "jackal"};
   static constexpr std::array<std::string_view, 6> kKinds{"hybrid",     "blended", "hard_switch",
                                                           "go_to_goal", "dwa",     "astar"};
   RobotTask t;
@@ -86,8 +88,8 @@ RobotTask draw_robot(Rng& rng, bool mixed, int index, const RobotTask* given) {
     } else {
       t.controller.kind = std::string(kind);
     }
-    t.controller.params.v0 = std::min(p.navigation.v0 * rng.uniform(0.5, 1.5),
-                                      max_forward_speed(p.robot.drive));
+    t.controller.params.v0 =
+        std::min(p.navigation.v0 * rng.uniform(0.5, 1.5), max_forward_speed(p.robot.drive));
   }
   return t;
 }
@@ -180,6 +182,19 @@ Scenario make_shared_floor(std::uint64_t seed, const SharedFloorOptions& o) {
     f.route = {Vec2(1.2, *lane), Vec2(w - 1.2, *lane)};
     s.crowd.forklifts.push_back(std::move(f));
   }
+  return s;
+}
+
+Scenario make_shared_floor_case(const Scenario& base, std::uint64_t seed,
+                                const std::string& source) {
+  SharedFloorOptions o;
+  o.robot = &base.robot();
+  o.t_max = base.sim.t_max;
+  Scenario s = make_shared_floor(seed, o);
+  s.sim = base.sim;
+  s.sim.seed = seed;
+  s.name = fmt::format("{}-shared{}", base.name, seed);
+  validate_scenario(s, fmt::format("{} (shared floor {})", source, seed));
   return s;
 }
 

@@ -162,7 +162,7 @@ void VecSimulation::reset(std::size_t i, std::uint64_t seed) {
   {
     std::lock_guard lock(maker_mutex_);
     setup.controller = maker_.make(
-        task.controller, {task.robot, task.controller.params, task.name, 0, nullptr, seed});
+        task.controller, {task.robot, task.controller.params, task.name, 0, c.world, seed});
   }
   setup.seed = seed;
   setup.name = c.name;

@@ -6,6 +6,7 @@
 /// `floornav batch --shared-floors N` run: floors nobody designed, drawn from a seed.
 
 #include <cstdint>
+#include <string>
 
 #include "floornav/scenario/scenario.hpp"
 
@@ -29,5 +30,12 @@ struct SharedFloorOptions {
 /// The floor drawn from `seed` (the same floor for the same seed and options, everywhere). The
 /// scenario passes validation: starts and goals are free, apart, and out of the forklift's lane.
 Scenario make_shared_floor(std::uint64_t seed, const SharedFloorOptions& options = {});
+
+/// The shared floor drawn from `seed` with every robot `base`'s robot and controller and `base`'s
+/// sim (sim.seed = `seed`), named "<base name>-shared<seed>": the case `floornav batch
+/// --shared-floors` runs for `seed`. Throws InputError naming `source` and the floor when it does
+/// not validate.
+Scenario make_shared_floor_case(const Scenario& base, std::uint64_t seed,
+                                const std::string& source);
 
 }  // namespace floornav
