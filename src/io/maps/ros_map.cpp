@@ -94,11 +94,8 @@ class YamlKeys {
   std::string file_;
 };
 
-RosMapMeta read_meta(const std::filesystem::path& yaml) {
-  const std::string file = yaml.string();
-  const std::string text =
-      io_detail::read_input_file(yaml, "ROS map yaml", io_detail::kMaxMapYamlBytes);
-  io_detail::check_utf8_text(text, file);
+// The map yaml's one document (bad YAML, a second document: InputError at its line).
+YAML::Node parse_map_yaml(const std::string& text, const std::string& file) {
   YAML::Node root;
   try {
     const io_detail::OneDocument doc = io_detail::load_one_document(text);
@@ -113,8 +110,11 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
     throw InputError(file, e.mark.is_null() ? "" : "line " + std::to_string(e.mark.line + 1),
                      "invalid YAML: " + e.msg);
   }
-  if (!root.IsMap()) throw InputError(file, "", "expected a YAML map of map_server keys");
-  const YamlKeys keys(root, file);
+  return root;
+}
+
+// Every key once, and only map_server's.
+void check_map_keys(const YAML::Node& root, const YamlKeys& keys) {
   // yaml-cpp keeps both entries of a repeated key and returns the first: refuse the ambiguity.
   std::set<std::string> seen;
   for (const auto& kv : root) {
@@ -133,18 +133,9 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
                     " (a map_server yaml has image, resolution, origin, negate, occupied_thresh, "
                     "free_thresh and mode)");
   }
+}
 
-  RosMapMeta meta;
-  const std::string image = keys.text("image");
-  if (io_detail::trim(image).empty()) keys.fail(keys.require("image"), "image", "is empty");
-  meta.image = image;
-  if (meta.image.is_relative()) meta.image = yaml.parent_path() / meta.image;
-
-  const YAML::Node res = keys.require("resolution");
-  meta.resolution = keys.number(res, "resolution");
-  if (!(meta.resolution > 0.0))
-    keys.fail(res, "resolution", "must be positive, got " + res.Scalar());
-
+Pose2 read_origin(const YamlKeys& keys) {
   const YAML::Node origin = keys.require("origin");
   if (!origin.IsSequence() || origin.size() != 3) {
     keys.fail(origin, "origin", "expected a list [x, y, yaw]");
@@ -155,22 +146,22 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
               fmt::format("yaw {:.6g} is beyond +-2 pi: angles are in radians (if you meant {:.6g} "
                           "degrees, write {:.6g})",
                           yaw, yaw, deg_to_rad(yaw)));
-  meta.origin =
-      Pose2{{keys.number(origin[0], "origin"), keys.number(origin[1], "origin")}, wrap_angle(yaw)};
+  return Pose2{{keys.number(origin[0], "origin"), keys.number(origin[1], "origin")},
+               wrap_angle(yaw)};
+}
 
-  // map_server reads negate as 0 or 1 (ROS 2: also a boolean); 2 is a typo, not "true".
+// map_server reads negate as 0 or 1 (ROS 2: also a boolean); 2 is a typo, not "true".
+bool read_negate(const YamlKeys& keys) {
   const YAML::Node negate = keys.require("negate");
   if (!negate.IsScalar()) keys.fail(negate, "negate", "expected 0, 1, true or false");
   const std::string n = std::string(io_detail::trim(negate.Scalar()));
-  if (n == "1" || n == "true" || n == "True" || n == "TRUE") {
-    meta.negate = true;
-  } else if (n == "0" || n == "false" || n == "False" || n == "FALSE") {
-    meta.negate = false;
-  } else {
-    keys.fail(negate, "negate",
-              "expected 0, 1, true or false, got " + io_detail::quote_input(negate.Scalar()));
-  }
+  if (n == "1" || n == "true" || n == "True" || n == "TRUE") return true;
+  if (n == "0" || n == "false" || n == "False" || n == "FALSE") return false;
+  keys.fail(negate, "negate",
+            "expected 0, 1, true or false, got " + io_detail::quote_input(negate.Scalar()));
+}
 
+void read_thresholds(const YamlKeys& keys, RosMapMeta& meta) {
   for (const char* key : {"occupied_thresh", "free_thresh"}) {
     const YAML::Node n = keys.require(key);
     const double v = keys.number(n, key);
@@ -183,20 +174,44 @@ RosMapMeta read_meta(const std::filesystem::path& yaml) {
               fmt::format("must not be above occupied_thresh ({:.6g}), got {}",
                           meta.occupied_thresh, keys.require("free_thresh").Scalar()));
   }
+}
 
+MapMode read_mode(const YamlKeys& keys) {
   if (keys.has("mode")) {
     const std::string mode = keys.text("mode");
-    if (mode == "trinary") {
-      meta.mode = MapMode::Trinary;
-    } else if (mode == "scale") {
-      meta.mode = MapMode::Scale;
-    } else if (mode == "raw") {
-      meta.mode = MapMode::Raw;
-    } else {
-      keys.fail(keys.require("mode"), "mode",
-                "unknown mode '" + mode + "' (expected trinary, scale or raw)");
-    }
+    if (mode == "trinary") return MapMode::Trinary;
+    if (mode == "scale") return MapMode::Scale;
+    if (mode == "raw") return MapMode::Raw;
+    keys.fail(keys.require("mode"), "mode",
+              "unknown mode '" + mode + "' (expected trinary, scale or raw)");
   }
+  return RosMapMeta{}.mode;  // map_server's default
+}
+
+RosMapMeta read_meta(const std::filesystem::path& yaml) {
+  const std::string file = yaml.string();
+  const std::string text =
+      io_detail::read_input_file(yaml, "ROS map yaml", io_detail::kMaxMapYamlBytes);
+  io_detail::check_utf8_text(text, file);
+  const YAML::Node root = parse_map_yaml(text, file);
+  if (!root.IsMap()) throw InputError(file, "", "expected a YAML map of map_server keys");
+  const YamlKeys keys(root, file);
+  check_map_keys(root, keys);
+
+  RosMapMeta meta;
+  const std::string image = keys.text("image");
+  if (io_detail::trim(image).empty()) keys.fail(keys.require("image"), "image", "is empty");
+  meta.image = image;
+  if (meta.image.is_relative()) meta.image = yaml.parent_path() / meta.image;
+
+  const YAML::Node res = keys.require("resolution");
+  meta.resolution = keys.number(res, "resolution");
+  if (!(meta.resolution > 0.0))
+    keys.fail(res, "resolution", "must be positive, got " + res.Scalar());
+  meta.origin = read_origin(keys);
+  meta.negate = read_negate(keys);
+  read_thresholds(keys, meta);
+  meta.mode = read_mode(keys);
 
   if (auto problem =
           io_detail::input_file_problem(meta.image, "map image", io_detail::kMaxImageBytes)) {
