@@ -158,71 +158,56 @@ CellBox cells_near(const RasterFrame& f, const Vec2& lo, const Vec2& hi, double 
           upper(b.y(), f.height)};
 }
 
-// The raster a clearance query per cell centre gives (rasterise_by_queries), computed from the
-// obstacles instead: each cell is as free as that query says, no more, no less (tested on random
-// worlds). A centre is blocked when the world's clearance there is at most r, that is when
-//  - the occupancy grid's clearance is at most r: decided by the grid's own distance transform
-//    (the nearest occupied centre) where it is clear by far, by the grid's query elsewhere;
-//  - or a wall, polygon edge or circle lies within r: World::clearance takes the minimum of the
-//    same `distance` / `signed_distance` values over them, so each is computed for the cells near
-//    it only and compared with r;
-//  - or the centre lies inside a solid shape or outside the bounds: World::is_inside_obstacle,
-//    asked only for the still free cells that may be.
-// Into `raster`, whose memory is reused (a batch builds one per world).
-void rasterise(const World& world, double r, const RasterFrame& f, FreeRaster& raster) {
-  if (!(r >= 0.0) || !is_finite(f.origin.position) || !std::isfinite(f.origin.theta)) {
-    rasterise_by_queries(world, r, f, raster);
-    return;
-  }
-  raster.width = f.width;
-  raster.height = f.height;
+// m: a squared distance clear of r by more than this either way decides a centre (far above
+// its rounding); only the others ask `distance` itself.
+constexpr double kSure = 1e-9;
+
+// The cells the occupancy grid blocks: by the grid's own distance transform (the nearest occupied
+// centre) where it is clear by far, by the grid's clearance query elsewhere.
+void mark_grid_cells(const OccupancyGrid& g, double r, const RasterFrame& f,
+                     const CellCentres& centre, std::uint8_t* free) {
   const std::size_t w = static_cast<std::size_t>(f.width);
-  raster.free.assign(w * static_cast<std::size_t>(f.height), 1);
-  std::uint8_t* free = raster.free.data();
-  const CellCentres centre(f);
-
-  if (const OccupancyGrid* g = world.grid()) {
-    const bool own_cells = g->origin().position == f.origin.position &&
-                           g->origin().theta == f.origin.theta && g->resolution() == f.cell &&
-                           g->width() == f.width && g->height() == f.height;
-    // Far above the rounding of the grid query's frame change (relative 1e-16 of the origin).
-    const double margin = 1e-9 + 1e-12 * (f.origin.position.norm() + f.cell * (w + f.height));
-    const double res = f.cell;
-    for (int iy = 0; iy < f.height; ++iy)
-      for (int ix = 0; ix < f.width; ++ix) {
-        std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
-        if (own_cells) {
-          if (g->occupied(ix, iy)) {
-            cell = 0;
-            continue;
-          }
-          const std::int32_t q = g->nearest_occupied_index(ix, iy);
-          if (q < 0) continue;  // no occupied cell: the grid's clearance is infinite
-          const int dx = std::abs(q % f.width - ix), dy = std::abs(q / f.width - iy);
-          // The nearest occupied square is at least the nearest occupied centre less half a
-          // diagonal away, and at most as far as that centre's own square.
-          const double centres = std::sqrt(static_cast<double>(dx * dx + dy * dy));
-          const double ex = std::max(dx - 0.5, 0.0), ey = std::max(dy - 0.5, 0.0);
-          const double upper = std::sqrt(ex * ex + ey * ey) * res;
-          const double lower = (centres - 0.7071067811865476) * res;
-          if (lower > r + margin) continue;
-          if (upper < r - margin) {
-            cell = 0;
-            continue;
-          }
+  const bool own_cells = g.origin().position == f.origin.position &&
+                         g.origin().theta == f.origin.theta && g.resolution() == f.cell &&
+                         g.width() == f.width && g.height() == f.height;
+  // Far above the rounding of the grid query's frame change (relative 1e-16 of the origin).
+  const double margin = 1e-9 + 1e-12 * (f.origin.position.norm() + f.cell * (w + f.height));
+  const double res = f.cell;
+  for (int iy = 0; iy < f.height; ++iy)
+    for (int ix = 0; ix < f.width; ++ix) {
+      std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
+      if (own_cells) {
+        if (g.occupied(ix, iy)) {
+          cell = 0;
+          continue;
         }
-        if (!(g->clearance(centre(ix, iy)) > r)) cell = 0;
+        const std::int32_t q = g.nearest_occupied_index(ix, iy);
+        if (q < 0) continue;  // no occupied cell: the grid's clearance is infinite
+        const int dx = std::abs(q % f.width - ix), dy = std::abs(q / f.width - iy);
+        // The nearest occupied square is at least the nearest occupied centre less half a
+        // diagonal away, and at most as far as that centre's own square.
+        const double centres = std::sqrt(static_cast<double>(dx * dx + dy * dy));
+        const double ex = std::max(dx - 0.5, 0.0), ey = std::max(dy - 0.5, 0.0);
+        const double upper = std::sqrt(ex * ex + ey * ey) * res;
+        const double lower = (centres - 0.7071067811865476) * res;
+        if (lower > r + margin) continue;
+        if (upper < r - margin) {
+          cell = 0;
+          continue;
+        }
       }
-  }
+      if (!(g.clearance(centre(ix, iy)) > r)) cell = 0;
+    }
+}
 
-  // Walls, polygon edges and circles: each marks the cells it comes within r of.
+// Walls and polygon edges: each marks the cells it comes within r of.
+void mark_near_segments(const World& world, double r, const RasterFrame& f,
+                        const CellCentres& centre, std::uint8_t* free) {
+  const std::size_t w = static_cast<std::size_t>(f.width);
   // Per row, only the columns where the segment comes within r + 1 cell of the row's centres
   // (the part of it within that height, widened by as much): the cell of margin is far above the
   // rounding of the frame change and of the division.
-  // Each centre is first compared by its squared distance, computed here: a centre clear of r
-  // by more than `kSure` either way is decided; only the others ask `distance` itself.
   const double reach_cells = r / f.cell + 1.0;
-  constexpr double kSure = 1e-9;  // m, far above the rounding of a squared distance
   const double sure_in = r > kSure ? (r - kSure) * (r - kSure) : -1.0;
   const double sure_out = (r + kSure) * (r + kSure);
   for (const Segment& s : world.segments()) {
@@ -257,6 +242,12 @@ void rasterise(const World& world, double r, const RasterFrame& f, FreeRaster& r
       }
     }
   }
+}
+
+// Circles: the cells inside a disc or within r of it.
+void mark_near_circles(const World& world, double r, const RasterFrame& f,
+                       const CellCentres& centre, std::uint8_t* free) {
+  const std::size_t w = static_cast<std::size_t>(f.width);
   for (const Circle& c : world.circles()) {
     const Vec2 half(c.radius, c.radius);
     const CellBox b = cells_near(f, c.center - half, c.center + half, r);
@@ -272,12 +263,16 @@ void rasterise(const World& world, double r, const RasterFrame& f, FreeRaster& r
         if (d2 <= circle_in || (d2 <= circle_out && signed_distance(c, p) <= r)) cell = 0;
       }
   }
+}
 
-  // Cells still free that may lie inside a polygon. Unrotated, each row of centres is a line
-  // y = const: the polygon's edges cross it at points in increasing x, and a centre is inside
-  // when an odd number of crossings lie left of it (the half-open rule counts a vertex on the
-  // line once). A still free centre is farther than r from every edge, so from every crossing;
-  // only one within `margin` of a crossing (possible for r ~ 0) asks the world.
+// Cells still free that may lie inside a polygon. Unrotated, each row of centres is a line
+// y = const: the polygon's edges cross it at points in increasing x, and a centre is inside
+// when an odd number of crossings lie left of it (the half-open rule counts a vertex on the
+// line once). A still free centre is farther than r from every edge, so from every crossing;
+// only one within `margin` of a crossing (possible for r ~ 0) asks the world.
+void mark_inside_polygons(const World& world, const RasterFrame& f, const CellCentres& centre,
+                          std::uint8_t* free) {
+  const std::size_t w = static_cast<std::size_t>(f.width);
   auto inside_test = [&](int ix, int iy) {
     std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
     if (cell && world.is_inside_obstacle(centre(ix, iy))) cell = 0;
@@ -315,39 +310,79 @@ void rasterise(const World& world, double r, const RasterFrame& f, FreeRaster& r
       }
     }
   }
-  if (const auto& bounds = world.bounds()) {
-    // Unrotated, a centre's x depends on its column only and its y on its row only.
-    std::vector<std::uint8_t> column_in, row_in;
-    if (f.origin.theta == 0.0) {
-      column_in.resize(w);
-      row_in.resize(static_cast<std::size_t>(f.height));
-      for (int ix = 0; ix < f.width; ++ix) {
-        const double x = centre(ix, 0).x();
-        column_in[static_cast<std::size_t>(ix)] = x >= bounds->min.x() && x <= bounds->max.x();
-      }
-      for (int iy = 0; iy < f.height; ++iy) {
-        const double y = centre(0, iy).y();
-        row_in[static_cast<std::size_t>(iy)] = y >= bounds->min.y() && y <= bounds->max.y();
-      }
+}
+
+// Centres outside the bounds. Unrotated, a centre's x depends on its column only and its y on
+// its row only.
+void mark_outside_bounds(const Box2& bounds, const RasterFrame& f, const CellCentres& centre,
+                         std::uint8_t* free) {
+  const std::size_t w = static_cast<std::size_t>(f.width);
+  std::vector<std::uint8_t> column_in, row_in;
+  if (f.origin.theta == 0.0) {
+    column_in.resize(w);
+    row_in.resize(static_cast<std::size_t>(f.height));
+    for (int ix = 0; ix < f.width; ++ix) {
+      const double x = centre(ix, 0).x();
+      column_in[static_cast<std::size_t>(ix)] = x >= bounds.min.x() && x <= bounds.max.x();
     }
     for (int iy = 0; iy < f.height; ++iy) {
-      std::uint8_t* row = free + static_cast<std::size_t>(iy) * w;
-      if (!row_in.empty()) {
-        if (!row_in[static_cast<std::size_t>(iy)]) std::fill(row, row + w, 0);
-        for (std::size_t ix = 0; ix < w; ++ix) row[ix] &= column_in[ix];
-        continue;
-      }
-      for (int ix = 0; ix < f.width; ++ix)
-        if (row[ix] && !bounds->contains(centre(ix, iy))) row[ix] = 0;
+      const double y = centre(0, iy).y();
+      row_in[static_cast<std::size_t>(iy)] = y >= bounds.min.y() && y <= bounds.max.y();
     }
   }
-  // A map without bounds: off the map is solid as outside the bounds is (World::clearance).
+  for (int iy = 0; iy < f.height; ++iy) {
+    std::uint8_t* row = free + static_cast<std::size_t>(iy) * w;
+    if (!row_in.empty()) {
+      if (!row_in[static_cast<std::size_t>(iy)]) std::fill(row, row + w, 0);
+      for (std::size_t ix = 0; ix < w; ++ix) row[ix] &= column_in[ix];
+      continue;
+    }
+    for (int ix = 0; ix < f.width; ++ix)
+      if (row[ix] && !bounds.contains(centre(ix, iy))) row[ix] = 0;
+  }
+}
+
+// A map without bounds: off the map is solid as outside the bounds is (World::clearance).
+void mark_off_map(std::span<const Vec2> edge, const RasterFrame& f, const CellCentres& centre,
+                  std::uint8_t* free) {
+  const std::size_t w = static_cast<std::size_t>(f.width);
+  for (int iy = 0; iy < f.height; ++iy)
+    for (int ix = 0; ix < f.width; ++ix) {
+      std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
+      if (cell && !contains(edge, centre(ix, iy))) cell = 0;
+    }
+}
+
+// The raster a clearance query per cell centre gives (rasterise_by_queries), computed from the
+// obstacles instead: each cell is as free as that query says, no more, no less (tested on random
+// worlds). A centre is blocked when the world's clearance there is at most r, that is when
+//  - the occupancy grid's clearance is at most r: decided by the grid's own distance transform
+//    (the nearest occupied centre) where it is clear by far, by the grid's query elsewhere;
+//  - or a wall, polygon edge or circle lies within r: World::clearance takes the minimum of the
+//    same `distance` / `signed_distance` values over them, so each is computed for the cells near
+//    it only and compared with r;
+//  - or the centre lies inside a solid shape or outside the bounds: World::is_inside_obstacle,
+//    asked only for the still free cells that may be.
+// Into `raster`, whose memory is reused (a batch builds one per world).
+void rasterise(const World& world, double r, const RasterFrame& f, FreeRaster& raster) {
+  if (!(r >= 0.0) || !is_finite(f.origin.position) || !std::isfinite(f.origin.theta)) {
+    rasterise_by_queries(world, r, f, raster);
+    return;
+  }
+  raster.width = f.width;
+  raster.height = f.height;
+  const std::size_t w = static_cast<std::size_t>(f.width);
+  raster.free.assign(w * static_cast<std::size_t>(f.height), 1);
+  std::uint8_t* free = raster.free.data();
+  const CellCentres centre(f);
+
+  if (const OccupancyGrid* g = world.grid()) mark_grid_cells(*g, r, f, centre, free);
+  mark_near_segments(world, r, f, centre, free);
+  mark_near_circles(world, r, f, centre, free);
+  mark_inside_polygons(world, f, centre, free);
+  if (const auto& bounds = world.bounds()) mark_outside_bounds(*bounds, f, centre, free);
   if (const std::span<const Vec2> edge = world.map_edge(); !edge.empty())
-    for (int iy = 0; iy < f.height; ++iy)
-      for (int ix = 0; ix < f.width; ++ix) {
-        std::uint8_t& cell = free[static_cast<std::size_t>(iy) * w + static_cast<std::size_t>(ix)];
-        if (cell && !contains(edge, centre(ix, iy))) cell = 0;
-      }
+    mark_off_map(edge, f, centre, free);
 }
 
 }  // namespace
