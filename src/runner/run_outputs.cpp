@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <numeric>
 
 #include "floornav/core/input_error.hpp"
 #include "floornav/io/atomic_file.hpp"
@@ -15,6 +16,7 @@
 #include "floornav/io/trajectory_csv.hpp"
 #include "floornav/render/trajectory_html.hpp"
 #include "floornav/render/trajectory_svg.hpp"
+#include "floornav/scenario/ranges_interval.hpp"
 #include "floornav/scenario/simulate.hpp"
 
 namespace floornav {
@@ -101,9 +103,17 @@ void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenari
 void prepare_outputs(Scenario& scenario, const OutputSelection& which) {
   if (which.mcap) scenario.sim.record_trajectory = true;
   if (!scenario.sim.record_trajectory || scenario.sim.record_ranges_every != 0) return;
-  int every = which.html ? replay_ranges_interval(scenario) : 0;
-  if (const int bag = which.mcap ? mcap_ranges_interval(scenario) : 0; bag > 0)
-    every = every > 0 ? std::min(every, bag) : bag;
+  const int replay = which.html ? replay_ranges_interval(scenario) : 0;
+  const int bag = which.mcap ? mcap_ranges_interval(scenario) : 0;
+  int every = replay > 0 ? replay : bag;
+  if (replay > 0 && bag > 0) {
+    // Steps that are multiples of both intervals' divisor hold the replay's frames and the
+    // bag's, so the replay is the one a run without the bag draws; unless that records more
+    // than the bag's budget, then the shorter interval.
+    const int both = std::gcd(replay, bag);
+    every = both >= ranges_interval_within(scenario, kMaxMcapRangeValues) ? both
+                                                                          : std::min(replay, bag);
+  }
   scenario.sim.record_ranges_every = every;
 }
 
@@ -137,7 +147,7 @@ std::optional<RunResult> run_timed(const Scenario& scenario, const std::atomic<b
   };
   while (sim.step())
     if (stopped()) return std::nullopt;
-  RunResult r = sim.result();
+  RunResult r = sim.take_result();
   r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
