@@ -26,7 +26,7 @@ enum Opcode : std::uint8_t {
   kSummaryOffset = 0x0E,
   kDataEnd = 0x0F,
 };
-constexpr std::size_t kOutputPiece = 1u << 20;
+constexpr std::size_t kOutputPiece = 1u << 18;  ///< bytes handed to the sink at once
 
 // Little-endian fields appended to a byte string (the spec's integer, string and map forms).
 template <class T>

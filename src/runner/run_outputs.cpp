@@ -28,12 +28,21 @@ std::string clearance_text(double c) {
 }
 
 /// run.mcap made on another thread while the other files are written (its zstd and CRC are most
-/// of its cost): the bag's bytes, held until they join the folder.
-std::future<std::string> bag_in_background(std::function<void(const McapWriter::Sink&)> write) {
+/// of its cost): the bag's pieces as the writer hands them over (not copied into one string),
+/// held until they join the folder.
+using BagPieces = std::vector<std::string>;
+std::future<BagPieces> bag_in_background(std::function<void(const McapWriter::Sink&)> write) {
   return std::async(std::launch::async, [write = std::move(write)] {
-    std::string bytes;
-    write([&](std::string_view piece) { bytes.append(piece); });
-    return bytes;
+    BagPieces pieces;
+    write([&](std::string_view piece) { pieces.emplace_back(piece); });
+    return pieces;
+  });
+}
+
+void write_bag(OutputFolder& out, std::future<BagPieces>& bag) {
+  const BagPieces pieces = bag.get();
+  out.write("run.mcap", [&](const std::function<void(std::string_view)>& sink) {
+    for (const std::string& piece : pieces) sink(piece);
   });
 }
 }  // namespace
@@ -81,7 +90,7 @@ void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenari
                        const OutputSelection& which) {
   // Every file of the run appears together, or none does (a full disk, a signal).
   OutputFolder out(dir, run_output_files());
-  std::future<std::string> bag;
+  std::future<BagPieces> bag;
   if (which.mcap && !result.trajectory.empty())
     bag = bag_in_background(
         [&](const McapWriter::Sink& sink) { write_run_mcap(scenario, result, sink); });
@@ -96,7 +105,7 @@ void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenari
   if (which.svg) out.write("trajectory.svg", render_trajectory_svg(scenario, result));
   if (which.html && !result.trajectory.empty())
     out.write("trajectory.html", render_trajectory_html(scenario, result));
-  if (bag.valid()) out.write("run.mcap", bag.get());
+  if (bag.valid()) write_bag(out, bag);
   out.commit();
 }
 
@@ -163,7 +172,7 @@ void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scena
   OutputFolder out(dir, run_output_files());
   const bool recorded = std::any_of(result.robots.begin(), result.robots.end(),
                                     [](const RunResult& r) { return !r.trajectory.empty(); });
-  std::future<std::string> bag;
+  std::future<BagPieces> bag;
   if (which.mcap && recorded)
     bag = bag_in_background(
         [&](const McapWriter::Sink& sink) { write_fleet_mcap(scenario, result, sink); });
@@ -178,7 +187,7 @@ void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scena
   if (which.html && recorded) out.write("trajectory.html", render_fleet_html(scenario, result));
   // People and forklifts: their tracks beside the robots'.
   if (which.csv && !result.crowd.empty()) out.write("crowd.csv", crowd_to_csv(result.crowd));
-  if (bag.valid()) out.write("run.mcap", bag.get());
+  if (bag.valid()) write_bag(out, bag);
   out.commit();
 }
 

@@ -25,7 +25,7 @@ namespace floornav {
 struct McapOptions {
   std::string profile{"ros2"};
   std::string library{"floornav"};   ///< the header's library field
-  std::size_t chunk_size{1u << 20};  ///< bytes of uncompressed records per chunk
+  std::size_t chunk_size{1u << 18};  ///< bytes of uncompressed records per chunk
   int zstd_level{1};                 ///< 1: fast; the chunks of a run compress about 3-10 times
   /// log2 of the entries of zstd's match table: a message of a run mostly repeats the one before
   /// on its channel, which a small table finds as well as a big one, faster (it stays in cache).
