@@ -1,10 +1,11 @@
 #include "floornav/io/mcap_writer.hpp"
 
-#include <zlib.h>
+#include <libdeflate.h>
 #include <zstd.h>
 
 #include <bit>
 #include <stdexcept>
+#include <utility>
 
 namespace floornav {
 
@@ -25,7 +26,7 @@ enum Opcode : std::uint8_t {
   kSummaryOffset = 0x0E,
   kDataEnd = 0x0F,
 };
-constexpr std::size_t kOutputPiece = 1u << 20;
+constexpr std::size_t kOutputPiece = 1u << 18;  ///< bytes handed to the sink at once
 
 // Little-endian fields appended to a byte string (the spec's integer, string and map forms).
 template <class T>
@@ -59,14 +60,7 @@ void record(std::string& out, Opcode op, std::string_view content) {
 }
 
 std::uint32_t crc_update(std::uint32_t crc, std::string_view bytes) {
-  // zlib's crc32 takes at most uInt bytes per call.
-  while (!bytes.empty()) {
-    const std::size_t n = std::min<std::size_t>(bytes.size(), 1u << 30);
-    crc = static_cast<std::uint32_t>(
-        crc32(crc, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(n)));
-    bytes.remove_prefix(n);
-  }
-  return crc;
+  return libdeflate_crc32(crc, bytes.data(), bytes.size());
 }
 
 }  // namespace
@@ -79,6 +73,15 @@ struct McapWriter::ZstdContext {
 McapWriter::McapWriter(Sink sink, McapOptions options)
     : sink_(std::move(sink)), options_(std::move(options)), zstd_(new ZstdContext) {
   if (zstd_->cctx == nullptr) throw std::bad_alloc();
+  for (const auto& [parameter, value] : {std::pair{ZSTD_c_compressionLevel, options_.zstd_level},
+                                         std::pair{ZSTD_c_hashLog, options_.zstd_hash_log}}) {
+    const std::size_t status = ZSTD_CCtx_setParameter(zstd_->cctx, parameter, value);
+    if (ZSTD_isError(status))
+      throw std::invalid_argument(std::string("zstd: ") + ZSTD_getErrorName(status));
+  }
+  // Grown once, not message by message: a chunk's records and a piece of output.
+  chunk_.reserve(options_.chunk_size + (1u << 16));
+  out_.reserve(kOutputPiece);
   emit(kMagic, true);
   std::string header;
   str(header, options_.profile);
@@ -171,8 +174,8 @@ void McapWriter::close_chunk() {
     compressed_.reset(new char[bound]);
     compressed_capacity_ = bound;
   }
-  const std::size_t n = ZSTD_compressCCtx(zstd_->cctx, compressed_.get(), bound, chunk_.data(),
-                                          chunk_.size(), options_.zstd_level);
+  const std::size_t n =
+      ZSTD_compress2(zstd_->cctx, compressed_.get(), bound, chunk_.data(), chunk_.size());
   if (ZSTD_isError(n)) throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(n));
 
   ChunkIndex index{};

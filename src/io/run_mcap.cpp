@@ -51,6 +51,7 @@ struct SensorGroup {
   std::string topic, frame;
   Pose2 mount{};  ///< the frame in base_link
   Ros2ScanShape shape{};
+  double max_range{0.0};  ///< lidar: every beam's (a reading at it saw nothing)
 };
 
 /// A lidar: a run of at least kLidarBeams single beams on one mount point with one range and one
@@ -101,6 +102,7 @@ std::vector<SensorGroup> sensor_groups(const RobotSpec& robot, const BagRobot& b
     g.shape.range_min = static_cast<float>(first.min_range);
     g.shape.range_max = static_cast<float>(first.max_range);
     g.shape.scan_time = static_cast<float>(dt);
+    g.max_range = first.max_range;
     out.push_back(std::move(g));
     ++lidars;
   }
@@ -399,9 +401,10 @@ class BagWriter {
     for (std::size_t gi = 0; gi < r.sensors.size(); ++gi) {
       const SensorGroup& g = r.sensors[gi];
       if (g.kind == SensorGroup::Lidar) {
-        scan_.clear();
-        for (std::size_t i = g.begin; i < g.end; ++i)
-          scan_.push_back(frame[i] >= sensors[i].max_range ? kInf : frame[i]);
+        const std::span<const float> beams = frame.subspan(g.begin, g.end - g.begin);
+        scan_.resize(beams.size());
+        std::transform(beams.begin(), beams.end(), scan_.begin(),
+                       [max = g.max_range](float r) { return r >= max ? kInf : r; });
         encode_laser_scan(w_, t, g.frame, g.shape, scan_);
       } else if (g.kind == SensorGroup::Ring) {
         ring(g, sensors, frame);

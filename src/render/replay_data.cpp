@@ -128,15 +128,32 @@ Json world_json(const World* world) {
   return w;
 }
 
-/// The recorded beam frames of `r`, every `stride`-th one.
-Json beams_json(const RobotTask& task, const RunResult& r, std::size_t stride) {
+/// The recorded beam frames of `r` the replay shows: each at least `gap` steps after the last one
+/// taken, so that a run recording more often for its bag (run.mcap) shows what it would without.
+std::vector<std::size_t> beam_frames(const RobotTask& task, const RunResult& r, int gap) {
+  std::vector<std::size_t> out;
   const std::size_t sensors = task.robot.sensors.size();
   if (sensors == 0 || r.range_steps.empty() || r.ranges.size() != r.range_steps.size() * sensors)
-    return nullptr;
+    return out;
+  std::int64_t next = 0;
+  for (std::size_t f = 0; f < r.range_steps.size(); ++f) {
+    if (r.range_steps[f] < next) continue;
+    out.push_back(f);
+    next = r.range_steps[f] + std::max(gap, 1);
+  }
+  return out;
+}
+
+/// The beam frames `frames` of `r`, every `stride`-th one.
+Json beams_json(const RobotTask& task, const RunResult& r, std::span<const std::size_t> frames,
+                std::size_t stride) {
+  const std::size_t sensors = task.robot.sensors.size();
+  if (frames.empty()) return nullptr;
   std::vector<std::int64_t> rows;
   std::vector<double> xs, ys, ths;
   Json ranges = Json::array();
-  for (std::size_t f = 0; f < r.range_steps.size(); f += stride) {
+  for (std::size_t k = 0; k < frames.size(); k += stride) {
+    const std::size_t f = frames[k];
     const auto row = static_cast<std::size_t>(r.range_steps[f]);
     if (row >= r.trajectory.size()) break;
     const TrajectorySample& s = r.trajectory[row];
@@ -155,7 +172,8 @@ Json beams_json(const RobotTask& task, const RunResult& r, std::size_t stride) {
   return j;
 }
 
-Json robot_json(const Track& t, const SimConfig& sim, std::size_t beam_stride) {
+Json robot_json(const Track& t, const SimConfig& sim, std::span<const std::size_t> beam_frames,
+                std::size_t beam_stride) {
   const RobotTask& task = *t.task;
   const RunResult& r = *t.run;
   Json j;
@@ -221,7 +239,7 @@ Json robot_json(const Track& t, const SimConfig& sim, std::size_t beam_stride) {
     sensors.push_back({micro(s.mount.position.x()), micro(s.mount.position.y()), s.mount.theta,
                        s.max_range, s.cone_angle});
   j["sensors"] = std::move(sensors);
-  j["beams"] = beams_json(task, r, beam_stride);
+  j["beams"] = beams_json(task, r, beam_frames, beam_stride);
   return j;
 }
 
@@ -267,7 +285,7 @@ Json crowd_json(const CrowdResult& c, const SimConfig& sim) {
 }  // namespace
 
 Json replay_data(const World* world, std::span<const Track> tracks, const SimConfig& sim,
-                 const Caption& caption, std::string_view status, double duration,
+                 int beam_gap, const Caption& caption, std::string_view status, double duration,
                  const CrowdResult* crowd) {
   Json j;
   j["format"] = "floornav-replay";
@@ -290,12 +308,17 @@ Json replay_data(const World* world, std::span<const Track> tracks, const SimCon
   j["world"] = world_json(world);
 
   // Beam frames beyond the budget are thinned evenly, the same stride for every robot.
+  std::vector<std::vector<std::size_t>> frames;
   std::size_t range_values = 0;
-  for (const Track& t : tracks) range_values += t.run->ranges.size();
+  for (const Track& t : tracks) {
+    frames.push_back(beam_frames(*t.task, *t.run, beam_gap));
+    range_values += frames.back().size() * t.task->robot.sensors.size();
+  }
   const std::size_t stride =
       std::max<std::size_t>(1, (range_values + kMaxReplayRangeValues - 1) / kMaxReplayRangeValues);
   Json robots = Json::array();
-  for (const Track& t : tracks) robots.push_back(robot_json(t, sim, stride));
+  for (std::size_t i = 0; i < tracks.size(); ++i)
+    robots.push_back(robot_json(tracks[i], sim, frames[i], stride));
   j["robots"] = std::move(robots);
   j["crowd"] = crowd && !crowd->empty() ? crowd_json(*crowd, sim) : Json(nullptr);
   return j;

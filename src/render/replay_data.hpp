@@ -36,9 +36,11 @@
 namespace floornav::render_detail {
 
 /// The replay of `tracks` in `world` (may be null); `status` and `duration` (s) of the whole run;
-/// `crowd`, when given and not empty, the people and forklifts that moved with them.
+/// `crowd`, when given and not empty, the people and forklifts that moved with them. Beam frames
+/// are taken at least `beam_gap` steps apart (replay_ranges_interval), then thinned to
+/// kMaxReplayRangeValues.
 nlohmann::ordered_json replay_data(const World* world, std::span<const Track> tracks,
-                                   const SimConfig& sim, const Caption& caption,
+                                   const SimConfig& sim, int beam_gap, const Caption& caption,
                                    std::string_view status, double duration,
                                    const CrowdResult* crowd = nullptr);
 

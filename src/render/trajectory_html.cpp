@@ -83,8 +83,9 @@ std::string fill_template(
 std::string render_page(const Scenario& scenario, std::span<const Track> tracks,
                         const Caption& caption, std::string_view status, double duration,
                         const CrowdResult* crowd = nullptr) {
-  const std::string data = script_safe_json(
-      replay_data(scenario.world.get(), tracks, scenario.sim, caption, status, duration, crowd));
+  const std::string data = script_safe_json(replay_data(scenario.world.get(), tracks, scenario.sim,
+                                                        replay_ranges_interval(scenario), caption,
+                                                        status, duration, crowd));
   const std::string title = html_text(caption.title);
   return fill_template(kReplayTemplate, {{"title", title},
                                          {"style", kReplayStyle},

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <numeric>
 
 #include "floornav/core/input_error.hpp"
 #include "floornav/io/atomic_file.hpp"
@@ -15,6 +16,7 @@
 #include "floornav/io/trajectory_csv.hpp"
 #include "floornav/render/trajectory_html.hpp"
 #include "floornav/render/trajectory_svg.hpp"
+#include "floornav/scenario/ranges_interval.hpp"
 #include "floornav/scenario/simulate.hpp"
 
 namespace floornav {
@@ -26,12 +28,21 @@ std::string clearance_text(double c) {
 }
 
 /// run.mcap made on another thread while the other files are written (its zstd and CRC are most
-/// of its cost): the bag's bytes, held until they join the folder.
-std::future<std::string> bag_in_background(std::function<void(const McapWriter::Sink&)> write) {
+/// of its cost): the bag's pieces as the writer hands them over (not copied into one string),
+/// held until they join the folder.
+using BagPieces = std::vector<std::string>;
+std::future<BagPieces> bag_in_background(std::function<void(const McapWriter::Sink&)> write) {
   return std::async(std::launch::async, [write = std::move(write)] {
-    std::string bytes;
-    write([&](std::string_view piece) { bytes.append(piece); });
-    return bytes;
+    BagPieces pieces;
+    write([&](std::string_view piece) { pieces.emplace_back(piece); });
+    return pieces;
+  });
+}
+
+void write_bag(OutputFolder& out, std::future<BagPieces>& bag) {
+  const BagPieces pieces = bag.get();
+  out.write("run.mcap", [&](const std::function<void(std::string_view)>& sink) {
+    for (const std::string& piece : pieces) sink(piece);
   });
 }
 }  // namespace
@@ -79,7 +90,7 @@ void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenari
                        const OutputSelection& which) {
   // Every file of the run appears together, or none does (a full disk, a signal).
   OutputFolder out(dir, run_output_files());
-  std::future<std::string> bag;
+  std::future<BagPieces> bag;
   if (which.mcap && !result.trajectory.empty())
     bag = bag_in_background(
         [&](const McapWriter::Sink& sink) { write_run_mcap(scenario, result, sink); });
@@ -94,16 +105,24 @@ void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenari
   if (which.svg) out.write("trajectory.svg", render_trajectory_svg(scenario, result));
   if (which.html && !result.trajectory.empty())
     out.write("trajectory.html", render_trajectory_html(scenario, result));
-  if (bag.valid()) out.write("run.mcap", bag.get());
+  if (bag.valid()) write_bag(out, bag);
   out.commit();
 }
 
 void prepare_outputs(Scenario& scenario, const OutputSelection& which) {
   if (which.mcap) scenario.sim.record_trajectory = true;
   if (!scenario.sim.record_trajectory || scenario.sim.record_ranges_every != 0) return;
-  int every = which.html ? replay_ranges_interval(scenario) : 0;
-  if (const int bag = which.mcap ? mcap_ranges_interval(scenario) : 0; bag > 0)
-    every = every > 0 ? std::min(every, bag) : bag;
+  const int replay = which.html ? replay_ranges_interval(scenario) : 0;
+  const int bag = which.mcap ? mcap_ranges_interval(scenario) : 0;
+  int every = replay > 0 ? replay : bag;
+  if (replay > 0 && bag > 0) {
+    // Steps that are multiples of both intervals' divisor hold the replay's frames and the
+    // bag's, so the replay is the one a run without the bag draws; unless that records more
+    // than the bag's budget, then the shorter interval.
+    const int both = std::gcd(replay, bag);
+    every = both >= ranges_interval_within(scenario, kMaxMcapRangeValues) ? both
+                                                                          : std::min(replay, bag);
+  }
   scenario.sim.record_ranges_every = every;
 }
 
@@ -137,7 +156,7 @@ std::optional<RunResult> run_timed(const Scenario& scenario, const std::atomic<b
   };
   while (sim.step())
     if (stopped()) return std::nullopt;
-  RunResult r = sim.result();
+  RunResult r = sim.take_result();
   r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -153,7 +172,7 @@ void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scena
   OutputFolder out(dir, run_output_files());
   const bool recorded = std::any_of(result.robots.begin(), result.robots.end(),
                                     [](const RunResult& r) { return !r.trajectory.empty(); });
-  std::future<std::string> bag;
+  std::future<BagPieces> bag;
   if (which.mcap && recorded)
     bag = bag_in_background(
         [&](const McapWriter::Sink& sink) { write_fleet_mcap(scenario, result, sink); });
@@ -168,7 +187,7 @@ void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scena
   if (which.html && recorded) out.write("trajectory.html", render_fleet_html(scenario, result));
   // People and forklifts: their tracks beside the robots'.
   if (which.csv && !result.crowd.empty()) out.write("crowd.csv", crowd_to_csv(result.crowd));
-  if (bag.valid()) out.write("run.mcap", bag.get());
+  if (bag.valid()) write_bag(out, bag);
   out.commit();
 }
 

@@ -23,7 +23,7 @@ Simulation make_simulation(const Scenario& scenario) {
 RunResult simulate(const Scenario& scenario) {
   Simulation sim = make_simulation(scenario);
   sim.run();
-  return sim.result();
+  return sim.take_result();
 }
 
 FleetSimulation make_fleet_simulation(const Scenario& scenario) {

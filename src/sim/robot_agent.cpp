@@ -88,6 +88,14 @@ RobotAgent::RobotAgent(AgentSetup setup)
   r.final_x = pose_.position.x();
   r.final_y = pose_.position.y();
   r.final_theta = pose_.theta;
+  if (setup.reserve_trajectory && sim_->record_ranges_every > 0 && n_sensors > 0) {
+    // The frames of the whole run at once: no copy of megabytes of ranges as they grow (pages
+    // never written are never touched).
+    const double frames = std::ceil(sim_->t_max / sim_->dt) / sim_->record_ranges_every + 2.0;
+    const double values = std::min(frames * static_cast<double>(n_sensors), 2.0e7);
+    r.range_steps.reserve(static_cast<std::size_t>(values) / n_sensors);
+    r.ranges.reserve(static_cast<std::size_t>(values));
+  }
   if (sim_->record_trajectory) {
     const double steps = std::ceil(sim_->t_max / sim_->dt) + 2.0;
     if (setup.reserve_trajectory)

@@ -40,6 +40,35 @@ TEST(McapCli, RunWritesTheBagAndLeavesTheOtherFilesAsTheyWere) {
   EXPECT_EQ(read(bag / "transitions.csv"), read(plain / "transitions.csv"));
 }
 
+// The same scenario and seed: the same bag, byte for byte (a lone robot, and a fleet with people
+// and forklifts on two threads).
+TEST(McapCli, TheSameRunWritesTheSameBytes) {
+  for (const std::string& run :
+       {scenario("factory_delivery.yaml") + " --set sim.t_max=15",
+        scenario("crowd/factory_people.yaml") + " --set sim.t_max=10 --threads 2"}) {
+    const fs::path a = temp_dir("same_a"), b = temp_dir("same_b");
+    ASSERT_EQ(floornav("run " + run + " --quiet --mcap --out " + a.string()).status, 0) << run;
+    ASSERT_EQ(floornav("run " + run + " --quiet --mcap --out " + b.string()).status, 0) << run;
+    const std::string bag = read(a / "run.mcap");
+    ASSERT_GT(bag.size(), 1000u) << run;
+    EXPECT_EQ(bag, read(b / "run.mcap")) << run;
+  }
+}
+
+// A lidar run: the bag wants a scan every 2nd step, the replay every 15th; the replay of a run
+// with the bag is the replay of a run without it (not one drawn from the bag's frames).
+TEST(McapCli, TheBagLeavesTheReplayAsItWas) {
+  const fs::path plain = temp_dir("replay_plain"), bag = temp_dir("replay_bag");
+  const std::string file = scenario("ros/depot_1.yaml");
+  ASSERT_EQ(floornav("run " + file + " --quiet --no-optimum --out " + plain.string()).status, 0);
+  ASSERT_EQ(floornav("run " + file + " --quiet --no-optimum --mcap --out " + bag.string()).status,
+            0);
+  const std::string html = read(plain / "trajectory.html");
+  ASSERT_NE(html.find("\"beams\":{"), std::string::npos);
+  EXPECT_EQ(read(bag / "trajectory.html"), html);
+  EXPECT_EQ(read(bag / "trajectory.csv"), read(plain / "trajectory.csv"));
+}
+
 TEST(McapCli, BatchWritesABagPerFailedCase) {
   const fs::path out = temp_dir("batch"), bags = temp_dir("batch_bags");
   // Hard switching: the rectangle is reached, the week-7 pocket is not.

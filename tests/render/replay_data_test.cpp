@@ -221,6 +221,27 @@ TEST(TrajectoryHtml, ARunWithoutRangesHasNoBeams) {
   EXPECT_NE(html.find("\"beams\":null"), std::string::npos);
 }
 
+// A run that records its ranges more often than its replay needs (for its bag, run.mcap) draws
+// the replay of a run that recorded at the replay's own interval: not the extra frames.
+TEST(TrajectoryHtml, ARunRecordingMoreOftenShowsTheFramesOfTheReplaysInterval) {
+  Scenario s = hall(1);
+  s.sim.t_max = 600.0;  // 60,001 steps x 5 sensors: the replay's interval is 2 steps
+  ASSERT_EQ(replay_ranges_interval(s), 2);
+  const RunResult every_step = wiggly_run("wiggle", 1000, 5.0);
+  RunResult every_2nd = every_step;
+  every_2nd.range_steps.clear();
+  every_2nd.ranges.clear();
+  for (std::size_t f = 0; f < every_step.range_steps.size(); f += 2) {
+    every_2nd.range_steps.push_back(every_step.range_steps[f]);
+    every_2nd.ranges.insert(every_2nd.ranges.end(), every_step.ranges.begin() + 5 * f,
+                            every_step.ranges.begin() + 5 * (f + 1));
+  }
+  const std::string html = render_trajectory_html(s, every_step);
+  EXPECT_EQ(html, render_trajectory_html(s, every_2nd));
+  EXPECT_NE(html.find("\"beams\":{\"k\":[0,2,2,2,"), std::string::npos);
+  EXPECT_EQ(html.find("\"beams\":{\"k\":[0,1,"), std::string::npos);
+}
+
 TEST(ReplayRangesInterval, EveryStepWhenTheBudgetAllowsElseTheFewestStepsApart) {
   Scenario s = hall(1);
   s.sim.dt = 0.01;

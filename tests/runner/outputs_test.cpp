@@ -19,9 +19,12 @@
 #include "floornav/core/output_error.hpp"
 #include "floornav/io/atomic_file.hpp"
 #include "floornav/io/crowd_csv.hpp"
+#include "floornav/io/scenario_file.hpp"
 #include "floornav/io/summary_json.hpp"
 #include "floornav/io/trajectory_csv.hpp"
+#include "floornav/render/trajectory_html.hpp"
 #include "floornav/render/trajectory_svg.hpp"
+#include "floornav/runner/run_outputs.hpp"
 #include "floornav/world/world.hpp"
 
 namespace floornav {
@@ -405,6 +408,32 @@ TEST(CrowdCsv, NamesNeverForgeRowsOrColumns) {
 }
 
 // ---- atomic files ----------------------------------------------------------------------------
+
+// What a run records for its files: the replay's interval, the bag's, and with both a step that
+// holds each one's frames (their greatest common divisor), unless that would pass the bag's
+// budget of values; a scenario's own record_ranges_every is kept.
+TEST(PrepareOutputs, RecordsRangesForTheReplayAndTheBagTogether) {
+  const Scenario depot =
+      load_scenario_file(std::string(FLOORNAV_SCENARIO_DIR) + "/ros/depot_1.yaml");
+  const auto every = [&](Scenario s, OutputSelection which) {
+    prepare_outputs(s, which);
+    return s.sim.record_ranges_every;
+  };
+  // A 360-beam lidar for 12,001 steps: the replay every 15th step, the bag 10 times a second.
+  ASSERT_EQ(replay_ranges_interval(depot), 15);
+  EXPECT_EQ(every(depot, {.html = true, .mcap = false}), 15);
+  EXPECT_EQ(every(depot, {.html = false, .mcap = true}), 2);
+  EXPECT_EQ(every(depot, {.html = true, .mcap = true}), 1);
+  // 60,001 steps: every step would pass the bag's 2e7 values; the bag's 10 steps then.
+  Scenario longer = depot;
+  longer.sim.dt = 0.01;
+  ASSERT_EQ(replay_ranges_interval(longer), 73);
+  EXPECT_EQ(every(longer, {.html = true, .mcap = true}), 10);
+  Scenario own = depot;
+  own.sim.record_ranges_every = 7;
+  EXPECT_EQ(every(own, {.html = true, .mcap = true}), 7);
+  EXPECT_EQ(every(depot, {.html = false, .mcap = false}), 0);
+}
 
 TEST(AtomicFile, WritesAndReplaces) {
   TempDir dir;

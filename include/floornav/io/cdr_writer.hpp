@@ -8,10 +8,14 @@
 /// the elements; a fixed-size array is its elements alone. Written here (a few dozen lines)
 /// rather than taken from a library: Debian 12 packages no CDR encoder outside a DDS stack.
 
+#include <algorithm>
+#include <bit>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace floornav {
 
@@ -20,13 +24,13 @@ class CdrWriter {
   /// Starts a message: the buffer is emptied (its memory kept) and gets the header.
   void begin();
 
-  void u8(std::uint8_t v);
+  void u8(std::uint8_t v) { *extend(1) = static_cast<char>(v); }
   void i8(std::int8_t v) { u8(static_cast<std::uint8_t>(v)); }
   void boolean(bool v) { u8(v ? 1 : 0); }
-  void i32(std::int32_t v);
-  void u32(std::uint32_t v);
-  void f32(float v);
-  void f64(double v);
+  void i32(std::int32_t v) { put(v); }
+  void u32(std::uint32_t v) { put(v); }
+  void f32(float v) { put(v); }
+  void f64(double v) { put(v); }
   void string(std::string_view s);
   /// A sequence's element count (the elements follow, each written by the caller).
   void sequence_size(std::size_t n);
@@ -38,15 +42,38 @@ class CdrWriter {
   void f64_array(std::span<const double> values);
 
   /// The message so far, header included.
-  std::string_view data() const { return buffer_; }
+  std::string_view data() const { return {buffer_.data(), size_}; }
 
  private:
-  /// Pads with zero bytes to a multiple of `n` counted from the end of the header.
-  void align(std::size_t n);
-  template <class T>
-  void put(T v);
+  static constexpr std::size_t kHeaderSize = 4;
 
-  std::string buffer_;
+  /// `n` more bytes at the end of the message, to be written by the caller. The buffer grows by
+  /// doubling and is kept from message to message: a message of a run allocates nothing.
+  char* extend(std::size_t n) {
+    if (size_ + n > buffer_.size()) buffer_.resize(std::max(2 * buffer_.size(), size_ + n));
+    char* at = buffer_.data() + size_;
+    size_ += n;
+    return at;
+  }
+  /// Pads with zero bytes to a multiple of `n` counted from the end of the header.
+  void align(std::size_t n) {  // n: 1, 2, 4 or 8
+    const std::size_t pad = (kHeaderSize - size_) & (n - 1);
+    if (pad != 0) std::memset(extend(pad), 0, pad);
+  }
+  template <class T>
+  void put(T v) {
+    static_assert(std::endian::native == std::endian::little ||
+                  std::endian::native == std::endian::big);
+    align(sizeof(T));
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &v, sizeof(T));
+    if constexpr (std::endian::native == std::endian::big)
+      for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(bytes[i], bytes[sizeof(T) - 1 - i]);
+    std::memcpy(extend(sizeof(T)), bytes, sizeof(T));
+  }
+
+  std::string buffer_;  ///< its first size_ bytes are the message
+  std::size_t size_{0};
 };
 
 }  // namespace floornav

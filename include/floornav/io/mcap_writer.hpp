@@ -2,8 +2,8 @@
 /// @file
 /// An MCAP file (mcap.dev/spec, version 0, the container of ROS 2 bags, Foxglove and Lichtblick),
 /// written front to back into a sink: the magic, the header, the schemas and channels, the
-/// messages in zstd-compressed chunks (zstd from Debian's libzstd, CRC-32 from zlib), each chunk
-/// followed by one message index per channel, the data end record with the data section's
+/// messages in zstd-compressed chunks (zstd from Debian's libzstd, CRC-32 from libdeflate), each
+/// chunk followed by one message index per channel, the data end record with the data section's
 /// CRC, then the summary (schemas, channels, statistics, chunk indexes), the summary offsets,
 /// the footer and the closing magic. Written here rather than taken from a library: Debian 12
 /// packages no MCAP library, and the format is small.
@@ -25,8 +25,11 @@ namespace floornav {
 struct McapOptions {
   std::string profile{"ros2"};
   std::string library{"floornav"};   ///< the header's library field
-  std::size_t chunk_size{1u << 20};  ///< bytes of uncompressed records per chunk
+  std::size_t chunk_size{1u << 18};  ///< bytes of uncompressed records per chunk
   int zstd_level{1};                 ///< 1: fast; the chunks of a run compress about 3-10 times
+  /// log2 of the entries of zstd's match table: a message of a run mostly repeats the one before
+  /// on its channel, which a small table finds as well as a big one, faster (it stays in cache).
+  int zstd_hash_log{10};
 };
 
 class McapWriter {

@@ -18,6 +18,7 @@
 /// trajectory, bit for bit.
 
 #include <string>
+#include <utility>
 
 #include "floornav/sim/robot_agent.hpp"
 #include "floornav/sim/robot_task.hpp"
@@ -48,6 +49,8 @@ class Simulation {
   const Pose2& pose() const { return agent_.pose(); }
   double time() const { return agent_.time(); }
   const RunResult& result() const { return agent_.result(); }
+  /// The result moved out, without a copy of its recorded rows (the simulation is then done).
+  RunResult take_result() { return std::move(agent_.result()); }
   const RobotAgent& agent() const { return agent_; }
 
  private:
