@@ -257,13 +257,13 @@ std::optional<std::size_t> case_of_file_name(const std::string& name) {
 /// batch left in `dir` for the cases `stale(id)` names. Nothing else in the folder is touched.
 void remove_stale_case_files(const std::filesystem::path& dir,
                              std::initializer_list<std::string_view> extensions,
-                             const std::function<bool(std::size_t)>& stale) {
+                             const std::function<bool(std::size_t)>& is_stale) {
   std::error_code ec;
   std::vector<std::filesystem::path> stale;
   for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::optional<std::size_t> id = case_of_file_name(it->path().filename().string());
     const std::string ext = it->path().extension().string();
-    if (id && stale(*id) &&
+    if (id && is_stale(*id) &&
         std::find(extensions.begin(), extensions.end(), ext) != extensions.end() &&
         it->is_regular_file(ec))
       stale.push_back(it->path());
@@ -445,14 +445,13 @@ BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
   // Per-case pictures and bags are stale unless their case's line is kept (so all of them in a
   // fresh batch): a case that runs now writes its own, an unfinished case or a case of no sweep
   // must not show one. The cases of another shard (folders shared by shards) are not ours.
-  std::set<std::size_t> finished;
+  std::set<std::size_t> kept;
   for (std::size_t i = 0; i < n; ++i)
-    if (lines[i]) finished.insert(cases.ids[i]);
-  for (const auto& kept : beyond) finished.insert(kept.first);
+    if (lines[i]) kept.insert(cases.ids[i]);
+  for (const auto& line : beyond) kept.insert(line.first);
   const auto stale = [&](std::size_t id) {
-    return !finished.count(id) &&
-           (id >= sweep_cases ||
-            in_shard(id, sweep_cases, options.sweep.shard, options.sweep.shards));
+    return !kept.count(id) && (id >= sweep_cases || in_shard(id, sweep_cases, options.sweep.shard,
+                                                             options.sweep.shards));
   };
   if (options.pictures != BatchPictures::None)
     remove_stale_case_files(options.pictures_dir, {".svg", ".html"}, stale);

@@ -1,13 +1,14 @@
 """The Python fuzz driver (fuzz/fuzz_python.py) for a bounded run: a fixed number of mutated
 scenario texts and --set overrides from a fixed seed, each of which must load or raise
 floornav.InputError with one clear line (never another exception, a crash, a hang or a NaN).
-FLOORNAV_PY_FUZZ_EXAMPLES sets how many (default 150); scripts/fuzz.sh runs it for a time."""
+FLOORNAV_PY_FUZZ_EXAMPLES sets how many (default 400); scripts/fuzz.sh runs it for a time."""
 
 from __future__ import annotations
 
 import os
 import sys
 
+import numpy as np
 import pytest
 
 from conftest import ROOT
@@ -17,7 +18,7 @@ import fuzz_python  # noqa: E402
 
 import floornav  # noqa: E402
 
-EXAMPLES = int(os.environ.get("FLOORNAV_PY_FUZZ_EXAMPLES", "150"))
+EXAMPLES = int(os.environ.get("FLOORNAV_PY_FUZZ_EXAMPLES", "400"))
 
 
 def test_mutated_scenario_texts_and_overrides_keep_the_contract():
@@ -33,8 +34,10 @@ def test_mutated_scenario_texts_and_overrides_keep_the_contract():
 # The driver's checks catch what they must: the contract's breaches are findings, not passes.
 
 def test_a_nan_or_an_inf_where_a_finite_number_is_promised_is_a_finding():
-    with pytest.raises(fuzz_python.Finding, match=r"trajectory\.x holds nan"):
-        fuzz_python._check_numbers({"x": [1.0, float("nan")]}, "trajectory")
+    with pytest.raises(fuzz_python.Finding, match=r"trajectory\.x holds nan at 1"):
+        fuzz_python._check_numbers({"x": np.array([1.0, np.nan])}, "trajectory")
+    with pytest.raises(fuzz_python.Finding, match=r"summary\.robots\[1\] is nan"):
+        fuzz_python._check_numbers({"robots": [1.0, float("nan")]}, "summary")
     with pytest.raises(fuzz_python.Finding, match="crowd"):
         fuzz_python._check_numbers([float("inf")], "crowd")
     fuzz_python._check_numbers({"min_clearance": float("inf")}, "summary", allow_inf=True)
