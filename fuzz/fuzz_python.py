@@ -12,7 +12,7 @@ is promised (trajectory, crowd samples, observations, the summary's numbers) is 
 Two ways to run it:
 
 - ``tests/python/test_fuzz_python.py``: a fixed number of inputs from a fixed seed (the Python
-  tests in ctest run it; ``FLOORNAV_PY_FUZZ_EXAMPLES`` sets how many, default 150).
+  tests in ctest run it; ``FLOORNAV_PY_FUZZ_EXAMPLES`` sets how many, default 400).
 - ``fuzz/fuzz_python.py SECONDS [FINDINGS_DIR]`` (``scripts/fuzz.sh``'s ``python`` target): runs
   of 100 inputs each, seeds 0, 1, 2, ..., until SECONDS have passed. Each finding, shrunk by
   Hypothesis, is written to FINDINGS_DIR as ``finding-N``: the YAML text, a NUL byte, then one
