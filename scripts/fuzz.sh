@@ -2,10 +2,13 @@
 # Fuzzes every parser of user input (fuzz/): configures a clang build with libFuzzer, ASan and
 # UBSan in build-fuzz/, builds the targets, runs each for SECONDS (default 30) from its seed
 # corpus in fuzz/corpus/<target>/, and prints the executions and findings per target.
+# The `python` target is the Python driver (fuzz/fuzz_python.py: Hypothesis, Debian's python3)
+# of the scenario text and --set overrides through the Python package of the Release build
+# (build/python, or FLOORNAV_PYTHON_BUILD): build that first (scripts/quickstart.sh).
 #
 #   scripts/fuzz.sh [SECONDS] [TARGET ...]     targets: scenario ros_map movingai_map
 #                                              movingai_scen sdf_world course_world
-#                                              hunav_agents batch_state
+#                                              hunav_agents batch_state python
 #
 # New inputs that reach new code collect in build-fuzz/fuzz-corpus/<target>/ (the next run starts
 # from them); findings (crash-*, leak-*, timeout-*, oom-*) in build-fuzz/fuzz-findings/<target>/,
@@ -18,7 +21,12 @@ seconds="${1:-30}"
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] ||
   targets=(scenario ros_map movingai_map movingai_scen sdf_world course_world hunav_agents
-    batch_state)
+    batch_state python)
+libfuzzer_targets=()
+for t in "${targets[@]}"; do
+  [ "$t" = python ] || libfuzzer_targets+=("$t")
+done
+python_build="${FLOORNAV_PYTHON_BUILD:-$root/build/python}"
 build="${FLOORNAV_FUZZ_BUILD:-$root/build-fuzz}"
 jobs="${FLOORNAV_FUZZ_JOBS:-2}"
 
@@ -32,11 +40,13 @@ if ! grep -q 'add_subdirectory(fuzz)' "$root/CMakeLists.txt"; then
 fi
 
 mkdir -p "$build"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_COMPILER=clang++ -DFLOORNAV_FUZZ=ON -DFLOORNAV_BUILD_TESTS=OFF \
-  -DFLOORNAV_BUILD_BENCH=OFF > "$build/configure.log" 2>&1 ||
-  { cat "$build/configure.log" >&2; exit 2; }
-cmake --build "$build" -j "$jobs" --target "${targets[@]/#/fuzz_}"
+if [ ${#libfuzzer_targets[@]} -gt 0 ]; then
+  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_COMPILER=clang++ -DFLOORNAV_FUZZ=ON -DFLOORNAV_BUILD_TESTS=OFF \
+    -DFLOORNAV_BUILD_BENCH=OFF > "$build/configure.log" 2>&1 ||
+    { cat "$build/configure.log" >&2; exit 2; }
+  cmake --build "$build" -j "$jobs" --target "${libfuzzer_targets[@]/#/fuzz_}"
+fi
 
 dict_of() {
   case "$1" in
@@ -56,11 +66,22 @@ for t in "${targets[@]}"; do
   mkdir -p "$work" "$findings"
   touch "$build/fuzz-$t.start"
   echo "== fuzz_$t for ${seconds} s (log: $log)"
-  # -timeout: an input that takes 10 s is a hang, a finding like a crash. libFuzzer stops at the
-  # first finding; its exit status is not ours to judge, the findings folder is.
-  "$build/fuzz/fuzz_$t" "$work" "$root/fuzz/corpus/$t" -dict="$(dict_of "$t")" \
-    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-    -artifact_prefix="$findings/" > "$log" 2>&1 || true
+  if [ "$t" = python ]; then
+    # Hypothesis from fixed seeds (0, 1, ...) until SECONDS have passed; findings, shrunk, are
+    # written to the findings folder (60 s on one input is a hang: faulthandler ends it).
+    if [ -d "$python_build/floornav" ]; then
+      PYTHONPATH="$python_build" MPLBACKEND=Agg timeout $((${seconds%.*} + 300)) \
+        /usr/bin/python3 "$root/fuzz/fuzz_python.py" "$seconds" "$findings" > "$log" 2>&1 || true
+    else
+      echo "no Python package in $python_build (build it: scripts/quickstart.sh)" > "$log"
+    fi
+  else
+    # -timeout: an input that takes 10 s is a hang, a finding like a crash. libFuzzer stops at
+    # the first finding; its exit status is not ours to judge, the findings folder is.
+    "$build/fuzz/fuzz_$t" "$work" "$root/fuzz/corpus/$t" -dict="$(dict_of "$t")" \
+      -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+      -artifact_prefix="$findings/" > "$log" 2>&1 || true
+  fi
   execs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)"
   [ -n "$execs" ] || execs="$(grep -o '^#[0-9]*' "$log" | tail -n 1 | tr -d '#' || true)"
   if [ -z "$execs" ]; then  # the fuzzer never ran (a missing dictionary, a bad flag): a failure

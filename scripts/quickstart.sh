@@ -14,7 +14,7 @@ apt_install() {  # Debian packages, as root or with sudo
 packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libyaml-cpp-dev libcli11-dev
   nlohmann-json3-dev libfmt-dev libtinyxml2-dev libpng-dev libzstd-dev libdeflate-dev libgtest-dev libgmock-dev
   libbenchmark-dev libssl-dev libompl-dev python3
-  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-pil
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-hypothesis python3-matplotlib python3-pil
   python3-venv python3-setuptools)
 missing=()
 for p in "${packages[@]}"; do

@@ -90,6 +90,10 @@ PlannerController::PlannerController(Setup setup)
   if (!robot_) throw std::invalid_argument("planner: no robot");
   if (p_.map == PlannerMap::Known && !map_)
     throw std::invalid_argument("planner.map is 'known', but no map was given to the planner");
+  // rrt_connect_path's precondition, checked here so that a plan in the step loop never throws.
+  if (p_.max_samples > kMaxRrtConnectSamples)
+    throw std::invalid_argument("planner.max_samples " + std::to_string(p_.max_samples) +
+                                " is above the limit of " + std::to_string(kMaxRrtConnectSamples));
   inner_modes_ = static_cast<int>(inner_->mode_names().size());
   inner_guards_ = static_cast<int>(inner_->guard_names().size());
   for (const std::string& name : inner_->mode_names())

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include <ompl/base/MotionValidator.h>
@@ -87,6 +89,10 @@ void silence_ompl() {
 bool rrt_connect_path(const FreeRaster& raster, GridCell start, GridCell goal, std::uint64_t seed,
                       int max_samples, std::vector<Vec2>& out) {
   out.clear();
+  if (max_samples > kMaxRrtConnectSamples)
+    throw std::invalid_argument("rrt_connect_path: max_samples " + std::to_string(max_samples) +
+                                " is above the limit of " + std::to_string(kMaxRrtConnectSamples) +
+                                " samples a plan");
   if (!raster.is_free(start.x, start.y) || !raster.is_free(goal.x, goal.y) || max_samples < 1)
     return false;
   silence_ompl();

@@ -12,11 +12,14 @@
 #include <cstring>
 #include <exception>
 #include <fstream>
+#include <functional>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <set>
+#include <string_view>
 #include <thread>
 
 #include "floornav/core/input_error.hpp"
@@ -239,22 +242,33 @@ std::map<std::size_t, Json> read_results(const std::filesystem::path& path, bool
   return out;
 }
 
-/// Removes the pictures an earlier batch left in `dir` (case-NNNNN-<name>.svg and .html, the
-/// names picture_stem makes), so that a fresh batch's folder shows only its own cases. Nothing
-/// else in the folder is touched.
-void remove_old_pictures(const std::filesystem::path& dir) {
+/// The case number of a per-case output's file name (`case-NNNNN-<name>.<ext>`, as picture_stem
+/// makes it: at least 5 digits), or nullopt for a file of another name.
+std::optional<std::size_t> case_of_file_name(const std::string& name) {
+  if (name.compare(0, 5, "case-") != 0) return std::nullopt;
+  std::size_t end = 5, id = 0;
+  for (; end < name.size() && end < 5 + 19 && name[end] >= '0' && name[end] <= '9'; ++end)
+    id = 10 * id + static_cast<std::size_t>(name[end] - '0');
+  if (end - 5 < 5 || end >= name.size() || name[end] != '-') return std::nullopt;
+  return id;
+}
+
+/// Removes the per-case outputs (`case-NNNNN-<name>` with one of `extensions`) that an earlier
+/// batch left in `dir` for the cases `stale(id)` names. Nothing else in the folder is touched.
+void remove_stale_case_files(const std::filesystem::path& dir,
+                             std::initializer_list<std::string_view> extensions,
+                             const std::function<bool(std::size_t)>& is_stale) {
   std::error_code ec;
-  std::vector<std::filesystem::path> old;
+  std::vector<std::filesystem::path> stale;
   for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
+    const std::optional<std::size_t> id = case_of_file_name(it->path().filename().string());
     const std::string ext = it->path().extension().string();
-    const bool digits = name.size() > 11 && name.compare(0, 5, "case-") == 0 &&
-                        std::all_of(name.begin() + 5, name.begin() + 10,
-                                    [](char c) { return c >= '0' && c <= '9'; });
-    if (digits && (ext == ".svg" || ext == ".html") && it->is_regular_file(ec))
-      old.push_back(it->path());
+    if (id && is_stale(*id) &&
+        std::find(extensions.begin(), extensions.end(), ext) != extensions.end() &&
+        it->is_regular_file(ec))
+      stale.push_back(it->path());
   }
-  for (const auto& p : old) std::filesystem::remove(p, ec);
+  for (const auto& p : stale) std::filesystem::remove(p, ec);
 }
 
 /// How many of the case numbers 0..cases-1 are in shard k of n (every n-th from k - 1).
@@ -428,8 +442,21 @@ BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
   }
   // Created only now, after every check: bad input leaves no folder behind.
   ensure_directory(options.out_dir);
-  if (options.pictures != BatchPictures::None && !options.resume)
-    remove_old_pictures(options.pictures_dir);
+  // Per-case pictures and bags are stale unless their case's line is kept (so all of them in a
+  // fresh batch): a case that runs now writes its own, an unfinished case or a case of no sweep
+  // must not show one. The cases of another shard (folders shared by shards) are not ours.
+  std::set<std::size_t> kept;
+  for (std::size_t i = 0; i < n; ++i)
+    if (lines[i]) kept.insert(cases.ids[i]);
+  for (const auto& line : beyond) kept.insert(line.first);
+  const auto stale = [&](std::size_t id) {
+    return !kept.count(id) && (id >= sweep_cases || in_shard(id, sweep_cases, options.sweep.shard,
+                                                             options.sweep.shards));
+  };
+  if (options.pictures != BatchPictures::None)
+    remove_stale_case_files(options.pictures_dir, {".svg", ".html"}, stale);
+  if (options.mcap != BatchPictures::None)
+    remove_stale_case_files(options.mcap_dir, {".mcap"}, stale);
   SweepInfo written = options.sweep;
   written.cases = sweep_cases;
   write_file_atomically(

@@ -291,6 +291,33 @@ void validate_starts_apart(const std::vector<RobotTask>& robots, const std::stri
     });
 }
 
+// No two people may start with their bodies touching (found through a neighbour grid, as the
+// robots' starts): overlapping bodies are no crowd a floor can hold, and starting apart bounds how
+// many stand within reach of one another (docs/RELIABILITY.md, "Limits").
+void validate_people_apart(const std::vector<PersonSpec>& people, const std::string& file) {
+  RobotNeighbourGrid grid;
+  std::vector<Vec2> starts;
+  double max_radius = 0.0;
+  Box2 box{people[0].start, people[0].start};
+  for (const PersonSpec& p : people) {
+    starts.push_back(p.start);
+    max_radius = std::max(max_radius, p.radius);
+    box.min = box.min.cwiseMin(p.start);
+    box.max = box.max.cwiseMax(p.start);
+  }
+  grid.reset(box, 2.0 * max_radius, starts.size());
+  grid.build(starts, std::vector<std::uint8_t>(starts.size(), 1));
+  for (std::size_t i = 0; i < starts.size(); ++i)
+    grid.for_each_near(starts[i], people[i].radius + max_radius, [&](std::size_t j) {
+      if (j <= i) return;
+      if ((starts[j] - starts[i]).norm() <= people[i].radius + people[j].radius)
+        throw InputError(file, fmt::format("people[{}] ('{}').start", j, people[j].name),
+                         fmt::format("touches person {} ('{}') at ({}, {}): the bodies overlap; "
+                                     "start them more than their radii apart",
+                                     i, people[i].name, starts[i].x(), starts[i].y()));
+    });
+}
+
 // People and forklifts: where they start and go must be free floor, not on a robot's start.
 void validate_crowd(const Scenario& s, const std::string& file) {
   const World& w = *s.world;
@@ -335,6 +362,7 @@ void validate_crowd(const Scenario& s, const std::string& file) {
       free_floor(p.waypoints[k], fmt::format("{}.waypoints[{}]", key, k));
     clear_of_robots([&](const Vec2& q) { return (q - p.start).norm() - p.radius; }, key + ".start");
   }
+  if (s.crowd.people.size() > 1) validate_people_apart(s.crowd.people, file);
   for (std::size_t k = 0; k < s.crowd.forklifts.size(); ++k) {
     const ForkliftSpec& f = s.crowd.forklifts[k];
     const std::string key = fmt::format("forklifts[{}] ('{}')", k, f.name);

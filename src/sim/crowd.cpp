@@ -152,6 +152,7 @@ void Crowd::move_people(double dt, const RobotBodies& robots) {
   const SocialForceParams& sf = spec_.social;
   const std::size_t n = bodies_.size();
   build_person_grid();
+  person_pairs_tested_ = 0;
   // Forces from the state at the start of the step, for everyone; then everyone moves.
   for (std::size_t a = 0; a < n; ++a) {
     const PersonSpec& spec = spec_.people[a];
@@ -169,6 +170,7 @@ void Crowd::move_people(double dt, const RobotBodies& robots) {
     // Only people within kPersonReach push: those of the 3 x 3 grid cells around, in index
     // order, so that the sum is the all-pairs loop's bit for bit (the others add nothing).
     neighbours_of(a);
+    person_pairs_tested_ += near_.size() - 1;  // near_ holds a itself
     for (const std::uint32_t b : near_)
       if (b != a) push(bodies_[b].center, velocity_[b]);
     // A robot is a moving obstacle: people anticipate its step as they do another person's,

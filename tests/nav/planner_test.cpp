@@ -311,6 +311,24 @@ TEST(PlannerController, NoPathOnTheKnownMapIsStuckAtOnce) {
   EXPECT_EQ(rig.c->guard_names()[static_cast<std::size_t>(d.guard)], "no_path");
 }
 
+// The controller refuses a sample budget that rrt_connect_path would refuse, at construction:
+// a plan made in the step loop never throws.
+TEST(PlannerController, RefusesASampleBudgetAboveTheLimitWhenMade) {
+  RobotSpec robot = find_robot_preset("quickbot")->robot;
+  NavigationParams nav = find_robot_preset("quickbot")->navigation;
+  WorldDesc desc;
+  desc.bounds = Box2{Vec2(0, 0), Vec2(4, 4)};
+  const World world(std::move(desc));
+  nav.planner.kind = PlannerKind::RrtConnect;
+  ControllerConfig cfg;
+  cfg.params = nav;
+  cfg.params.planner.max_samples = kMaxRrtConnectSamples + 1;
+  EXPECT_THROW(ControllerMaker().make(cfg, {robot, cfg.params, "r", 0, &world}),
+               std::invalid_argument);
+  cfg.params.planner.max_samples = kMaxRrtConnectSamples;
+  EXPECT_NE(ControllerMaker().make(cfg, {robot, cfg.params, "r", 0, &world}), nullptr);
+}
+
 TEST(PlannerController, ReportsGoalReachedOnlyAtTheRealGoal) {
   PlannerRig rig;
   // Far from the goal, the subgoal is on the way; within epsilon of the goal: STOP.

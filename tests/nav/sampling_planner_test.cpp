@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "floornav/nav/sampling_planner.hpp"
@@ -87,6 +89,27 @@ TEST(RrtConnectPath, BlockedEndsOrNoBudgetGiveNoPath) {
   EXPECT_FALSE(rrt_connect_path(r, kStart, kGoal, 7, 0, path));
   // A budget too small to cross: no path, not a path through the wall.
   EXPECT_FALSE(rrt_connect_path(r, kStart, kGoal, 7, 1, path));
+}
+
+// The sample limit bounds a plan's time whoever calls the planner, not only what scenario
+// validation lets through: a budget above it is refused before any sampling, even on an
+// enclosed goal (where it would all be spent); the limit itself is a budget like any other.
+TEST(RrtConnectPath, RefusesABudgetAboveTheSampleLimitBeforeAnyWork) {
+  const FreeRaster enclosed = wall_with_gap(false);
+  std::vector<Vec2> path{Vec2(1, 1)};
+  for (const int budget : {kMaxRrtConnectSamples + 1, std::numeric_limits<int>::max()}) {
+    try {
+      rrt_connect_path(enclosed, kStart, kGoal, 7, budget, path);
+      ADD_FAILURE() << "a budget of " << budget << " samples was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("above the limit of 200000"), std::string::npos)
+          << e.what();
+    }
+    EXPECT_TRUE(path.empty()) << "the output is cleared even when the call is refused";
+  }
+  const FreeRaster open = wall_with_gap();
+  ASSERT_TRUE(rrt_connect_path(open, kStart, kGoal, 7, kMaxRrtConnectSamples, path));
+  EXPECT_EQ(path.back(), Vec2(34.5, 5.5));
 }
 
 }  // namespace

@@ -56,6 +56,14 @@ std::vector<nlohmann::json> lines_of(const fs::path& p) {
   return out;
 }
 
+/// The names in a folder, sorted.
+std::vector<std::string> listing(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 /// Counts, per case, the steps its controller took; a case's controller may also raise `stop`
 /// at a given step.
 struct StepCounter {
@@ -168,6 +176,84 @@ TEST(Batch, AnInterruptedResumeLeavesNoDuplicates) {
   EXPECT_EQ(done.ran, 5u - ids.size());
   for (const std::size_t i : ids) EXPECT_EQ(counter.of(i), before[i]) << "case " << i << " re-ran";
   EXPECT_EQ(lines_of(dir / "results.jsonl").size(), 5u);
+  fs::remove_all(dir);
+}
+
+// Per-case pictures and bags are outputs like results.jsonl's lines: --resume keeps those of the
+// finished cases it keeps (untouched) and removes every other case's (an unfinished case's, a
+// case of another sweep's); a fresh batch removes them all. Other files are never touched.
+TEST(Batch, ResumeKeepsTheFinishedCasesPicturesAndBagsAndRemovesTheRest) {
+  const fs::path dir = fresh_dir("resume_bags");
+  StepCounter counter;
+  std::vector<BatchCase> cases;
+  for (std::size_t i = 0; i < 5; ++i) cases.push_back(counting_case(counter, i));
+  BatchOptions o = options_for(dir / "out");
+  o.pictures = BatchPictures::All;
+  o.pictures_dir = dir / "pics";
+  o.mcap = BatchPictures::All;
+  o.mcap_dir = dir / "bags";
+  run_batch(cases, o);
+  ASSERT_EQ(listing(dir / "bags"),
+            (std::vector<std::string>{"case-00000-counting.mcap", "case-00001-counting.mcap",
+                                      "case-00002-counting.mcap", "case-00003-counting.mcap",
+                                      "case-00004-counting.mcap"}));
+  ASSERT_EQ(listing(dir / "pics").size(), 10u);
+  // As if interrupted after case 1's line (cases 2..4 wrote their files but no line), beside a
+  // case of another sweep and files that are not case outputs.
+  std::istringstream all(read(dir / "out" / "results.jsonl"));
+  std::string first, second;
+  std::getline(all, first);
+  std::getline(all, second);
+  std::ofstream(dir / "out" / "results.jsonl") << first << "\n" << second << "\n";
+  std::ofstream(dir / "bags" / "case-00000-counting.mcap") << "kept";
+  std::ofstream(dir / "pics" / "case-00001-counting.svg") << "kept";
+  for (const char* name : {"case-00042-other.mcap", "case-00042-other.svg", "notes.txt",
+                           "case-7-short.mcap", "case-00003.mcap"}) {
+    std::ofstream(dir / "bags" / name) << "old";
+    std::ofstream(dir / "pics" / name) << "old";
+  }
+  // Resumed with bags and pictures of the failed cases only: cases 2..4 reach their goals again,
+  // so they get none, and the files of their first run must not stay beside their new lines.
+  o.resume = true;
+  o.pictures = BatchPictures::Failed;
+  o.mcap = BatchPictures::Failed;
+  const auto resumed = run_batch(cases, o);
+  EXPECT_EQ(resumed.resumed, 2u);
+  EXPECT_EQ(resumed.ran, 3u);
+  EXPECT_EQ(listing(dir / "bags"),
+            (std::vector<std::string>{"case-00000-counting.mcap", "case-00001-counting.mcap",
+                                      "case-00003.mcap", "case-00042-other.svg",
+                                      "case-7-short.mcap", "notes.txt"}));
+  EXPECT_EQ(listing(dir / "pics"),
+            (std::vector<std::string>{"case-00000-counting.html", "case-00000-counting.svg",
+                                      "case-00001-counting.html", "case-00001-counting.svg",
+                                      "case-00003.mcap", "case-00042-other.mcap",
+                                      "case-7-short.mcap", "notes.txt"}));
+  EXPECT_EQ(read(dir / "bags" / "case-00000-counting.mcap"), "kept");  // not written again
+  EXPECT_EQ(read(dir / "pics" / "case-00001-counting.svg"), "kept");
+  EXPECT_EQ(lines_of(dir / "out" / "results.jsonl").size(), 5u);
+  // A fresh batch into the same folders: no earlier case's file stays.
+  o.resume = false;
+  run_batch(cases, o);
+  // (A bag in the pictures' folder, a picture in the bags': not this option's, not touched.)
+  EXPECT_EQ(listing(dir / "bags"),
+            (std::vector<std::string>{"case-00003.mcap", "case-00042-other.svg",
+                                      "case-7-short.mcap", "notes.txt"}));
+  EXPECT_EQ(listing(dir / "pics"),
+            (std::vector<std::string>{"case-00003.mcap", "case-00042-other.mcap",
+                                      "case-7-short.mcap", "notes.txt"}));
+  // Shards may share the folders: shard 2/2 removes its own cases' files and those of no case of
+  // the sweep, never shard 1's.
+  for (const char* name :
+       {"case-00000-counting.mcap", "case-00001-counting.mcap", "case-00005-counting.mcap"})
+    std::ofstream(dir / "bags" / name) << "old";
+  o.out_dir = dir / "shard2";
+  o.sweep = {"test-sweep", 2, 2, 5};
+  run_batch(std::vector<BatchCase>{cases[1], cases[3]}, o);
+  EXPECT_EQ(listing(dir / "bags"),
+            (std::vector<std::string>{"case-00000-counting.mcap", "case-00003.mcap",
+                                      "case-00042-other.svg", "case-7-short.mcap", "notes.txt"}));
+  EXPECT_EQ(read(dir / "bags" / "case-00000-counting.mcap"), "old");
   fs::remove_all(dir);
 }
 
@@ -312,12 +398,6 @@ TEST(OutputFolderTest, StagesInsideTheFolderNotItsParent) {
   const fs::path dir = parent / "out";
   fs::create_directories(parent);
   std::ofstream(parent / "neighbour.txt") << "mine\n";
-  auto listing = [](const fs::path& d) {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(d)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  };
   {
     OutputFolder out(dir);
     out.write("a.txt", [&](const std::function<void(std::string_view)>& sink) {

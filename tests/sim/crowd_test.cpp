@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/scenario_file.hpp"
 #include "floornav/io/summary_json.hpp"
@@ -432,4 +433,58 @@ TEST(Crowd, ThePeoplesGridGivesTheAllPairsTracksBitForBit) {
   for (int k = 0; k < 300; ++k) crowd.step(0.02 * k, 0.02, none.bodies());
   EXPECT_EQ(samples_hash(crowd.result()), 0x8c7286a71575957cull)
       << std::hex << samples_hash(crowd.result());
+}
+
+// The work of a people step is bounded by who stands near whom: people spread along a line test
+// only their neighbours (not the 9900 pairs of everyone), and people packed within 4 m of each
+// other test every ordered pair once, n (n - 1), and never more.
+TEST(Crowd, OnlyPeopleNearEachOtherAreTestedAsPairs) {
+  const std::size_t n = 100;
+  const World line = room(5.0 * n + 10.0, 10.0);
+  CrowdSpec spread;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double x = 5.0 + 5.0 * static_cast<double>(k);
+    std::string name(1, 'p');  // (not "p" + ...: GCC 12's -Wrestrict false positive)
+    name += std::to_string(k);
+    spread.people.push_back({name, {x, 2.0}, {{x, 8.0}}, 1.0, 0.25, 0.3, true});
+  }
+  NoRobots none;
+  Crowd walking(spread, line, 0, false);
+  for (int k = 0; k < 50; ++k) {
+    walking.step(0.02 * k, 0.02, none.bodies());
+    EXPECT_GT(walking.person_pairs_tested(), 0u) << "neighbours 5 m apart share 3 x 3 cells";
+    EXPECT_LE(walking.person_pairs_tested(), 2 * n) << "step " << k;
+  }
+
+  const World square = room(10.0, 10.0);
+  CrowdSpec packed;  // 42 people of radius 0.1 m, 0.3 m apart: all within 4 m of each other
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 6; ++j) {
+      const Vec2 at(4.0 + 0.3 * i, 4.0 + 0.3 * j);
+      packed.people.push_back({"q", at, {Vec2(8.0 - at.x(), at.y())}, 1.0, 0.1, 0.3, true});
+    }
+  const std::size_t m = packed.people.size();
+  Crowd crowd(packed, square, 0, false);
+  for (int k = 0; k < 20; ++k) {
+    crowd.step(0.02 * k, 0.02, none.bodies());
+    EXPECT_EQ(crowd.person_pairs_tested(), m * (m - 1)) << "step " << k;
+  }
+}
+
+// People may not start touching one another: the scenario is refused, naming both people.
+TEST(CrowdFile, PeopleStartingOnEachOtherAreRefusedWithThePairNamed) {
+  const std::string head =
+      "world: {bounds: [0, 0, 8, 6]}\nrobot: {start: [0.5, 0.5, 0]}\ngoal: [7, 0.5]\npeople:\n"
+      "  - {name: alice, start: [4, 4], waypoints: [[1, 4]]}\n";
+  try {
+    load_scenario_text(head + "  - {name: bob, start: [4.5, 4], waypoints: [[7, 4]]}\n", "p.yaml");
+    ADD_FAILURE() << "bodies touching at the start were accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where, "people[1] ('bob').start");
+    EXPECT_NE(std::string(e.what()).find("touches person 0 ('alice') at (4, 4)"), std::string::npos)
+        << e.what();
+  }
+  // Just apart (0.01 m between the bodies): accepted.
+  EXPECT_NO_THROW(load_scenario_text(
+      head + "  - {name: bob, start: [4.51, 4], waypoints: [[7, 4]]}\n", "p.yaml"));
 }

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "floornav/geometry/vec2.hpp"
+#include "floornav/nav/planner_params.hpp"
 #include "floornav/world/shortest_path.hpp"
 
 namespace floornav {
@@ -28,7 +29,10 @@ namespace floornav {
 /// RRT-Connect on `raster` from the centre of cell `start` to the centre of cell `goal` (both
 /// must be free), drawing at most `max_samples` samples. Writes the path's vertices (cell units,
 /// start and goal included; not simplified) to `out` and returns true; false, `out` empty, when
-/// either cell is blocked or no path was found within the budget.
+/// either cell is blocked, `max_samples` is below 1 or no path was found within the budget.
+/// Precondition: `max_samples` <= kMaxRrtConnectSamples (planner_params.hpp), the bound on a
+/// plan's time; above it std::invalid_argument is thrown before any work (scenario validation
+/// refuses such a setting as bad input, and PlannerController's constructor refuses it too).
 bool rrt_connect_path(const FreeRaster& raster, GridCell start, GridCell goal, std::uint64_t seed,
                       int max_samples, std::vector<Vec2>& out);
 

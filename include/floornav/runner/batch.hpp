@@ -56,7 +56,8 @@ struct BatchOptions {
   BatchPictures pictures{BatchPictures::None};
   std::filesystem::path pictures_dir;
   /// The same for bags: `case-NNNNN-<name>.mcap` (run.mcap's content) in mcap_dir; those runs
-  /// record their trajectory and ranges too.
+  /// record their trajectory and ranges too. An earlier batch's `case-NNNNN-*` pictures and bags
+  /// in these folders are removed, except (with `resume`) those of the finished cases kept.
   BatchPictures mcap{BatchPictures::None};
   std::filesystem::path mcap_dir;
 };

@@ -139,6 +139,10 @@ class Crowd {
   /// Appends to `out` the bodies of the people whose disc comes within `reach` of `p`.
   void people_near(const Vec2& p, double reach, std::vector<Circle>& out) const;
 
+  /// How many (ordered) pairs of people the last step tested for a push: at most n (n - 1), only
+  /// the pairs within a grid cell of each other (docs/RELIABILITY.md, "Limits").
+  std::size_t person_pairs_tested() const { return person_pairs_tested_; }
+
   /// The tracks and metrics so far (the last state recorded as the final sample).
   CrowdResult result() const;
 
@@ -167,6 +171,7 @@ class Crowd {
   double grid_cell_{1.0};
   int grid_nx_{1}, grid_ny_{1};
   std::vector<std::uint32_t> cell_of_, cell_start_, cell_items_, fill_, near_;
+  std::size_t person_pairs_tested_{0};
   // Forklifts: footprint, the route segment and how far along it.
   std::vector<OrientedBox> boxes_;
   std::vector<std::size_t> segment_;
