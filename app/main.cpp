@@ -7,8 +7,8 @@
 #include <CLI/CLI.hpp>
 
 #include <atomic>
-#include <cmath>
 #include <cerrno>
+#include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>

@@ -371,8 +371,8 @@ TEST(Reliability, AReadOnlyOutputIsExitOneNamingThePathAndTheReason) {
       {"batch " + scenario("rectangle.yaml") + " --no-timing --out " + q(ro / "batch"),
        ro / "batch"},
       {"merge " + q(dir / "shard") + " --out " + q(ro / "merged"), ro / "merged"},
-      {"run " + scenario("rectangle.yaml") + " --quiet --out " + q(dir / "run") +
-           " --config-out " + q(ro / "resolved.yaml"),
+      {"run " + scenario("rectangle.yaml") + " --quiet --out " + q(dir / "run") + " --config-out " +
+           q(ro / "resolved.yaml"),
        ro / "resolved.yaml"}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.args);
@@ -398,8 +398,9 @@ TEST(Reliability, AFullStandardOutputIsExitOne) {
     const Output o = floornav(args, "", "/dev/full");
     EXPECT_EQ(o.status, 1) << o.text;
     EXPECT_EQ(lines(o.text), 1) << o.text;
-    EXPECT_NE(o.text.find("floornav: error: standard output: cannot write: No space left on device"),
-              std::string::npos)
+    EXPECT_NE(
+        o.text.find("floornav: error: standard output: cannot write: No space left on device"),
+        std::string::npos)
         << o.text;
   }
   // The same commands with somewhere to write: status 0.

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
+#include "floornav/nav/sampling_planner.hpp"
 #include "floornav/scenario/presets.hpp"
 #include "floornav/scenario/simulate.hpp"
 #include "floornav/scenario/validate.hpp"
-#include "floornav/core/input_error.hpp"
-#include "floornav/nav/sampling_planner.hpp"
 
 using namespace floornav;
 
