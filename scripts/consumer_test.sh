@@ -122,9 +122,11 @@ prefix=$nompl/prefix  # configure() builds against this install from here on
   fail "the install without OMPL has floornav/ompl headers"
 ! find "$prefix/lib" -name 'libfloornav_ompl*' | grep -q . ||
   fail "the install without OMPL has libfloornav_ompl"
-echo "consumer test: install without OMPL: $(find "$prefix/include" -name '*.hpp' | wc -l) installed headers"
+echo "consumer test: install without OMPL:" \
+  "$(find "$prefix/include" -name '*.hpp' | wc -l) installed headers"
 # The README's program, with OMPL hidden from CMake: the package must not look for it.
-configure "$app" "$nompl/app" -DCMAKE_DISABLE_FIND_PACKAGE_ompl=ON
+# (--no-warn-unused-cli: a hiding variable that was never used is the point, not a mistake.)
+configure "$app" "$nompl/app" --no-warn-unused-cli -DCMAKE_DISABLE_FIND_PACKAGE_ompl=ON
 cmake --build "$nompl/app" >/dev/null
 out=$("$nompl/app/app" "$prefix/share/floornav/scenarios/circle_obstacle.yaml")
 [[ "$out" == "circle-obstacle: reached in "* ]] ||
@@ -161,8 +163,9 @@ int main() {
   std::printf("%.3f\n", world.clearance(floornav::Vec2(0.0, 0.0)));
 }
 CPP
-configure "$nompl/core" "$nompl/core/build" -DCMAKE_DISABLE_FIND_PACKAGE_ompl=ON \
-  -DCMAKE_DISABLE_FIND_PACKAGE_yaml-cpp=ON -DCMAKE_DISABLE_FIND_PACKAGE_tinyxml2=ON \
+configure "$nompl/core" "$nompl/core/build" --no-warn-unused-cli \
+  -DCMAKE_DISABLE_FIND_PACKAGE_ompl=ON -DCMAKE_DISABLE_FIND_PACKAGE_yaml-cpp=ON \
+  -DCMAKE_DISABLE_FIND_PACKAGE_tinyxml2=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_PNG=ON -DCMAKE_DISABLE_FIND_PACKAGE_zstd=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON
 cmake --build "$nompl/core/build" >/dev/null
@@ -170,10 +173,15 @@ out=$("$nompl/core/build/core_only")
 [ "$out" = "1.500" ] || fail "the core-only program printed '$out', not the clearance 1.500"
 # Asking for floornav::ompl from this install: not found, and the message says why.
 mkdir -p "$nompl/ompl"
-printf 'cmake_minimum_required(VERSION 3.21)\nproject(wants_ompl LANGUAGES CXX)\nfind_package(floornav CONFIG REQUIRED COMPONENTS ompl)\n' >"$nompl/ompl/CMakeLists.txt"
+cat >"$nompl/ompl/CMakeLists.txt" <<'CMAKE'
+cmake_minimum_required(VERSION 3.21)
+project(wants_ompl LANGUAGES CXX)
+find_package(floornav CONFIG REQUIRED COMPONENTS ompl)
+CMAKE
 if out=$(configure "$nompl/ompl" "$nompl/ompl/build" 2>&1); then
   fail "find_package(floornav COMPONENTS ompl) succeeded against an install without OMPL"
 fi
 [[ "$out" == *"installed without OMPL"* ]] || fail "COMPONENTS ompl failed without saying why: $out"
-echo "consumer test: without OMPL: COMPONENTS core needs only Eigen and fmt; COMPONENTS ompl is refused"
+echo "consumer test: without OMPL: COMPONENTS core needs only Eigen and fmt;" \
+  "COMPONENTS ompl is refused"
 echo "consumer test: passed"
