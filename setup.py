@@ -58,6 +58,7 @@ class CMakeBuild(build_ext):
         args = ["cmake", "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
                 "-DFLOORNAV_BUILD_PYTHON=ON", "-DFLOORNAV_BUILD_TESTS=OFF",
                 "-DFLOORNAV_BUILD_BENCH=OFF", "-DFLOORNAV_BUILD_EXAMPLES=OFF",
+                "-DFLOORNAV_BUILD_TOOL=OFF",  # the module needs no CLI11 or OpenSSL
                 f"-DPython3_EXECUTABLE={sys.executable}"]
         if shutil.which("ninja") and not (build / "CMakeCache.txt").exists():
             args += ["-G", "Ninja"]

@@ -7,10 +7,12 @@
 #include <CLI/CLI.hpp>
 
 #include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -282,9 +284,19 @@ std::string subcommand_of(const CLI::App& app) {
   return "";
 }
 
-}  // namespace
+/// Standard output is an output too (`floornav bench --json > FILE`, `floornav presets > FILE`):
+/// one that could not be written (a full disk) is exit status 1 with the system's reason, never
+/// status 0 over a cut-off file. `status` is the command's own.
+int check_standard_output(int status) {
+  errno = 0;
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return status;
+  const int error = errno;
+  fmt::print(stderr, "floornav: error: standard output: cannot write: {}\n",
+             error != 0 ? std::strerror(error) : "a write failed");
+  return status == 0 ? 1 : status;
+}
 
-int main(int argc, char** argv) {
+int run_command(int argc, char** argv) {
   CLI::App app{"floornav: reactive navigation of wheeled mobile robots on factory floors"};
   app.set_version_flag("--version", "floornav " + floornav_version());
   app.require_subcommand(1);
@@ -502,9 +514,16 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "floornav: error: out of memory\n");
     return 1;
   } catch (const std::exception& e) {
+    if (std::ferror(stdout)) return 1;  // a print failed: check_standard_output says why
     fmt::print(stderr, "floornav: internal error: {}\n",
                InputError("", "", e.what()).what());  // one line, whatever it says
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return check_standard_output(run_command(argc, argv));
 }

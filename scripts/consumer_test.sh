@@ -8,7 +8,12 @@
 #   3. builds examples/ on their own (find_package) and runs their tests;
 #   4. runs the installed floornav tool on an installed scenario;
 #   5. imports the installed Python package (when the build has it) from outside the repository,
-#      with no PYTHONPATH into the build tree, and runs an installed scenario with it.
+#      with no PYTHONPATH into the build tree, and runs an installed scenario with it;
+#   6. builds the libraries again without OMPL (FLOORNAV_WITH_OMPL=OFF; no tests, tool or Python)
+#      and installs them into a second prefix: the README's program builds against it with OMPL
+#      hidden from CMake, runs, and refuses a scenario asking for rrt_connect (exit 2); a program
+#      asking for floornav's core component alone builds with yaml-cpp, tinyxml2, libpng, zstd
+#      and nlohmann_json hidden; asking for the ompl component there fails, saying why.
 # Usage: scripts/consumer_test.sh [BUILD_DIR]   (default: build; it must be built already)
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
@@ -20,9 +25,9 @@ generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-configure() {  # configure SOURCE BINARY: against the prefix alone
+configure() {  # configure SOURCE BINARY [CMAKE ARGS...]: against the prefix alone
   cmake -S "$1" -B "$2" "${generator[@]}" "${launcher[@]}" -DCMAKE_BUILD_TYPE=Release \
-    -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF >/dev/null
+    -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF "${@:3}" >/dev/null
 }
 fail() {
   echo "consumer test: $*" >&2
@@ -103,4 +108,80 @@ print(floornav.__version__, r.summary["status"])' "$prefix" "$prefix/share/floor
 else
   echo "consumer test: no Python package in this build (skipped)"
 fi
+
+# 6. An install made without OMPL (only the libraries are built: the tool, tests, benchmarks,
+# examples and Python are off).
+nompl=$work/no-ompl
+cmake -S "$repo" -B "$nompl/build" "${generator[@]}" "${launcher[@]}" -DCMAKE_BUILD_TYPE=Release \
+  -DFLOORNAV_WITH_OMPL=OFF -DFLOORNAV_BUILD_TOOL=OFF -DFLOORNAV_BUILD_TESTS=OFF \
+  -DFLOORNAV_BUILD_BENCH=OFF -DFLOORNAV_BUILD_EXAMPLES=OFF -DFLOORNAV_BUILD_PYTHON=OFF >/dev/null
+cmake --build "$nompl/build" >/dev/null
+cmake --install "$nompl/build" --prefix "$nompl/prefix" >/dev/null
+prefix=$nompl/prefix  # configure() builds against this install from here on
+[ ! -e "$prefix/include/floornav/ompl" ] && [ ! -e "$prefix/include/floornav/ompl.hpp" ] ||
+  fail "the install without OMPL has floornav/ompl headers"
+! find "$prefix/lib" -name 'libfloornav_ompl*' | grep -q . ||
+  fail "the install without OMPL has libfloornav_ompl"
+echo "consumer test: install without OMPL:" \
+  "$(find "$prefix/include" -name '*.hpp' | wc -l) installed headers"
+# The README's program, with OMPL hidden from CMake: the package must not look for it.
+# (--no-warn-unused-cli: a hiding variable that was never used is the point, not a mistake.)
+configure "$app" "$nompl/app" --no-warn-unused-cli -DCMAKE_DISABLE_FIND_PACKAGE_ompl=ON
+cmake --build "$nompl/app" >/dev/null
+out=$("$nompl/app/app" "$prefix/share/floornav/scenarios/circle_obstacle.yaml")
+[[ "$out" == "circle-obstacle: reached in "* ]] ||
+  fail "the README program (no OMPL) did not reach the goal: $out"
+# A scenario asking for rrt_connect: one clear error, exit status 2.
+sed 's/^  kind: hybrid$/  kind: hybrid\n  planner: {kind: rrt_connect}/' \
+  "$prefix/share/floornav/scenarios/circle_obstacle.yaml" >"$nompl/rrt_connect.yaml"
+grep -q 'planner: {kind: rrt_connect}' "$nompl/rrt_connect.yaml" ||
+  fail "circle_obstacle.yaml lost its line '  kind: hybrid' (the rrt_connect case is made from it)"
+status=0
+out=$("$nompl/app/app" "$nompl/rrt_connect.yaml" 2>&1) || status=$?
+[ "$status" -eq 2 ] && [[ "$out" == *"controller.planner.kind: rrt_connect needs OMPL"* ]] ||
+  fail "rrt_connect without OMPL: expected exit 2 and 'needs OMPL', got $status: $out"
+echo "consumer test: without OMPL: README program: reached; rrt_connect refused (exit 2)"
+# The core component alone needs none of the file formats' libraries.
+mkdir -p "$nompl/core"
+cat >"$nompl/core/CMakeLists.txt" <<'CMAKE'
+cmake_minimum_required(VERSION 3.21)
+project(core_only LANGUAGES CXX)
+find_package(floornav CONFIG REQUIRED COMPONENTS core)
+if(TARGET floornav::io OR TARGET floornav::floornav)
+  message(FATAL_ERROR "COMPONENTS core loaded more than the core")
+endif()
+add_executable(core_only main.cpp)
+target_link_libraries(core_only PRIVATE floornav::core)
+CMAKE
+cat >"$nompl/core/main.cpp" <<'CPP'
+#include <cstdio>
+#include <floornav/core.hpp>
+int main() {
+  floornav::WorldDesc desc;
+  desc.circles.push_back({floornav::Vec2(2.0, 0.0), 0.5});
+  const floornav::World world(std::move(desc));
+  std::printf("%.3f\n", world.clearance(floornav::Vec2(0.0, 0.0)));
+}
+CPP
+configure "$nompl/core" "$nompl/core/build" --no-warn-unused-cli \
+  -DCMAKE_DISABLE_FIND_PACKAGE_ompl=ON -DCMAKE_DISABLE_FIND_PACKAGE_yaml-cpp=ON \
+  -DCMAKE_DISABLE_FIND_PACKAGE_tinyxml2=ON \
+  -DCMAKE_DISABLE_FIND_PACKAGE_PNG=ON -DCMAKE_DISABLE_FIND_PACKAGE_zstd=ON \
+  -DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON
+cmake --build "$nompl/core/build" >/dev/null
+out=$("$nompl/core/build/core_only")
+[ "$out" = "1.500" ] || fail "the core-only program printed '$out', not the clearance 1.500"
+# Asking for floornav::ompl from this install: not found, and the message says why.
+mkdir -p "$nompl/ompl"
+cat >"$nompl/ompl/CMakeLists.txt" <<'CMAKE'
+cmake_minimum_required(VERSION 3.21)
+project(wants_ompl LANGUAGES CXX)
+find_package(floornav CONFIG REQUIRED COMPONENTS ompl)
+CMAKE
+if out=$(configure "$nompl/ompl" "$nompl/ompl/build" 2>&1); then
+  fail "find_package(floornav COMPONENTS ompl) succeeded against an install without OMPL"
+fi
+[[ "$out" == *"installed without OMPL"* ]] || fail "COMPONENTS ompl failed without saying why: $out"
+echo "consumer test: without OMPL: COMPONENTS core needs only Eigen and fmt;" \
+  "COMPONENTS ompl is refused"
 echo "consumer test: passed"

@@ -602,10 +602,6 @@ void read_world(const std::string& file, MapReader& top, const std::filesystem::
     source.polygons = desc.polygons.size() - polygons;
     s.world_map = source;
   }
-  if (!desc.bounds && desc.circles.empty() && desc.polygons.empty() && !desc.grid)
-    fail(file, w.node(), "world",
-         "the world is empty: give bounds, obstacles or a map (in an empty, unbounded world no "
-         "clearance can be measured)");
   w.finish();
 }
 

@@ -6,11 +6,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/kinematics/differential_drive.hpp"
 #include "floornav/nav/heading_tracker.hpp"
 #include "floornav/nav/navigation_automaton.hpp"
-#include "floornav/nav/sampling_planner.hpp"
 #include "floornav/sensing/obstacle_memory.hpp"
 #include "floornav/world/world.hpp"
 
@@ -86,8 +86,11 @@ PlannerController::PlannerController(Setup setup)
       map_(setup.map),
       rasters_(setup.rasters ? setup.rasters : std::make_shared<KnownMapRasters>()),
       seed_(setup.seed),
+      rrt_connect_(rrt_connect_search()),
       progress_(setup.params.planner.progress_window, 0.0) {
   if (!robot_) throw std::invalid_argument("planner: no robot");
+  if (p_.kind == PlannerKind::RrtConnect && !rrt_connect_)
+    throw InputError("", "controller.planner.kind", kNoRrtConnect);
   if (p_.map == PlannerMap::Known && !map_)
     throw std::invalid_argument("planner.map is 'known', but no map was given to the planner");
   // rrt_connect_path's precondition, checked here so that a plan in the step loop never throws.
@@ -156,7 +159,7 @@ bool PlannerController::search_cells(const FreeRaster& raster, const RasterFrame
     // One stream per search (the run's seed and the search's index): the same run, the same
     // samples, whatever thread it runs on.
     const std::uint64_t seed = seed_ * 0x100000001b3ULL + ++searches_;
-    if (!rrt_connect_path(raster, s, g, seed, p_.max_samples, samples_)) return false;
+    if (!rrt_connect_(raster, s, g, seed, p_.max_samples, samples_)) return false;
     for (const Vec2& q : samples_) polyline_.push_back(f.to_world(q));
     return true;
   }

@@ -1,146 +1,21 @@
 #include "floornav/nav/sampling_planner.hpp"
 
-#include <cmath>
-#include <memory>
-#include <mutex>
-#include <stdexcept>
-#include <string>
-#include <utility>
-
-#include <ompl/base/MotionValidator.h>
-#include <ompl/base/ProblemDefinition.h>
-#include <ompl/base/SpaceInformation.h>
-#include <ompl/base/spaces/RealVectorStateSpace.h>
-#include <ompl/datastructures/NearestNeighborsSqrtApprox.h>
-#include <ompl/geometric/PathGeometric.h>
-#include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/util/Console.h>
+#include <atomic>
 
 namespace floornav {
 
 namespace {
-namespace ob = ompl::base;
-namespace og = ompl::geometric;
-
-// OMPL's seeds are 32 bits; fold the 64-bit run seed, and keep the sampler's and the planner's
-// streams apart.
-std::uint_fast32_t fold(std::uint64_t seed, std::uint64_t stream) {
-  std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL * (stream + 1);  // splitmix64
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return static_cast<std::uint_fast32_t>((z ^ (z >> 31)) & 0xffffffffULL);
-}
-
-// A uniform sampler of the box whose RNG is seeded by us, not by OMPL's global seed generator.
-class SeededSampler final : public ob::RealVectorStateSampler {
- public:
-  SeededSampler(const ob::StateSpace* space, std::uint_fast32_t seed)
-      : ob::RealVectorStateSampler(space) {
-    rng_.setLocalSeed(seed);
-  }
-};
-
-// RRT-Connect with its own RNG seeded by us.
-class SeededRrtConnect final : public og::RRTConnect {
- public:
-  SeededRrtConnect(const ob::SpaceInformationPtr& si, std::uint_fast32_t seed)
-      : og::RRTConnect(si) {
-    rng_.setLocalSeed(seed);
-  }
-};
-
-Vec2 xy(const ob::State* s) {
-  const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
-  return {v->values[0], v->values[1]};
-}
-
-// A motion is valid when the raster's line of sight holds (exact on the cells, no resolution).
-class RasterMotionValidator final : public ob::MotionValidator {
- public:
-  RasterMotionValidator(const ob::SpaceInformationPtr& si, const FreeRaster& raster)
-      : ob::MotionValidator(si), raster_(raster) {}
-  bool checkMotion(const ob::State* a, const ob::State* b) const override {
-    const bool ok = line_of_sight(raster_, xy(a), xy(b));
-    if (!ok)
-      ++invalid_;
-    else
-      ++valid_;
-    return ok;
-  }
-  bool checkMotion(const ob::State* a, const ob::State* b,
-                   std::pair<ob::State*, double>& last_valid) const override {
-    if (checkMotion(a, b)) return true;
-    // RRT-Connect does not ask for the last valid state; the start is always a safe answer.
-    if (last_valid.first) si_->copyState(last_valid.first, a);
-    last_valid.second = 0.0;
-    return false;
-  }
-
- private:
-  const FreeRaster& raster_;
-};
-
-void silence_ompl() {
-  static std::once_flag once;  // the core does no I/O: OMPL's console messages go nowhere
-  std::call_once(once, [] { ompl::msg::noOutputHandler(); });
-}
+// Constant-initialised (before any static constructor runs), so floornav::ompl's installer may
+// run in any order with the rest of the program's start-up.
+std::atomic<SampledPathSearch> g_rrt_connect{nullptr};
 }  // namespace
 
-bool rrt_connect_path(const FreeRaster& raster, GridCell start, GridCell goal, std::uint64_t seed,
-                      int max_samples, std::vector<Vec2>& out) {
-  out.clear();
-  if (max_samples > kMaxRrtConnectSamples)
-    throw std::invalid_argument("rrt_connect_path: max_samples " + std::to_string(max_samples) +
-                                " is above the limit of " + std::to_string(kMaxRrtConnectSamples) +
-                                " samples a plan");
-  if (!raster.is_free(start.x, start.y) || !raster.is_free(goal.x, goal.y) || max_samples < 1)
-    return false;
-  silence_ompl();
-  if (start == goal) {
-    out.assign({Vec2(start.x + 0.5, start.y + 0.5), Vec2(goal.x + 0.5, goal.y + 0.5)});
-    return true;
-  }
+SampledPathSearch rrt_connect_search() {
+  return g_rrt_connect.load(std::memory_order_acquire);
+}
 
-  auto space = std::make_shared<ob::RealVectorStateSpace>(2);
-  ob::RealVectorBounds bounds(2);
-  bounds.setLow(0, 0.0);
-  bounds.setHigh(0, raster.width);
-  bounds.setLow(1, 0.0);
-  bounds.setHigh(1, raster.height);
-  space->setBounds(bounds);
-  std::uint64_t samplers = 0;  // a fresh, still deterministic stream for every sampler made
-  space->setStateSamplerAllocator([seed, &samplers](const ob::StateSpace* s) {
-    return std::make_shared<SeededSampler>(s, fold(seed, 2 + samplers++));
-  });
-
-  auto si = std::make_shared<ob::SpaceInformation>(space);
-  si->setStateValidityChecker([&raster](const ob::State* s) {
-    const Vec2 p = xy(s);
-    return raster.is_free(static_cast<int>(std::floor(p.x())), static_cast<int>(std::floor(p.y())));
-  });
-  si->setMotionValidator(std::make_shared<RasterMotionValidator>(si, raster));
-  si->setup();
-
-  ob::ScopedState<ob::RealVectorStateSpace> from(space), to(space);
-  from[0] = start.x + 0.5;
-  from[1] = start.y + 0.5;
-  to[0] = goal.x + 0.5;
-  to[1] = goal.y + 0.5;
-  auto pdef = std::make_shared<ob::ProblemDefinition>(si);
-  pdef->setStartAndGoalStates(from, to, 1e-9);
-
-  SeededRrtConnect planner(si, fold(seed, 1));
-  planner.setNearestNeighbors<ompl::NearestNeighborsSqrtApprox>();
-  planner.setProblemDefinition(pdef);
-  planner.setup();
-  int iterations = 0;
-  const ob::PlannerTerminationCondition budget([&] { return ++iterations > max_samples; });
-  const ob::PlannerStatus status = planner.solve(budget);
-  if (status != ob::PlannerStatus::EXACT_SOLUTION) return false;
-  const auto* path = pdef->getSolutionPath()->as<og::PathGeometric>();
-  out.reserve(path->getStateCount());
-  for (std::size_t i = 0; i < path->getStateCount(); ++i) out.push_back(xy(path->getState(i)));
-  return out.size() >= 2;
+void set_rrt_connect_search(SampledPathSearch search) {
+  g_rrt_connect.store(search, std::memory_order_release);
 }
 
 }  // namespace floornav

@@ -11,6 +11,7 @@
 #include "floornav/kinematics/differential_drive.hpp"
 #include "floornav/nav/dwa_controller.hpp"
 #include "floornav/nav/navigation_params.hpp"
+#include "floornav/nav/sampling_planner.hpp"
 #include "floornav/robot/body_clearance.hpp"
 #include "floornav/sim/robot_neighbour_grid.hpp"
 #include "floornav/world/occupancy_grid.hpp"
@@ -88,6 +89,7 @@ void validate_planner(const PlannerParams& p, const RobotKeys& k) {
   if (p.max_recoveries < 0 || p.max_recoveries > 1000)
     bad("max_recoveries", fmt::format("must be in [0, 1000], got {}", p.max_recoveries));
   if (!(p.decay > 0.0)) bad("decay", "must be positive");
+  if (p.kind == PlannerKind::RrtConnect && !rrt_connect_search()) bad("kind", kNoRrtConnect);
   if (p.max_samples < 1 || p.max_samples > kMaxRrtConnectSamples)
     bad("max_samples",
         fmt::format("must be in [1, {}] (a plan's time grows faster than its samples: 10^6 "

@@ -20,9 +20,11 @@ struct Output {
 };
 
 /// `wrapper`, when given, is a command that runs floornav (e.g. one that drops privileges).
-inline Output floornav(const std::string& args, const std::string& wrapper = "") {
-  const std::string cmd =
-      (wrapper.empty() ? "" : wrapper + " ") + std::string(FLOORNAV_BINARY) + " " + args + " 2>&1";
+/// `stdout_to`, when given, is where floornav's standard output goes (then `text` is its stderr).
+inline Output floornav(const std::string& args, const std::string& wrapper = "",
+                       const std::string& stdout_to = "") {
+  const std::string cmd = (wrapper.empty() ? "" : wrapper + " ") + std::string(FLOORNAV_BINARY) +
+                          " " + args + " 2>&1" + (stdout_to.empty() ? "" : " >" + stdout_to);
   Output out{0, ""};
   FILE* p = popen(cmd.c_str(), "r");
   std::array<char, 4096> buf{};

@@ -41,6 +41,52 @@ TEST(Cli, RunWritesTheThreeFiles) {
   EXPECT_EQ(read(out / "trajectory.svg").rfind("<svg", 0), 0u);
 }
 
+// The chapter's go-to-goal with no obstacle (an empty, unbounded world): it runs, and its
+// clearance, which nothing bounds, is null in the JSON files, an empty CSV cell and "none" in the
+// text, never infinity, NaN or a made-up number.
+TEST(Cli, AnEmptyUnboundedWorldRunsWithNullClearance) {
+  const fs::path dir = temp_dir("open_floor");
+  fs::create_directories(dir);
+  std::ofstream(dir / "open.yaml") << "name: open-floor\nworld: {}\n"
+                                      "robot: {preset: quickbot, start: [0, 0, 0]}\n"
+                                      "goal: [2, 1]\nsim: {t_max: 30}\n";
+  const Output o = floornav("run " + (dir / "open.yaml").string() + " --record clearance --out " +
+                            (dir / "run").string());
+  ASSERT_EQ(o.status, 0) << o.text;
+  EXPECT_NE(o.text.find("open-floor: reached"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("min clearance none"), std::string::npos) << o.text;
+  const auto summary = nlohmann::json::parse(read(dir / "run" / "summary.json"));
+  EXPECT_EQ(summary["status"], "reached");
+  ASSERT_TRUE(summary.contains("min_clearance"));
+  EXPECT_TRUE(summary["min_clearance"].is_null()) << summary["min_clearance"];
+  // trajectory.csv's clearance column: present, and empty on every row.
+  std::istringstream csv(read(dir / "run" / "trajectory.csv"));
+  std::string header, row;
+  std::getline(csv, header);
+  ASSERT_EQ(header.substr(header.rfind(',') + 1), "clearance") << header;
+  int rows = 0;
+  while (std::getline(csv, row)) {
+    ++rows;
+    ASSERT_EQ(row.back(), ',') << "row " << rows << ": " << row;
+  }
+  EXPECT_GT(rows, 10);
+  const std::string svg = read(dir / "run" / "trajectory.svg");
+  EXPECT_NE(svg.find("min clearance none"), std::string::npos);
+  for (const char* bad : {"inf", "nan"})
+    EXPECT_EQ(read(dir / "run" / "trajectory.csv").find(bad), std::string::npos) << bad;
+
+  // A batch: the case's line and the aggregate carry null as well.
+  const Output b = floornav("batch " + (dir / "open.yaml").string() + " --no-timing --out " +
+                            (dir / "batch").string());
+  ASSERT_EQ(b.status, 0) << b.text;
+  const auto line = nlohmann::json::parse(read(dir / "batch" / "results.jsonl"));
+  EXPECT_EQ(line["status"], "reached");
+  EXPECT_TRUE(line["min_clearance"].is_null()) << line;
+  const auto aggregate = nlohmann::json::parse(read(dir / "batch" / "aggregate.json"));
+  EXPECT_TRUE(aggregate["min_clearance"].is_null()) << aggregate;
+  fs::remove_all(dir);
+}
+
 TEST(Cli, SetChangesTheController) {
   const fs::path out = temp_dir("set");
   const Output o = floornav("run " + scenario("rectangle.yaml") +

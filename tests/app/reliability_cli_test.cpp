@@ -45,6 +45,13 @@ std::string q(const fs::path& p) {
   return out;
 }
 
+// Root reads and writes any folder: as root, floornav runs without the two capabilities that let
+// it (setpriv, util-linux), so that permissions hold for it as for any other user.
+std::string as_any_user() {
+  return ::geteuid() == 0 ? "setpriv --bounding-set -dac_override,-dac_read_search --inh-caps=-all"
+                          : "";
+}
+
 int lines(const std::string& text) {
   return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
 }
@@ -295,14 +302,9 @@ TEST(Reliability, AnUnreadableWorldsFolderIsBadInput) {
   const fs::path dir = temp_dir("worlds_unreadable");
   write(dir / "worlds" / "w1.world", "<sdf/>");
   fs::permissions(dir / "worlds", fs::perms::none);
-  // Root reads any folder: as root, floornav runs without the two capabilities that let it
-  // (setpriv, util-linux), so the folder is unreadable to it as to any other user.
-  const std::string wrapper =
-      ::geteuid() == 0 ? "setpriv --bounding-set -dac_override,-dac_read_search --inh-caps=-all"
-                       : "";
   const Output o = floornav("batch " + scenario("rectangle.yaml") + " --worlds " +
                                 q(dir / "worlds") + " --out " + q(dir / "out"),
-                            wrapper);
+                            as_any_user());
   fs::permissions(dir / "worlds", fs::perms::owner_all);
   EXPECT_EQ(o.status, 2) << o.text;  // bad input, not an internal error (1)
   EXPECT_EQ(lines(o.text), 1) << o.text;
@@ -345,4 +347,72 @@ TEST(Reliability, AScenOnARosMapYamlBlamesTheMapNotTheCellSize) {
                              q(dir / "room.scen") + " --no-timing --out " + q(dir / "out"));
   EXPECT_EQ(ok.status, 0) << ok.text;
   fs::remove_all(dir);
+}
+
+// ---- outputs that cannot be written: exit status 1 ---------------------------------------------
+
+// A read-only folder is not bad input: every command that writes files ends with exit status 1
+// (2 is for bad input) and one line naming the path it could not write and the system's reason,
+// and leaves nothing in the folder.
+TEST(Reliability, AReadOnlyOutputIsExitOneNamingThePathAndTheReason) {
+  const fs::path dir = temp_dir("read_only");
+  const fs::path ro = dir / "ro";
+  fs::create_directories(ro);
+  const Output shard = floornav("batch " + scenario("rectangle.yaml") + " --no-timing --out " +
+                                q(dir / "shard"));  // for merge
+  ASSERT_EQ(shard.status, 0) << shard.text;
+  fs::permissions(ro, fs::perms::owner_read | fs::perms::owner_exec);
+  struct Case {
+    std::string args;
+    fs::path named;  ///< the path the message must name
+  };
+  const std::vector<Case> cases = {
+      {"run " + scenario("rectangle.yaml") + " --quiet --out " + q(ro / "run"), ro / "run"},
+      {"batch " + scenario("rectangle.yaml") + " --no-timing --out " + q(ro / "batch"),
+       ro / "batch"},
+      {"merge " + q(dir / "shard") + " --out " + q(ro / "merged"), ro / "merged"},
+      {"run " + scenario("rectangle.yaml") + " --quiet --out " + q(dir / "run") + " --config-out " +
+           q(ro / "resolved.yaml"),
+       ro / "resolved.yaml"}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.args);
+    const Output o = floornav(c.args, as_any_user());
+    EXPECT_EQ(o.status, 1) << o.text;
+    EXPECT_EQ(lines(o.text), 1) << o.text;
+    EXPECT_NE(o.text.find("floornav: error: " + c.named.string() + ": "), std::string::npos)
+        << o.text;
+    EXPECT_NE(o.text.find("Permission denied"), std::string::npos) << o.text;
+    EXPECT_TRUE(fs::is_empty(ro)) << "left a file in the read-only folder";
+  }
+  fs::permissions(ro, fs::perms::owner_all);
+  fs::remove_all(dir);
+}
+
+// Standard output is an output too: when it cannot be written (a full disk, here /dev/full), the
+// command ends with exit status 1 and says so, never status 0 over a cut-off file.
+TEST(Reliability, AFullStandardOutputIsExitOne) {
+  const fs::path dir = temp_dir("full_stdout");
+  for (const std::string& args :
+       {std::string("presets"), "run " + scenario("rectangle.yaml") + " --out " + q(dir / "run")}) {
+    SCOPED_TRACE(args);
+    const Output o = floornav(args, "", "/dev/full");
+    EXPECT_EQ(o.status, 1) << o.text;
+    EXPECT_EQ(lines(o.text), 1) << o.text;
+    EXPECT_NE(
+        o.text.find("floornav: error: standard output: cannot write: No space left on device"),
+        std::string::npos)
+        << o.text;
+  }
+  // The same commands with somewhere to write: status 0.
+  EXPECT_EQ(floornav("presets", "", "/dev/null").status, 0);
+  fs::remove_all(dir);
+}
+
+// An --out below a file (here the device /dev/full): exit status 1 naming the folder.
+TEST(Reliability, AnOutputFolderBelowAFileIsExitOne) {
+  const Output o = floornav("run " + scenario("rectangle.yaml") + " --out /dev/full/run");
+  EXPECT_EQ(o.status, 1) << o.text;
+  EXPECT_EQ(lines(o.text), 1) << o.text;
+  EXPECT_NE(o.text.find("/dev/full/run"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("Not a directory"), std::string::npos) << o.text;
 }

@@ -1,6 +1,7 @@
 // Scenario files: what is accepted, and one clear error for what is not.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 
 #include "floornav/io/scenario_file.hpp"
@@ -62,6 +63,22 @@ TEST(ScenarioFile, ReadsEveryKey) {
   EXPECT_DOUBLE_EQ(s.robot().controller.params.heading_pid.kp, 5.0);
   EXPECT_EQ(s.sim.seed, 7u);
   EXPECT_EQ(s.robot().goals.size(), 1u);
+}
+
+// The chapter's go-to-goal with nothing in the way: an empty, unbounded world is a scenario (its
+// clearance is infinite, written as null), however the emptiness is written.
+TEST(ScenarioFile, AnEmptyUnboundedWorldIsAScenario) {
+  for (const char* world : {"world: {}", "world: {obstacles: []}"}) {
+    SCOPED_TRACE(world);
+    const Scenario s =
+        load(std::string("name: open\n") + world + "\nrobot: {start: [0, 0, 0]}\ngoal: [4, 1]\n");
+    EXPECT_FALSE(s.world->bounds().has_value());
+    EXPECT_TRUE(s.world->circles().empty());
+    EXPECT_TRUE(s.world->polygons().empty());
+    EXPECT_EQ(s.world->clearance(Vec2(1.0, 0.5)), std::numeric_limits<double>::infinity());
+  }
+  // A world section is still required: leaving it out is more likely a mistake than a choice.
+  expect_error("name: open\nrobot: {start: [0, 0, 0]}\ngoal: [4, 1]\n", {"world"});
 }
 
 TEST(ScenarioFile, SetOverridesAnyKey) {

@@ -110,3 +110,13 @@ def test_run_without_recording_has_an_empty_trajectory():
                                             {"sim.record_trajectory": False}))
     assert r.status == "reached"
     assert all(len(v) == 0 for v in r.trajectory.values())
+
+
+def test_an_empty_unbounded_world_runs_and_its_clearance_is_none():
+    # The chapter's go-to-goal with no obstacle: nothing bounds the clearance, so the summary has
+    # None (summary.json's null), never inf or NaN, and the run reaches the goal.
+    s = floornav.parse_scenario("name: open-floor\nworld: {}\n"
+                                "robot: {preset: quickbot, start: [0, 0, 0]}\ngoal: [2, 1]\n")
+    r = floornav.run(s)
+    assert r.summary["status"] == "reached"
+    assert "min_clearance" in r.summary and r.summary["min_clearance"] is None

@@ -5,11 +5,15 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
+#include "floornav/core/input_error.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
+#include "floornav/nav/sampling_planner.hpp"
 #include "floornav/scenario/presets.hpp"
 #include "floornav/scenario/simulate.hpp"
+#include "floornav/scenario/validate.hpp"
 
 using namespace floornav;
 
@@ -148,9 +152,13 @@ TEST_P(WalledOffKnownMap, GoalIsStuckAtOnce) {
 INSTANTIATE_TEST_SUITE_P(
     PlannerOutcomes, WalledOffKnownMap,
     ::testing::Values(WalledOffCase{"astar", PlannerKind::AStar, 0,
-                                    "no path on the known map: nothing to try"},
+                                    "no path on the known map: nothing to try"}
+#if FLOORNAV_WITH_OMPL
+                      ,
                       WalledOffCase{"rrt_connect", PlannerKind::RrtConnect, 3000,
-                                    "no path within the budget: the same as astar finding none"}),
+                                    "no path within the budget: the same as astar finding none"}
+#endif
+                      ),
     [](const ::testing::TestParamInfo<WalledOffCase>& info) { return info.param.name; });
 
 // The chapter alone circles the room until the simulator's own stuck or time limit.
@@ -259,6 +267,7 @@ TEST(PlannerOutcomes, FootprintGuardGetsTheJackalThroughAGapWhereTheStackWithout
   EXPECT_LT(guarded.sim_time, 40.0);
 }
 
+#if FLOORNAV_WITH_OMPL
 // The rrt_connect kind (OMPL's RRT-Connect on the same raster): a QuickBot finds the short way
 // round the wall of long_way() that the chapter alone misses, and the same seed gives the same
 // run bit for bit.
@@ -284,4 +293,72 @@ TEST(PlannerOutcomes, RrtConnectSameSeedSameTrajectoryBitForBit) {
   EXPECT_EQ(a.status, RunStatus::Reached);
   EXPECT_FALSE(a.collided);
   expect_same_trajectory(a, b);
+}
+#endif
+
+// `planner.kind: rrt_connect` runs whatever search is installed (nav/sampling_planner.hpp):
+// floornav::ompl's, or here a stand-in, so that the hook is tested in builds with and without
+// OMPL. The previous search is put back afterwards.
+class InstalledSearch {
+ public:
+  explicit InstalledSearch(SampledPathSearch search) : saved_(rrt_connect_search()) {
+    set_rrt_connect_search(search);
+  }
+  ~InstalledSearch() { set_rrt_connect_search(saved_); }
+  InstalledSearch(const InstalledSearch&) = delete;
+  InstalledSearch& operator=(const InstalledSearch&) = delete;
+
+ private:
+  SampledPathSearch saved_;
+};
+
+int g_straight_searches = 0;
+// The straight line between the two cells: right in an empty hall.
+bool straight_search(const FreeRaster&, GridCell start, GridCell goal, std::uint64_t, int,
+                     std::vector<Vec2>& out) {
+  ++g_straight_searches;
+  out = {Vec2(start.x + 0.5, start.y + 0.5), Vec2(goal.x + 0.5, goal.y + 0.5)};
+  return true;
+}
+
+Scenario empty_hall_with_rrt_connect() {
+  WorldDesc hall;
+  hall.bounds = Box2{Vec2(-1, -1), Vec2(6, 4)};
+  Scenario s = make("turtlebot3_burger", std::move(hall), {Vec2(0, 0), 0.0}, Vec2(4, 2), 60.0);
+  s.robot().controller.params.planner.kind = PlannerKind::RrtConnect;
+  return s;
+}
+
+TEST(PlannerOutcomes, RrtConnectRunsTheInstalledSearch) {
+  const InstalledSearch installed(&straight_search);
+  g_straight_searches = 0;
+  const Scenario s = empty_hall_with_rrt_connect();
+  EXPECT_NO_THROW(validate_scenario(s, "hall.yaml"));
+  const RunResult r = simulate(s);
+  EXPECT_EQ(r.status, RunStatus::Reached);
+  EXPECT_GE(g_straight_searches, 1) << "the planner did not ask the installed search";
+}
+
+// Without a search (a build without OMPL, or a program that does not link floornav::ompl):
+// one clear error naming the key and OMPL, from validation and from the controller alike; never
+// a run without its planner.
+TEST(PlannerOutcomes, RrtConnectWithoutASearchIsBadInput) {
+  const InstalledSearch none(nullptr);
+  const Scenario s = empty_hall_with_rrt_connect();
+  for (const bool validated : {true, false}) {
+    SCOPED_TRACE(validated ? "validate_scenario" : "simulate");
+    try {
+      if (validated)
+        validate_scenario(s, "hall.yaml");
+      else
+        (void)simulate(s);
+      ADD_FAILURE() << "rrt_connect was accepted without a search";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("controller.planner.kind"), std::string::npos) << what;
+      EXPECT_NE(what.find("needs OMPL"), std::string::npos) << what;
+      EXPECT_NE(what.find("FLOORNAV_WITH_OMPL"), std::string::npos) << what;
+    }
+  }
+  EXPECT_EQ(rrt_connect_search(), nullptr);
 }

@@ -41,6 +41,7 @@
 #include "floornav/nav/planned_path.hpp"
 #include "floornav/nav/progress_checker.hpp"
 #include "floornav/nav/rolling_grid.hpp"
+#include "floornav/nav/sampling_planner.hpp"
 #include "floornav/world/shortest_path.hpp"
 
 namespace floornav {
@@ -154,6 +155,7 @@ class PlannerController final : public Controller {
   std::vector<Vec2> polyline_;  ///< the octile path before pulling
   std::vector<Vec2> samples_;   ///< rrt_connect: the sampled path, cell units
   std::uint64_t seed_{1};
+  SampledPathSearch rrt_connect_{nullptr};  ///< rrt_connect's search, as installed at construction
   std::uint64_t searches_{0};  ///< since reset: each sampling search draws from its own stream
   std::vector<Vec2> pulled_;
   std::vector<Vec2> points_;  ///< observation points plus remembered ones

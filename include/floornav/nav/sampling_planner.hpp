@@ -1,39 +1,38 @@
 #pragma once
 /// @file
-/// A sampling planner on a raster: RRT-Connect (Kuffner & LaValle 2000) from OMPL, the robot a
-/// disc in R^2, on the same inflated FreeRaster the A* planner searches (a state is valid when
-/// its cell is free; a motion when `line_of_sight` holds on the raster). Used by the planning
-/// layer for `planner.kind: rrt_connect`.
-///
-/// Why OMPL and not a hand-written RRT: it is the reference implementation (Debian's
-/// libompl-dev), and only the validity checks are ours. OMPL stays behind this header (linked
-/// privately to floornav_core).
-///
-/// Determinism: OMPL's RNGs are seeded from the process-wide seed generator unless told
-/// otherwise, and `ompl::RNG::setSeed` works only once per process and before any RNG exists.
-/// So every source of randomness of one plan is given its own RNG seeded from `seed`: the state
-/// sampler (a RealVectorStateSampler whose RNG is reseeded) and the planner's own RNG; the trees'
-/// nearest-neighbour structure is OMPL's SqrtApprox (deterministic; the default GNAT picks random
-/// pivots). The budget is a count of planner iterations, not a time. Same raster, cells, seed and
-/// budget: the same path, bit for bit, on any thread of any process.
+/// The sampling planner behind `planner.kind: rrt_connect`, as a hook: the core calls whatever
+/// search is installed here and links no planning library itself. floornav::ompl installs OMPL's
+/// RRT-Connect (floornav/ompl/rrt_connect.hpp) when a program links it, which a program linking
+/// floornav::floornav does in a build with OMPL (FLOORNAV_WITH_OMPL). Without one installed,
+/// validate_scenario refuses `planner.kind: rrt_connect` (bad input: exit status 2 in the CLI)
+/// and a PlannerController asked for it throws InputError.
 
 #include <cstdint>
 #include <vector>
 
 #include "floornav/geometry/vec2.hpp"
-#include "floornav/nav/planner_params.hpp"
 #include "floornav/world/shortest_path.hpp"
 
 namespace floornav {
 
-/// RRT-Connect on `raster` from the centre of cell `start` to the centre of cell `goal` (both
-/// must be free), drawing at most `max_samples` samples. Writes the path's vertices (cell units,
-/// start and goal included; not simplified) to `out` and returns true; false, `out` empty, when
-/// either cell is blocked, `max_samples` is below 1 or no path was found within the budget.
-/// Precondition: `max_samples` <= kMaxRrtConnectSamples (planner_params.hpp), the bound on a
-/// plan's time; above it std::invalid_argument is thrown before any work (scenario validation
-/// refuses such a setting as bad input, and PlannerController's constructor refuses it too).
-bool rrt_connect_path(const FreeRaster& raster, GridCell start, GridCell goal, std::uint64_t seed,
-                      int max_samples, std::vector<Vec2>& out);
+/// A sampling search on `raster` from the centre of cell `start` to the centre of cell `goal`
+/// drawing at most `max_samples` samples from the stream `seed`: writes the path's vertices (cell
+/// units, start and goal included) to `out` and returns true; false, `out` empty, when there is
+/// none within the budget. The same arguments must give the same path, bit for bit.
+using SampledPathSearch = bool (*)(const FreeRaster& raster, GridCell start, GridCell goal,
+                                   std::uint64_t seed, int max_samples, std::vector<Vec2>& out);
+
+/// Why `planner.kind: rrt_connect` is refused when no search is installed.
+inline constexpr const char* kNoRrtConnect =
+    "rrt_connect needs OMPL, and this program has no OMPL planner (floornav was built without "
+    "OMPL: FLOORNAV_WITH_OMPL=OFF or Debian's libompl-dev not found; or the program does not "
+    "link floornav::ompl); use astar";
+
+/// The search `planner.kind: rrt_connect` runs; nullptr when none is installed.
+SampledPathSearch rrt_connect_search();
+
+/// Installs `search` for `planner.kind: rrt_connect` in this process (nullptr removes it).
+/// floornav::ompl does this before main(); call it before runs start, not during them.
+void set_rrt_connect_search(SampledPathSearch search);
 
 }  // namespace floornav

@@ -1,14 +1,18 @@
-// The rrt_connect planner's search (OMPL's RRT-Connect on a FreeRaster): its path stays on free
-// cells and joins start to goal, it is the same for the same seed (and differs for another), an
-// unreachable goal gives no path within the budget, and blocked ends give none at all.
+// The rrt_connect planner's search (OMPL's RRT-Connect on a FreeRaster): linking floornav::ompl
+// installs it; its path stays on free cells and joins start to goal, it is the same for the same
+// seed (and differs for another), an unreachable goal gives no path within the budget, and
+// blocked ends give none at all.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "floornav/nav/planner_params.hpp"
 #include "floornav/nav/sampling_planner.hpp"
+#include "floornav/ompl/rrt_connect.hpp"
 #include "floornav/world/shortest_path.hpp"
 
 namespace floornav {
@@ -30,6 +34,12 @@ FreeRaster wall_with_gap(bool gap = true) {
 
 constexpr GridCell kStart{5, 5};
 constexpr GridCell kGoal{34, 5};
+
+// A program that links floornav::ompl (this test, floornav::floornav's users) has the planner
+// without a call: it is installed before main().
+TEST(RrtConnectPath, LinkingFloornavOmplInstallsItForThePlanner) {
+  EXPECT_EQ(rrt_connect_search(), &rrt_connect_path);
+}
 
 TEST(RrtConnectPath, CrossesTheWallThroughTheGapOnFreeCellsOnly) {
   const FreeRaster r = wall_with_gap();
