@@ -89,14 +89,14 @@ PlannerController::PlannerController(Setup setup)
       rrt_connect_(rrt_connect_search()),
       progress_(setup.params.planner.progress_window, 0.0) {
   if (!robot_) throw std::invalid_argument("planner: no robot");
-  if (p_.kind == PlannerKind::RrtConnect && !rrt_connect_)
-    throw InputError("", "controller.planner.kind", kNoRrtConnect);
-  if (p_.map == PlannerMap::Known && !map_)
-    throw std::invalid_argument("planner.map is 'known', but no map was given to the planner");
   // rrt_connect_path's precondition, checked here so that a plan in the step loop never throws.
   if (p_.max_samples > kMaxRrtConnectSamples)
     throw std::invalid_argument("planner.max_samples " + std::to_string(p_.max_samples) +
                                 " is above the limit of " + std::to_string(kMaxRrtConnectSamples));
+  if (p_.kind == PlannerKind::RrtConnect && !rrt_connect_)
+    throw InputError("", "controller.planner.kind", kNoRrtConnect);
+  if (p_.map == PlannerMap::Known && !map_)
+    throw std::invalid_argument("planner.map is 'known', but no map was given to the planner");
   inner_modes_ = static_cast<int>(inner_->mode_names().size());
   inner_guards_ = static_cast<int>(inner_->guard_names().size());
   for (const std::string& name : inner_->mode_names())

@@ -18,6 +18,7 @@
 #include "floornav/nav/planner_controller.hpp"
 #include "floornav/nav/progress_checker.hpp"
 #include "floornav/nav/rolling_grid.hpp"
+#include "floornav/nav/sampling_planner.hpp"
 #include "floornav/scenario/presets.hpp"
 #include "floornav/scenario/validate.hpp"
 #include "floornav/world/world.hpp"
@@ -325,8 +326,15 @@ TEST(PlannerController, RefusesASampleBudgetAboveTheLimitWhenMade) {
   cfg.params.planner.max_samples = kMaxRrtConnectSamples + 1;
   EXPECT_THROW(ControllerMaker().make(cfg, {robot, cfg.params, "r", 0, &world}),
                std::invalid_argument);
+  // At the limit it is made, with whatever search is installed (a stand-in when this test binary
+  // has no OMPL).
+  const SampledPathSearch saved = rrt_connect_search();
+  if (!saved)
+    set_rrt_connect_search([](const FreeRaster&, GridCell, GridCell, std::uint64_t, int,
+                              std::vector<Vec2>&) { return false; });
   cfg.params.planner.max_samples = kMaxRrtConnectSamples;
   EXPECT_NE(ControllerMaker().make(cfg, {robot, cfg.params, "r", 0, &world}), nullptr);
+  set_rrt_connect_search(saved);
 }
 
 TEST(PlannerController, ReportsGoalReachedOnlyAtTheRealGoal) {
