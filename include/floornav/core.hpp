@@ -9,9 +9,11 @@
 /// (floornav/io.hpp).
 
 #include "floornav/automaton/hybrid_automaton.hpp"
+#include "floornav/core/enum_names.hpp"
 #include "floornav/core/input_error.hpp"
 #include "floornav/core/isa_clones.hpp"
 #include "floornav/core/output_error.hpp"
+#include "floornav/core/param_fields.hpp"
 #include "floornav/core/rng.hpp"
 #include "floornav/core/utf8.hpp"
 #include "floornav/geometry/angle.hpp"
@@ -30,6 +32,7 @@
 #include "floornav/nav/automaton_controller.hpp"
 #include "floornav/nav/behaviours.hpp"
 #include "floornav/nav/controller.hpp"
+#include "floornav/nav/controller_registry.hpp"
 #include "floornav/nav/dwa_controller.hpp"
 #include "floornav/nav/dwa_params.hpp"
 #include "floornav/nav/footprint_guard.hpp"
@@ -44,6 +47,7 @@
 #include "floornav/nav/planner_params.hpp"
 #include "floornav/nav/progress_checker.hpp"
 #include "floornav/nav/robot_avoidance.hpp"
+#include "floornav/nav/robot_avoidance_params.hpp"
 #include "floornav/nav/rolling_grid.hpp"
 #include "floornav/nav/safety_layer.hpp"
 #include "floornav/nav/safety_params.hpp"

@@ -122,15 +122,54 @@ class NavigationParams:
     slow_when_turning: bool
     chatter_switches: int
     chatter_window: float
+    pid: PidGains
+    def __init__(self) -> None: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+class RobotAvoidanceParams:
+    fields: tuple[str, ...]
+    robot_avoidance: str
     avoidance_range: float
     avoidance_horizon: float
     avoidance_margin: float
+    def __init__(self) -> None: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+class ControllerConfig:
+    """NavigationParams' and RobotAvoidanceParams' fields, and three sections."""
+    fields: tuple[str, ...]
+    @property
+    def kind(self) -> str: ...
+    v0: float
+    gtg_a: float
+    d_o: float
+    d_fb: float
+    k_fb: float
+    d_unsafe: float
+    hysteresis: float
+    progress_margin: float
+    epsilon: float
+    blend_near: float
+    blend_far: float
+    obstacle_memory: float
+    obstacle_range: float
+    clear_shot_corridor: float
+    footprint_clearance: bool
+    slow_when_turning: bool
+    chatter_switches: int
+    chatter_window: float
     pid: PidGains
+    robot_avoidance: str
+    avoidance_range: float
+    avoidance_horizon: float
+    avoidance_margin: float
     planner: PlannerParams
     dwa: DwaParams
     safety: SafetyParams
     def __init__(self) -> None: ...
     def to_dict(self) -> dict[str, Any]: ...
+
+def controller_kinds() -> dict[str, str]: ...
 
 class SimConfig:
     fields: tuple[str, ...]
@@ -139,8 +178,11 @@ class SimConfig:
     seed: int
     stuck_window: float
     stuck_radius: float
+    deadlock_window: float
+    livelock_window: float
     record_trajectory: bool
     park_finished: bool
+    record_ranges_every: int
     def __init__(self) -> None: ...
     def to_dict(self) -> dict[str, Any]: ...
 
@@ -265,6 +307,8 @@ class Scenario:
     def robots(self) -> list[dict[str, Any]]: ...
     @property
     def params(self) -> NavigationParams: ...
+    @property
+    def controller(self) -> ControllerConfig: ...
     @property
     def world(self) -> dict[str, Any]: ...
     def with_controller(self, controller: Any = None, *, factory: Optional[Callable[[dict], Any]] = None,

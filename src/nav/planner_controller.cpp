@@ -81,12 +81,12 @@ PlannerController::PlannerController(Setup setup)
                  with(setup.inner->guard_names(), {"progress_stalled", "no_path", "recovered"})),
       inner_(std::move(setup.inner)),
       nav_(setup.params),
-      p_(setup.params.planner),
+      p_(setup.planner),
       robot_(setup.robot),
       map_(setup.map),
       rasters_(setup.rasters ? setup.rasters : std::make_shared<KnownMapRasters>()),
       seed_(setup.seed),
-      progress_(setup.params.planner.progress_window, 0.0) {
+      progress_(setup.planner.progress_window, 0.0) {
   if (!robot_) throw std::invalid_argument("planner: no robot");
   if (p_.map == PlannerMap::Known && !map_)
     throw std::invalid_argument("planner.map is 'known', but no map was given to the planner");
