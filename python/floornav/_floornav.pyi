@@ -102,8 +102,9 @@ class SafetyParams:
     def __init__(self) -> None: ...
     def to_dict(self) -> dict[str, Any]: ...
 
-class NavigationParams:
-    fields: tuple[str, ...]
+# Stub-only bases: the key groups that NavigationParams and RobotAvoidanceParams have alone and
+# that ControllerConfig has flattened into it (no such base classes exist at run time).
+class _ChapterKeys:
     v0: float
     gtg_a: float
     d_o: float
@@ -123,46 +124,27 @@ class NavigationParams:
     chatter_switches: int
     chatter_window: float
     pid: PidGains
-    def __init__(self) -> None: ...
-    def to_dict(self) -> dict[str, Any]: ...
 
-class RobotAvoidanceParams:
-    fields: tuple[str, ...]
+class _AvoidanceKeys:
     robot_avoidance: str
     avoidance_range: float
     avoidance_horizon: float
     avoidance_margin: float
+
+class NavigationParams(_ChapterKeys):
+    fields: tuple[str, ...]
     def __init__(self) -> None: ...
     def to_dict(self) -> dict[str, Any]: ...
 
-class ControllerConfig:
-    """NavigationParams' and RobotAvoidanceParams' fields, and three sections."""
+class RobotAvoidanceParams(_AvoidanceKeys):
+    fields: tuple[str, ...]
+    def __init__(self) -> None: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+class ControllerConfig(_ChapterKeys, _AvoidanceKeys):
     fields: tuple[str, ...]
     @property
     def kind(self) -> str: ...
-    v0: float
-    gtg_a: float
-    d_o: float
-    d_fb: float
-    k_fb: float
-    d_unsafe: float
-    hysteresis: float
-    progress_margin: float
-    epsilon: float
-    blend_near: float
-    blend_far: float
-    obstacle_memory: float
-    obstacle_range: float
-    clear_shot_corridor: float
-    footprint_clearance: bool
-    slow_when_turning: bool
-    chatter_switches: int
-    chatter_window: float
-    pid: PidGains
-    robot_avoidance: str
-    avoidance_range: float
-    avoidance_horizon: float
-    avoidance_margin: float
     planner: PlannerParams
     dwa: DwaParams
     safety: SafetyParams
