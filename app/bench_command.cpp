@@ -254,8 +254,8 @@ int run_bench(const BenchOptions& options) {
              "the same QuickBot with the planner (A* on the known floor, a subgoal for the "
              "automaton; plans timed, restarts rebuild the raster untimed)";
          Scenario s = make_factory_floor_scenario(floor50(), 0);
-         s.robot().controller.params.planner.kind = PlannerKind::AStar;
-         s.robot().controller.params.planner.cell_size = 0.1;  // 200 x 200 planning cells
+         s.robot().controller.planner.kind = PlannerKind::AStar;
+         s.robot().controller.planner.cell_size = 0.1;  // 200 x 200 planning cells
          time_stepping(s, budget, r);
        }},
       {"lidar180_50_polygons",

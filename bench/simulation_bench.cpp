@@ -77,8 +77,8 @@ BENCHMARK(BM_Step_QuickBot5Ir_50Polygons);
 const Scenario& quickbot_floor_planner() {
   static const Scenario s = [] {
     Scenario p = make_factory_floor_scenario(floor_world(0), 0);
-    p.robot().controller.params.planner.kind = PlannerKind::AStar;
-    p.robot().controller.params.planner.cell_size = 0.1;  // 200 x 200 planning cells
+    p.robot().controller.planner.kind = PlannerKind::AStar;
+    p.robot().controller.planner.cell_size = 0.1;  // 200 x 200 planning cells
     return p;
   }();
   return s;

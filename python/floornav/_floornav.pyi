@@ -102,8 +102,9 @@ class SafetyParams:
     def __init__(self) -> None: ...
     def to_dict(self) -> dict[str, Any]: ...
 
-class NavigationParams:
-    fields: tuple[str, ...]
+# Stub-only bases: the key groups that NavigationParams and RobotAvoidanceParams have alone and
+# that ControllerConfig has flattened into it (no such base classes exist at run time).
+class _ChapterKeys:
     v0: float
     gtg_a: float
     d_o: float
@@ -122,15 +123,35 @@ class NavigationParams:
     slow_when_turning: bool
     chatter_switches: int
     chatter_window: float
+    pid: PidGains
+
+class _AvoidanceKeys:
+    robot_avoidance: str
     avoidance_range: float
     avoidance_horizon: float
     avoidance_margin: float
-    pid: PidGains
+
+class NavigationParams(_ChapterKeys):
+    fields: tuple[str, ...]
+    def __init__(self) -> None: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+class RobotAvoidanceParams(_AvoidanceKeys):
+    fields: tuple[str, ...]
+    def __init__(self) -> None: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+class ControllerConfig(_ChapterKeys, _AvoidanceKeys):
+    fields: tuple[str, ...]
+    @property
+    def kind(self) -> str: ...
     planner: PlannerParams
     dwa: DwaParams
     safety: SafetyParams
     def __init__(self) -> None: ...
     def to_dict(self) -> dict[str, Any]: ...
+
+def controller_kinds() -> dict[str, str]: ...
 
 class SimConfig:
     fields: tuple[str, ...]
@@ -139,8 +160,11 @@ class SimConfig:
     seed: int
     stuck_window: float
     stuck_radius: float
+    deadlock_window: float
+    livelock_window: float
     record_trajectory: bool
     park_finished: bool
+    record_ranges_every: int
     def __init__(self) -> None: ...
     def to_dict(self) -> dict[str, Any]: ...
 
@@ -265,6 +289,8 @@ class Scenario:
     def robots(self) -> list[dict[str, Any]]: ...
     @property
     def params(self) -> NavigationParams: ...
+    @property
+    def controller(self) -> ControllerConfig: ...
     @property
     def world(self) -> dict[str, Any]: ...
     def with_controller(self, controller: Any = None, *, factory: Optional[Callable[[dict], Any]] = None,

@@ -5,12 +5,14 @@
 #include <pybind11/stl.h>
 
 #include <concepts>
-#include <cstddef>
+#include <optional>
 #include <string>
-#include <type_traits>
 
 #include "bindings.hpp"
+#include "floornav/core/enum_names.hpp"
+#include "floornav/core/param_fields.hpp"
 #include "floornav/nav/behaviours.hpp"
+#include "floornav/nav/controller_registry.hpp"
 #include "floornav/nav/navigation_automaton.hpp"
 #include "floornav/nav/navigation_params.hpp"
 #include "floornav/sim/sim_config.hpp"
@@ -19,83 +21,66 @@ namespace floornav::python {
 
 namespace {
 
-// An enumeration field is a string in Python: its name as a scenario file spells it (enum_names,
-// found by ADL).
-template <class E>
-std::string enum_name(E value) {
-  for (const auto& [v, name] : enum_names(E{}))
-    if (v == value) return std::string(name);
-  return "unknown";
-}
-
-template <class E>
+// An enumeration field is a string in Python: its name as a scenario file spells it
+// (core/enum_names.hpp).
+template <NamedEnum E>
 E enum_from(const std::string& text, const char* field) {
-  std::string known;
-  for (const auto& [v, name] : enum_names(E{})) {
-    if (name == text) return v;
-    known += (known.empty() ? "" : ", ") + std::string(name);
-  }
-  throw py::value_error(fmt::format("{}: unknown value '{}' (expected {})", field, text, known));
+  if (const std::optional<E> value = parse_enum<E>(text)) return *value;
+  throw py::value_error(
+      fmt::format("{}: unknown value '{}' (expected {})", field, text, enum_choices<E>()));
 }
 
-// Binds every field a parameter struct lists in serialize(Archive&) as a Python property, so
-// that a field added to the struct appears in Python without touching this file. A field is
-// reached by its offset in the struct (measured once on a default instance).
-template <class Owner>
+// Binds every field of a parameter struct's listing (core/param_fields.hpp) as a Python property
+// through its member pointer, so that a field added to the struct appears in Python without
+// touching this file. `access` leads from the bound class to the struct whose fields are listed
+// (itself, or a struct flattened into it).
+template <class Owner, class Access>
 class PropertyBinder {
  public:
-  PropertyBinder(py::class_<Owner>& cls, std::vector<std::string>& names)
-      : cls_(cls), names_(names) {}
+  PropertyBinder(py::class_<Owner>& cls, std::vector<std::string>& names, Access access)
+      : cls_(cls), names_(names), access_(access) {}
 
-  template <class T>
-  void operator()(const char* name, T& field, const char* doc) {
-    const std::ptrdiff_t offset =
-        reinterpret_cast<const char*>(&field) - reinterpret_cast<const char*>(&base_);
+  template <class Holder, class T>
+  void operator()(const char* name, T Holder::*member, const char* doc) {
     names_.push_back(name);
-    if constexpr (std::is_enum_v<T>) {
+    const Access access = access_;
+    if constexpr (NamedEnum<T>) {
       cls_.def_property(
           name,
-          [offset](const Owner& o) {
-            return enum_name(
-                *reinterpret_cast<const T*>(reinterpret_cast<const char*>(&o) + offset));
-          },
-          [offset, name](Owner& o, const std::string& value) {
-            *reinterpret_cast<T*>(reinterpret_cast<char*>(&o) + offset) = enum_from<T>(value, name);
+          [access, member](const Owner& o) { return std::string(to_string(access(o).*member)); },
+          [access, member, name](Owner& o, const std::string& value) {
+            access(o).*member = enum_from<T>(value, name);
           },
           doc);
     } else {
       cls_.def_property(
-          name,
-          [offset](const Owner& o) {
-            return *reinterpret_cast<const T*>(reinterpret_cast<const char*>(&o) + offset);
-          },
-          [offset](Owner& o, T value) {
-            *reinterpret_cast<T*>(reinterpret_cast<char*>(&o) + offset) = value;
-          },
-          doc);
+          name, [access, member](const Owner& o) { return access(o).*member; },
+          [access, member](Owner& o, T value) { access(o).*member = value; }, doc);
     }
   }
-  template <class Section>
-  void section(const char* name, Section& field) {
-    const std::ptrdiff_t offset =
-        reinterpret_cast<const char*>(&field) - reinterpret_cast<const char*>(&base_);
+  template <class Holder, class Section>
+  void section(const char* name, Section Holder::*member) {
     names_.push_back(name);
+    const Access access = access_;
     cls_.def_property(
-        name,
-        [offset](Owner& o) -> Section& {
-          return *reinterpret_cast<Section*>(reinterpret_cast<char*>(&o) + offset);
-        },
-        [offset](Owner& o, const Section& value) {
-          *reinterpret_cast<Section*>(reinterpret_cast<char*>(&o) + offset) = value;
-        },
+        name, [access, member](Owner& o) -> Section& { return access(o).*member; },
+        [access, member](Owner& o, const Section& value) { access(o).*member = value; },
         py::return_value_policy::reference_internal);
   }
-  Owner& base() { return base_; }
+  template <class Holder, class Inner>
+  void flatten(Inner Holder::*member) {
+    const Access outer = access_;
+    const auto access = [ outer, member ](auto& o) -> auto& {
+      return outer(o).*member;
+    };
+    PropertyBinder<Owner, decltype(access)> inner(cls_, names_, access);
+    Inner::fields(inner);
+  }
 
  private:
   py::class_<Owner>& cls_;
   std::vector<std::string>& names_;
-  Owner base_{};
+  Access access_;
 };
 
 // Reads the fields into a dict (sections as nested dicts).
@@ -103,17 +88,17 @@ class DictWriter {
  public:
   explicit DictWriter(py::dict& d) : d_(d) {}
   template <class T>
-  void operator()(const char* name, T& field, const char*) {
-    if constexpr (std::is_enum_v<T>)
-      d_[name] = enum_name(field);
+  void operator()(const char* name, const T& field, const char*) {
+    if constexpr (NamedEnum<T>)
+      d_[name] = std::string(to_string(field));
     else
       d_[name] = field;
   }
   template <class Section>
-  void section(const char* name, Section& field) {
+  void section(const char* name, const Section& field) {
     py::dict sub;
     DictWriter w(sub);
-    field.serialize(w);
+    visit_fields(field, w);
     d_[name] = sub;
   }
 
@@ -122,29 +107,32 @@ class DictWriter {
 };
 
 template <class Owner>
+py::dict to_dict(const Owner& o) {
+  py::dict d;
+  DictWriter w(d);
+  visit_fields(o, w);
+  return d;
+}
+
+template <class Owner>
 void bind_params(py::class_<Owner>& cls) {
   std::vector<std::string> names;
-  PropertyBinder<Owner> binder(cls, names);
-  binder.base().serialize(binder);
+  const auto itself = [](auto& o) -> auto& {
+    return o;
+  };
+  PropertyBinder<Owner, decltype(itself)> binder(cls, names, itself);
+  Owner::fields(binder);
   cls.attr("fields") = py::tuple(py::cast(names));
   cls.def(py::init<>());
-  cls.def("to_dict", [](Owner& o) {
-    py::dict d;
-    DictWriter w(d);
-    o.serialize(w);
-    return d;
-  });
+  cls.def("to_dict", &to_dict<Owner>);
   if constexpr (std::equality_comparable<Owner>)
     cls.def("__eq__", [](const Owner& a, const Owner& b) { return a == b; });
   cls.def("__copy__", [](const Owner& o) { return Owner(o); });
   cls.def("__deepcopy__", [](const Owner& o, py::dict) { return Owner(o); });
-  cls.def("__repr__", [](Owner& o) {
-    py::dict d;
-    DictWriter w(d);
-    o.serialize(w);
+  cls.def("__repr__", [](const Owner& o) {
     std::string out = std::string(py::str(py::type::of(py::cast(o)).attr("__name__"))) + "(";
     bool first = true;
-    for (auto item : d) {
+    for (auto item : to_dict(o)) {
       out += fmt::format("{}{}={}", first ? "" : ", ", py::str(item.first).cast<std::string>(),
                          py::str(py::repr(item.second)).cast<std::string>());
       first = false;
@@ -182,11 +170,35 @@ void bind_behaviours(py::module_& m) {
       m, "SafetyParams",
       "The safety layer's `controller.safety:` section (docs/SAFETY.md): on by default.");
   bind_params(safety);
+  py::class_<RobotAvoidanceParams> avoidance(
+      m, "RobotAvoidanceParams",
+      "Robot-robot avoidance: the `robot_avoidance` and `avoidance_*` keys of a `controller:` "
+      "section.");
+  bind_params(avoidance);
   py::class_<NavigationParams> params(
       m, "NavigationParams",
-      "A robot's `controller:` section: speeds, the switching distances of Fig 5.11, the goal "
-      "radius, the heading PID (every key of docs/SCENARIOS.md, same names and units).");
+      "The chapter's keys of a robot's `controller:` section: speeds, the switching distances of "
+      "Fig 5.11, the goal radius, the heading PID (docs/SCENARIOS.md, same names and units).");
   bind_params(params);
+  py::class_<ControllerConfig> controller(
+      m, "ControllerConfig",
+      "A robot's whole `controller:` section but `kind`: the chapter's keys and the "
+      "robot_avoidance keys as attributes, and the planner, dwa and safety sections.");
+  bind_params(controller);
+  controller.def_property_readonly(
+      "kind", [](const ControllerConfig& c) { return c.kind; },
+      "controller.kind: a built-in kind (floornav.controller_kinds()) or a user's controller");
+  m.def(
+      "controller_kinds",
+      [] {
+        py::dict kinds;
+        for (const BuiltinController& b : builtin_controllers())
+          kinds[py::str(b.name.data(), b.name.size())] =
+              py::str(b.summary.data(), b.summary.size());
+        return kinds;
+      },
+      "The built-in controller kinds that `controller.kind` may name, each with a line saying what "
+      "it is.");
   py::class_<SimConfig> sim(
       m, "SimConfig", "A scenario's `sim:` section: dt, t_max, seed, stuck detection, recording.");
   bind_params(sim);

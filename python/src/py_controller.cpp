@@ -197,21 +197,7 @@ void bind_controllers(py::module_& m) {
       .def_static("stuck", &Command::stuck,
                   "The controller gives up (nothing it tried helped): the run ends `stuck`.")
       .def_property_readonly("kind",
-                             [](const Command& c) {
-                               switch (c.kind()) {
-                                 case Command::Kind::Velocity:
-                                   return "velocity";
-                                 case Command::Kind::Unicycle:
-                                   return "unicycle";
-                                 case Command::Kind::Wheels:
-                                   return "wheels";
-                                 case Command::Kind::GoalReached:
-                                   return "goal_reached";
-                                 case Command::Kind::Stuck:
-                                   return "stuck";
-                               }
-                               return "unknown";
-                             })
+                             [](const Command& c) { return std::string(to_string(c.kind())); })
       .def_property_readonly(
           "values",
           [](const Command& c) {

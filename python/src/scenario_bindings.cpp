@@ -256,7 +256,11 @@ void bind_scenario(py::module_& m) {
           "range, max range per beam).")
       .def_property_readonly(
           "params", [](const PyScenario& s) { return s.scenario.robot().controller.params; },
-          "The first robot's controller parameters (a copy).")
+          "The first robot's controller parameters, the chapter's keys (a copy).")
+      .def_property_readonly(
+          "controller", [](const PyScenario& s) { return s.scenario.robot().controller; },
+          "The first robot's whole controller section (a copy): kind, the chapter's and the "
+          "robot_avoidance keys, the planner, dwa and safety sections.")
       .def_property_readonly(
           "world", [](const PyScenario& s) { return world_dict(*s.scenario.world); },
           "The world: bounds, circles (x, y, r), polygons, segments (n, 4), "

@@ -16,7 +16,7 @@
 #include "floornav/automaton/hybrid_automaton.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/polygon.hpp"
-#include "floornav/nav/dwa_controller.hpp"
+#include "floornav/nav/controller_registry.hpp"
 #include "floornav/scenario/controller_presets.hpp"
 #include "floornav/scenario/presets.hpp"
 #include "floornav/scenario/validate.hpp"
@@ -411,24 +411,16 @@ void read_controller(const std::string& file, MapReader& r, ControllerConfig& c)
   if (r.has("kind")) {
     const YAML::Node n = r.get("kind");
     const std::string kind = io_detail::read_string(file, n, r.path_of("kind"));
-    const auto k = parse_controller_kind(kind);
-    if (!k && kind != kDwaKindName)
+    if (!find_builtin_controller(kind)) {
+      std::vector<std::string_view> names;
+      for (const BuiltinController& b : builtin_controllers()) names.push_back(b.name);
       fail(file, n, r.path_of("kind"),
-           fmt::format("unknown controller {} (expected hybrid, hard_switch, blended, "
-                       "go_to_goal or dwa)",
-                       quote_input(kind)));
+           fmt::format("unknown controller {}{} (expected {})", quote_input(kind),
+                       io_detail::did_you_mean(kind, names), builtin_controller_choices()));
+    }
     c.kind = kind;
   }
-  if (r.has("robot_avoidance")) {
-    const YAML::Node n = r.get("robot_avoidance");
-    const std::string name = io_detail::read_string(file, n, r.path_of("robot_avoidance"));
-    const auto a = parse_robot_avoidance(name);
-    if (!a)
-      fail(file, n, r.path_of("robot_avoidance"),
-           fmt::format("unknown robot avoidance '{}' (expected none or orca)", name));
-    c.params.robot_avoidance = *a;
-  }
-  c.params.serialize(r);
+  visit_fields(c, r);
   r.finish();
 }
 
@@ -639,7 +631,7 @@ Scenario read_scenario(const YAML::Node& root, const std::filesystem::path& orig
   }
   if (top.has("sim")) {
     MapReader r = top.sub("sim");
-    s.sim.serialize(r);
+    visit_fields(s.sim, r);
     r.finish();
   }
 

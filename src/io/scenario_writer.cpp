@@ -6,8 +6,11 @@
 #include <optional>
 #include <span>
 #include <string>
-#include <type_traits>
+#include <utility>
+#include <vector>
 
+#include "floornav/core/enum_names.hpp"
+#include "floornav/core/param_fields.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/robot/robot_spec.hpp"
 
@@ -17,37 +20,43 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-/// The parameter structs' serialize() archive that writes each field into a JSON object.
+/// The archive of visit_fields (core/param_fields.hpp) that writes each field into a JSON object:
+/// the values first, then the sections, each section a nested object.
 class JsonWriter {
  public:
   explicit JsonWriter(Json& out) : out_(out) {}
+
+  /// Writes the fields of `value` into the object, sections last.
   template <class T>
-  void operator()(const char* key, T& field, const char* /*doc*/) {
-    if constexpr (std::is_enum_v<T>) {
-      // An enumeration is written by its name, as the reader takes it (enum_names, found by ADL).
-      for (const auto& [value, name] : enum_names(T{}))
-        if (value == field) out_[key] = std::string(name);
-    } else {
+  void write(const T& value) {
+    visit_fields(value, *this);
+    for (auto& [key, j] : sections_) out_[key] = std::move(j);
+    sections_.clear();
+  }
+
+  template <class T>
+  void operator()(const char* key, const T& field, const char* /*doc*/) {
+    if constexpr (NamedEnum<T>)
+      out_[key] = std::string(to_string(field));  // by its name, as the reader takes it
+    else
       out_[key] = field;
-    }
   }
   template <class T>
-  void section(const char* key, T& sub) {
+  void section(const char* key, const T& sub) {
     Json j = Json::object();
-    JsonWriter w(j);
-    sub.serialize(w);
-    out_[key] = std::move(j);
+    JsonWriter(j).write(sub);
+    sections_.emplace_back(key, std::move(j));
   }
 
  private:
   Json& out_;
+  std::vector<std::pair<const char*, Json>> sections_;
 };
 
 template <class T>
-Json fields_of(T value) {  // by value: serialize() takes a non-const reference
+Json fields_of(const T& value) {
   Json j = Json::object();
-  JsonWriter w(j);
-  value.serialize(w);
+  JsonWriter(j).write(value);
   return j;
 }
 
@@ -168,9 +177,10 @@ void put_goals(Json& j, const std::vector<Vec2>& goals) {
 Json controller_json(const ControllerConfig& c) {
   Json j = Json::object();
   j["kind"] = c.kind;
-  j["robot_avoidance"] = std::string(to_string(c.params.robot_avoidance));
-  const Json params = fields_of(c.params);
-  for (const auto& [k, v] : params.items()) j[k] = v;
+  // summary.json's config has always led with the kind and robot_avoidance: a key placed here
+  // keeps its place when the listing writes its value.
+  j["robot_avoidance"] = nullptr;
+  JsonWriter(j).write(c);
   return j;
 }
 

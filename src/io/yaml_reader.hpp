@@ -13,9 +13,11 @@
 #include <type_traits>
 #include <vector>
 
+#include "floornav/core/enum_names.hpp"
 #include "floornav/core/input_error.hpp"
+#include "floornav/core/param_fields.hpp"
 #include "floornav/geometry/vec2.hpp"
-#include "maps/text_parse.hpp"  // kMaxInputMagnitude
+#include "maps/text_parse.hpp"  // kMaxInputMagnitude, did_you_mean
 
 namespace floornav::io_detail {
 
@@ -66,34 +68,26 @@ class MapReader {
   /// Throws for the first key not read, with a suggestion when one is close.
   void finish() const;
 
-  // The Archive interface used by the parameter structs' serialize().
+  // The archive of visit_fields (core/param_fields.hpp): the parameter structs' fields.
   void operator()(const char* key, double& field, const char* /*doc*/);
   void operator()(const char* key, int& field, const char* /*doc*/);
   void operator()(const char* key, bool& field, const char* /*doc*/);
   void operator()(const char* key, std::uint64_t& field, const char* /*doc*/);
-  /// An enumeration named by a string; `enum_names(E{})` (found by ADL) lists the names.
-  template <class E>
-  requires std::is_enum_v<E>
+  /// An enumeration named by a string (core/enum_names.hpp).
+  template <NamedEnum E>
   void operator()(const char* key, E& field, const char* /*doc*/) {
-    if (!has(key)) {
-      known_.insert(key);
-      return;
-    }
+    if (!has(key)) return;
     const YAML::Node n = get(key);
     const std::string text = read_string(file_, n, path_of(key));
-    std::string expected;
-    const auto names = enum_names(E{});
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      if (names[i].second == text) {
-        field = names[i].first;
-        return;
-      }
-      expected += (i == 0                  ? ""
-                   : i + 1 == names.size() ? " or "
-                                           : ", ") +
-                  std::string(names[i].second);
+    const std::optional<E> value = parse_enum<E>(text);
+    if (!value) {
+      std::vector<std::string_view> names;
+      for (const EnumName<E>& e : enum_names(E{})) names.push_back(e.name);
+      fail(file_, n, path_of(key),
+           "unknown value '" + text + "'" + did_you_mean(text, names) + " (expected " +
+               enum_choices<E>() + ")");
     }
-    fail(file_, n, path_of(key), "unknown value '" + text + "' (expected " + expected + ")");
+    field = *value;
   }
   /// A section's mapping; a section that can be switched off (it has `enabled`) may also be given
   /// as one word, `on` or `off` (`controller.safety: off`).
@@ -108,7 +102,7 @@ class MapReader {
       }
     }
     MapReader r = sub(key);
-    sub_struct.serialize(r);
+    visit_fields(sub_struct, r);
     r.finish();
   }
 

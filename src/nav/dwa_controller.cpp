@@ -74,11 +74,9 @@ double dwa_score(const DwaParams& p, double heading_error, double dist, double v
   return p.heading * heading + p.clearance * clearance + p.velocity * velocity;
 }
 
-DwaController::DwaController(const NavigationParams& params, const RobotSpec& robot)
-    : Controller({"dwa", "dwa_brake", mode_names::kStop}),
-      nav_(params),
-      p_(params.dwa),
-      robot_(&robot) {
+DwaController::DwaController(const NavigationParams& params, const DwaParams& dwa,
+                             const RobotSpec& robot)
+    : Controller({"dwa", "dwa_brake", mode_names::kStop}), nav_(params), p_(dwa), robot_(&robot) {
   const DiffDriveParams& d = robot.drive;
   v_max_ = std::min(params.v0, max_forward_speed(d));
   w_max_ = max_turn_rate(d);

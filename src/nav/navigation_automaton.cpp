@@ -1,31 +1,8 @@
 #include "floornav/nav/navigation_automaton.hpp"
 
-#include <array>
 #include <cmath>
 
 namespace floornav {
-
-namespace {
-constexpr std::array<std::pair<ControllerKind, std::string_view>, 4> kKindNames{{
-    {ControllerKind::GoToGoal, "go_to_goal"},
-    {ControllerKind::HardSwitch, "hard_switch"},
-    {ControllerKind::Blended, "blended"},
-    {ControllerKind::Hybrid, "hybrid"},
-}};
-
-}  // namespace
-
-std::optional<ControllerKind> parse_controller_kind(std::string_view name) {
-  for (const auto& [kind, text] : kKindNames)
-    if (text == name) return kind;
-  return std::nullopt;
-}
-
-std::string_view to_string(ControllerKind kind) {
-  for (const auto& [k, text] : kKindNames)
-    if (k == kind) return text;
-  return "unknown";
-}
 
 NavigationAutomaton make_navigation_automaton(ControllerKind kind, const NavigationParams& p) {
   using In = NavigationInput;

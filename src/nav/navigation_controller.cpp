@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "floornav/nav/dwa_controller.hpp"
+#include "floornav/nav/controller_registry.hpp"
 #include "floornav/nav/planner_controller.hpp"
 #include "floornav/nav/robot_avoidance.hpp"
 
@@ -41,23 +41,29 @@ Decision NavigationController::decide(const Observation& obs) {
   return {Command::velocity(automaton_->flow(in, state_)), state_.mode, guard};
 }
 
+std::shared_ptr<const NavigationAutomaton> SharedAutomata::get(ControllerKind kind,
+                                                               const NavigationParams& p) {
+  for (const Built& b : built_)
+    if (b.kind == kind && b.params == p) return b.automaton;
+  built_.push_back(
+      {kind, p, std::make_shared<const NavigationAutomaton>(make_navigation_automaton(kind, p))});
+  return built_.back().automaton;
+}
+
 namespace {
-ControllerKind builtin_kind(const ControllerConfig& config) {
-  const auto kind = parse_controller_kind(config.kind);
-  if (!kind)
+const BuiltinController& builtin_of(const ControllerConfig& config) {
+  const BuiltinController* builtin = find_builtin_controller(config.kind);
+  if (!builtin)
     throw std::invalid_argument("'" + config.kind +
                                 "' is no built-in controller kind, and no factory is given");
-  return *kind;
+  return *builtin;
 }
 }  // namespace
 
-std::unique_ptr<Controller> make_builtin_controller(const ControllerConfig& config) {
-  if (config.kind == kDwaKindName)
-    throw std::invalid_argument("the dwa controller needs its robot: use ControllerMaker");
-  return std::make_unique<NavigationController>(
-      std::make_shared<const NavigationAutomaton>(
-          make_navigation_automaton(builtin_kind(config), config.params)),
-      config.params);
+std::unique_ptr<Controller> make_builtin_controller(const ControllerConfig& config,
+                                                    const ControllerContext& context) {
+  SharedAutomata automata;
+  return builtin_of(config).make(config, context, automata);
 }
 
 ControllerMaker::ControllerMaker() = default;
@@ -67,24 +73,24 @@ std::unique_ptr<Controller> ControllerMaker::make(const ControllerConfig& config
                                                   const ControllerContext& context) {
   auto controller = make_planned(config, context);
   // Robot avoidance is the outermost layer: it bends whatever velocity the controller wants.
-  if (config.params.robot_avoidance == RobotAvoidance::Orca)
-    return make_orca_layer(std::move(controller), context.robot);
+  if (config.avoidance.kind == RobotAvoidance::Orca)
+    return make_orca_layer(std::move(controller), context.robot, config.avoidance);
   return controller;
 }
 
 std::unique_ptr<Controller> ControllerMaker::make_planned(const ControllerConfig& config,
                                                           const ControllerContext& context) {
-  if (config.params.planner.kind == PlannerKind::None || config.factory)
+  if (config.planner.kind == PlannerKind::None || config.factory)
     return make_reactive(config, context);
   // The planning layer over the reactive kind. The inner automaton's goal radius shrinks: its
   // goals are subgoals, and the planner itself stops at the real goal's epsilon.
   ControllerConfig inner = config;
-  inner.params.planner = PlannerParams{};
+  inner.planner = PlannerParams{};
   inner.params.epsilon = std::min(config.params.epsilon, 0.5 * context.robot.body_radius);
   // "Clear shot" (eq. 5.27) becomes a free corridor to the subgoal (the clear_shot_corridor
   // extension): a wall beside the planned way is not in the way, only what lies across it.
   if (!(inner.params.clear_shot_corridor > 0.0)) {
-    const PlannerParams& pp = config.params.planner;
+    const PlannerParams& pp = config.planner;
     inner.params.clear_shot_corridor =
         pp.lookahead > 0.0 ? pp.lookahead : 6.0 * context.robot.body_radius;
   }
@@ -92,6 +98,7 @@ std::unique_ptr<Controller> ControllerMaker::make_planned(const ControllerConfig
   PlannerController::Setup setup;
   setup.inner = make_reactive(inner, context);
   setup.params = config.params;
+  setup.planner = config.planner;
   setup.robot = &context.robot;
   setup.map = context.map;
   setup.rasters = rasters_;
@@ -101,8 +108,6 @@ std::unique_ptr<Controller> ControllerMaker::make_planned(const ControllerConfig
 
 std::unique_ptr<Controller> ControllerMaker::make_reactive(const ControllerConfig& config,
                                                            const ControllerContext& context) {
-  if (config.kind == kDwaKindName && !config.factory)
-    return std::make_unique<DwaController>(config.params, context.robot);
   if (config.factory) {
     auto controller = config.factory(context);
     if (!controller)
@@ -110,14 +115,7 @@ std::unique_ptr<Controller> ControllerMaker::make_reactive(const ControllerConfi
                                   "' made no controller");
     return controller;
   }
-  const ControllerKind kind = builtin_kind(config);
-  for (const Built& b : built_)
-    if (b.kind == kind && b.params == config.params)
-      return std::make_unique<NavigationController>(b.automaton, config.params);
-  built_.push_back({kind, config.params,
-                    std::make_shared<const NavigationAutomaton>(
-                        make_navigation_automaton(kind, config.params))});
-  return std::make_unique<NavigationController>(built_.back().automaton, config.params);
+  return builtin_of(config).make(config, context, automata_);
 }
 
 }  // namespace floornav

@@ -81,13 +81,13 @@ PlannerController::PlannerController(Setup setup)
                  with(setup.inner->guard_names(), {"progress_stalled", "no_path", "recovered"})),
       inner_(std::move(setup.inner)),
       nav_(setup.params),
-      p_(setup.params.planner),
+      p_(setup.planner),
       robot_(setup.robot),
       map_(setup.map),
       rasters_(setup.rasters ? setup.rasters : std::make_shared<KnownMapRasters>()),
       seed_(setup.seed),
       rrt_connect_(rrt_connect_search()),
-      progress_(setup.params.planner.progress_window, 0.0) {
+      progress_(setup.planner.progress_window, 0.0) {
   if (!robot_) throw std::invalid_argument("planner: no robot");
   // rrt_connect_path's precondition, checked here so that a plan in the step loop never throws.
   if (p_.max_samples > kMaxRrtConnectSamples)

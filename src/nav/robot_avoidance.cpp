@@ -115,16 +115,6 @@ void program_3d(std::span<const OrcaLine> lines, std::size_t hard, std::size_t b
 
 }  // namespace
 
-std::optional<RobotAvoidance> parse_robot_avoidance(std::string_view name) {
-  if (name == "none") return RobotAvoidance::None;
-  if (name == "orca") return RobotAvoidance::Orca;
-  return std::nullopt;
-}
-
-std::string_view to_string(RobotAvoidance avoidance) {
-  return avoidance == RobotAvoidance::Orca ? "orca" : "none";
-}
-
 OrcaLine orca_line(const Vec2& p, const Vec2& v_a, const Vec2& v_b, double r, double tau, double dt,
                    double responsibility) {
   const Vec2 v = v_a - v_b;
@@ -260,8 +250,11 @@ OrcaWork& thread_orca_work() {
 
 class OrcaLayer final : public Controller {
  public:
-  OrcaLayer(std::unique_ptr<Controller> inner, const RobotSpec& robot)
-      : Controller(inner->mode_names(), inner->guard_names()), inner_(std::move(inner)) {
+  OrcaLayer(std::unique_ptr<Controller> inner, const RobotSpec& robot,
+            const RobotAvoidanceParams& params)
+      : Controller(inner->mode_names(), inner->guard_names()),
+        inner_(std::move(inner)),
+        params_(params) {
     thread_orca_work().fit(robot.sensors.size() + ObstacleMemory::kCapacity);
   }
 
@@ -307,8 +300,7 @@ class OrcaLayer final : public Controller {
     for (const NearbyRobot& b : obs.robots) {
       if (!b.moving) continue;
       lines.push_back(orca_line(b.position - x, obs.velocity, b.velocity,
-                                r_self + b.radius + p.avoidance_margin, p.avoidance_horizon, obs.dt,
-                                0.5));
+                                r_self + b.radius + params_.margin, params_.horizon, obs.dt, 0.5));
     }
     // Keep right, as at a roundabout: a robot that the others hold back turns its preferred
     // velocity to the right, the more the longer it is held (and back as it gets free), so that
@@ -336,14 +328,16 @@ class OrcaLayer final : public Controller {
 
  private:
   std::unique_ptr<Controller> inner_;
+  RobotAvoidanceParams params_;
   double bias_{0.0};  ///< rad: how far right the preferred velocity is turned (keep right)
 };
 
 }  // namespace
 
 std::unique_ptr<Controller> make_orca_layer(std::unique_ptr<Controller> inner,
-                                            const RobotSpec& robot) {
-  return std::make_unique<OrcaLayer>(std::move(inner), robot);
+                                            const RobotSpec& robot,
+                                            const RobotAvoidanceParams& params) {
+  return std::make_unique<OrcaLayer>(std::move(inner), robot, params);
 }
 
 }  // namespace floornav

@@ -201,8 +201,7 @@ bool is_result_line(const Json& j) {
   if (!j.is_object() || !j.contains("case") || !j["case"].is_number_unsigned()) return false;
   const auto status = j.find("status");
   if (status == j.end() || !status->is_string()) return false;
-  const std::string s = status->get<std::string>();
-  if (s != "reached" && s != "collision" && s != "timeout" && s != "stuck") return false;
+  if (!parse_enum<RunStatus>(status->get<std::string>())) return false;
   const auto time = j.find("sim_time");
   return time != j.end() && time->is_number() && j.contains("source") && j["source"].is_string();
 }

@@ -9,24 +9,23 @@ constexpr std::array<std::string_view, 2> kNames{"factory", "chapter"};
 }  // namespace
 
 bool apply_controller_preset(std::string_view name, ControllerConfig& config) {
-  NavigationParams& p = config.params;
   if (name == "factory") {
     config.kind = "hybrid";
-    p.planner.kind = PlannerKind::AStar;
-    p.planner.map = PlannerMap::Known;
+    config.planner.kind = PlannerKind::AStar;
+    config.planner.map = PlannerMap::Known;
     // The safety layer is every robot's guard: the planner's own footprint guard, which passes
     // unicycle commands that ORCA cannot bend, stays off (BARN's template turns it on).
-    p.planner.guard_horizon = 0.0;
-    p.safety.enabled = true;
-    p.robot_avoidance = RobotAvoidance::Orca;
+    config.planner.guard_horizon = 0.0;
+    config.safety.enabled = true;
+    config.avoidance.kind = RobotAvoidance::Orca;
     return true;
   }
   if (name == "chapter") {
     config.kind = "hybrid";
-    p.planner.kind = PlannerKind::None;
-    p.planner.guard_horizon = 0.0;
-    p.safety.enabled = false;
-    p.robot_avoidance = RobotAvoidance::None;
+    config.planner.kind = PlannerKind::None;
+    config.planner.guard_horizon = 0.0;
+    config.safety.enabled = false;
+    config.avoidance.kind = RobotAvoidance::None;
     return true;
   }
   return false;

@@ -84,7 +84,7 @@ RobotTask draw_robot(Rng& rng, bool mixed, int index, const RobotTask* given) {
         kKinds[static_cast<std::size_t>(uniform_int(rng, 0, kKinds.size() - 1))];
     if (kind == "astar") {
       t.controller.kind = "hybrid";
-      t.controller.params.planner.kind = PlannerKind::AStar;
+      t.controller.planner.kind = PlannerKind::AStar;
     } else {
       t.controller.kind = std::string(kind);
     }

@@ -9,6 +9,7 @@
 #include "floornav/automaton/hybrid_automaton.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/kinematics/differential_drive.hpp"
+#include "floornav/nav/controller_registry.hpp"
 #include "floornav/nav/dwa_controller.hpp"
 #include "floornav/nav/navigation_params.hpp"
 #include "floornav/nav/sampling_planner.hpp"
@@ -141,8 +142,16 @@ void validate_safety(const SafetyParams& p, const RobotKeys& k) {
     bad("person_margin", fmt::format("must be in [0, 5] m, got {}", p.person_margin));
 }
 
-// The controller section: the guards of Fig 5.11 need d_unsafe < d_fb < d_o, ...
-void validate_controller(const NavigationParams& n, const RobotKeys& k) {
+// controller.robot_avoidance and avoidance_*.
+void validate_avoidance(const RobotAvoidanceParams& a, const RobotKeys& k) {
+  auto bad = [&](const char* key, const std::string& what) { k.fail(k.controller(key), what); };
+  if (!(a.range > 0.0) || a.range > 1000.0) bad("avoidance_range", "must be in (0, 1000] m");
+  if (!(a.horizon > 0.0)) bad("avoidance_horizon", "must be positive");
+  if (!(a.margin >= 0.0)) bad("avoidance_margin", "must not be negative");
+}
+
+// The chapter's keys: the guards of Fig 5.11 need d_unsafe < d_fb < d_o, ...
+void validate_navigation(const NavigationParams& n, const RobotKeys& k) {
   auto bad = [&](const char* key, const std::string& what) { k.fail(k.controller(key), what); };
   if (!(n.v0 > 0.0)) bad("v0", "must be positive");
   if (!(n.gtg_a > 0.0)) bad("gtg_a", "must be positive");
@@ -169,38 +178,26 @@ void validate_controller(const NavigationParams& n, const RobotKeys& k) {
   if (!(n.heading_pid.kd >= 0.0)) bad("pid.kd", "must not be negative");
   if (!(n.heading_pid.integral_limit >= 0.0)) bad("pid.integral_limit", "must not be negative");
   if (!(n.obstacle_range >= 0.0)) bad("obstacle_range", "must not be negative (0: use all)");
-  validate_planner(n.planner, k);
-  validate_dwa(n.dwa, k);
-  validate_safety(n.safety, k);
-  if (!(n.avoidance_range > 0.0) || n.avoidance_range > 1000.0)
-    bad("avoidance_range", "must be in (0, 1000] m");
-  if (!(n.avoidance_horizon > 0.0)) bad("avoidance_horizon", "must be positive");
-  if (!(n.avoidance_margin >= 0.0)) bad("avoidance_margin", "must not be negative");
 }
 
-// controller.kind dwa: the work of a step is bounded before the controller is made (its discs,
-// its roll-outs): a sliver footprint or a fine roll-out of many samples is refused, not run.
-void validate_dwa_work(const RobotTask& t, const RobotKeys& k) {
-  const double discs = dwa_footprint_discs(t.robot.footprint);
-  if (discs > kMaxDwaFootprintDiscs)
-    k.fail(k.robot("footprint"),
-           fmt::format("is {:.3g} times as long as it is wide: the dwa controller would cover it "
-                       "with as many discs, more than the {} allowed",
-                       discs, kMaxDwaFootprintDiscs));
-  const DwaParams& p = t.controller.params.dwa;
-  const double poses = dwa_roll_out_poses(p);
-  const double checks = static_cast<double>(p.v_samples) * p.omega_samples * poses * discs;
-  if (checks > kMaxDwaChecksPerStep)
-    k.fail(k.controller("dwa"),
-           fmt::format("v_samples x omega_samples x horizon / sim_step x footprint discs = "
-                       "{} x {} x {:.6g} x {:.6g} = {:.3g} footprint checks a step, more than the "
-                       "{:.0e} allowed: fewer samples, a shorter horizon or a longer sim_step",
-                       p.v_samples, p.omega_samples, poses, discs, checks, kMaxDwaChecksPerStep));
+// The controller section, layer by layer, then what its kind checks (nav/controller_registry.hpp).
+void validate_controller(const RobotTask& t, const RobotKeys& k) {
+  const ControllerConfig& c = t.controller;
+  validate_navigation(c.params, k);
+  validate_planner(c.planner, k);
+  validate_dwa(c.dwa, k);
+  validate_safety(c.safety, k);
+  validate_avoidance(c.avoidance, k);
+  const BuiltinController* builtin = c.is_builtin() ? find_builtin_controller(c.kind) : nullptr;
+  if (builtin && builtin->check)
+    if (const auto problem = builtin->check(c, t.robot))
+      k.fail(problem->robot_key ? k.robot(problem->key) : k.controller(problem->key),
+             problem->what);
 }
 
 // m: a robot's protective field (0 with the safety layer off).
 double field_of(const RobotTask& t) {
-  return t.controller.params.safety.enabled ? t.controller.params.safety.margin : 0.0;
+  return t.controller.safety.enabled ? t.controller.safety.margin : 0.0;
 }
 
 void validate_robot(const RobotTask& t, const World& w, const SimConfig& sim, const RobotKeys& k) {
@@ -222,8 +219,7 @@ void validate_robot(const RobotTask& t, const World& w, const SimConfig& sim, co
   if (!(r.max_acceleration > 0.0)) k.fail(k.robot("max_acceleration"), "must be positive");
   if (!(r.max_angular_acceleration > 0.0))
     k.fail(k.robot("max_angular_acceleration"), "must be positive");
-  validate_controller(t.controller.params, k);
-  if (t.controller.is_builtin() && t.controller.kind == kDwaKindName) validate_dwa_work(t, k);
+  validate_controller(t, k);
 
   // Without bounds a map is the whole world: off the map is unknown space, not free floor.
   Vec2 map_lo, map_hi;

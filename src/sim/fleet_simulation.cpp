@@ -50,20 +50,6 @@ constexpr std::size_t kRobotsPerChunk = 16;
 
 }  // namespace
 
-std::string_view to_string(ContactKind kind) {
-  switch (kind) {
-    case ContactKind::World:
-      return "world";
-    case ContactKind::Robot:
-      return "robot";
-    case ContactKind::Person:
-      return "person";
-    case ContactKind::Forklift:
-      return "forklift";
-  }
-  return "unknown";
-}
-
 FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> robots,
                                  const SimConfig& sim, std::string name, const CrowdSpec* crowd)
     : world_(world), tasks_(robots), sim_(sim), name_(std::move(name)) {
@@ -97,15 +83,15 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     max_sensors = std::max(max_sensors, t.robot.sensors.size());
     top_step_.push_back(max_forward_speed(t.robot.drive) * sim_.dt);
     max_top_step_ = std::max(max_top_step_, top_step_.back());
-    if (t.controller.params.safety.enabled) {
+    if (t.controller.safety.enabled) {
       safety_on_.resize(n, 0);
       safety_reach_.resize(n, 0.0);
       safety_on_[i] = 1;
-      safety_reach_[i] = safety_reach(t.robot, t.controller.params.safety, sim_.dt);
+      safety_reach_[i] = safety_reach(t.robot, t.controller.safety, sim_.dt);
     }
-    if (t.controller.params.robot_avoidance != RobotAvoidance::None) {
+    if (t.controller.avoidance.kind != RobotAvoidance::None) {
       tell_range_.resize(n, 0.0);
-      tell_range_[i] = t.controller.params.avoidance_range;
+      tell_range_[i] = t.controller.avoidance.range;
     }
     for (const RangeSensorSpec& sensor : t.robot.sensors)
       rays_per_step_ += static_cast<std::size_t>(std::max(sensor.cone_rays, 1));
@@ -288,7 +274,7 @@ void FleetSimulation::gather_safety_bodies(std::size_t i, SensingScratch& scratc
   });
   if (crowd_)
     crowd_->safety_bodies_near(p, radius_[i] + gap_reach, sim_.dt,
-                               agents_[i].params().safety.person_margin, scratch);
+                               tasks_[i].controller.safety.person_margin, scratch);
 }
 
 void FleetSimulation::prepare_contacts() {

@@ -57,7 +57,8 @@ RobotAgent::RobotAgent(AgentSetup setup)
       log_transitions_(setup.log_transitions) {
   controller_->reset();
   mode_ = controller_->mode();
-  if (nav_->safety.enabled) safety_.emplace(*robot_, nav_->safety, sim_->dt);
+  if (const SafetyParams& safety = setup.task->controller.safety; safety.enabled)
+    safety_.emplace(*robot_, safety, sim_->dt);
   const std::size_t n_sensors = robot_->sensors.size();
   use_memory_ = nav_->obstacle_memory > 0.0 && n_sensors <= kMaxSensorsForMemory;
   stuck_radius_ = sim_->stuck_radius > 0.0 ? sim_->stuck_radius : robot_->body_radius;
@@ -188,7 +189,7 @@ void RobotAgent::guard(const SensingScratch& scratch, WheelSpeeds& wheels,
   SafetyScene scene;
   scene.discs = {scratch.safety_discs.data(), scratch.safety_disc_count};
   scene.boxes = {scratch.safety_boxes.data(), scratch.safety_box_count};
-  if (nav_->safety.map == SafetyMap::Known) {
+  if (safety_->params().map == SafetyMap::Known) {
     scene.world = world_;
     // A disc body's clearance bound is kept up to date every step; a footprint's is exact.
     scene.world_clearance = clearance_bound_;

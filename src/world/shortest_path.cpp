@@ -858,22 +858,6 @@ std::vector<Vec2> pull_string(const FreeRaster& raster, std::span<const Vec2> po
   return out;
 }
 
-std::string_view to_string(OptimumStatus s) {
-  switch (s) {
-    case OptimumStatus::Found:
-      return "found";
-    case OptimumStatus::Unreachable:
-      return "unreachable";
-    case OptimumStatus::NoFreeCell:
-      return "no_free_cell";
-    case OptimumStatus::RasterTooLarge:
-      return "raster_too_large";
-    case OptimumStatus::InvalidInput:
-      return "invalid_input";
-  }
-  return "invalid_input";
-}
-
 namespace {
 
 bool valid_route(const Vec2& start, std::span<const Vec2> goals) {

@@ -167,6 +167,7 @@ TEST(NavigationAutomaton, KindsHaveTheirModes) {
             (std::vector<std::string>{"go_to_goal", "avoid_obstacle", "stop"}));
   EXPECT_EQ(names(ControllerKind::Blended), (std::vector<std::string>{"blended", "stop"}));
   EXPECT_EQ(names(ControllerKind::Hybrid).size(), 5u);
-  EXPECT_EQ(parse_controller_kind("hard_switch"), ControllerKind::HardSwitch);
-  EXPECT_FALSE(parse_controller_kind("bug2"));
+  EXPECT_EQ(parse_enum<ControllerKind>("hard_switch"), ControllerKind::HardSwitch);
+  EXPECT_FALSE(parse_enum<ControllerKind>("bug2"));
+  EXPECT_EQ(to_string(ControllerKind::GoToGoal), "go_to_goal");
 }

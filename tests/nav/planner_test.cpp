@@ -215,11 +215,11 @@ struct PlannerRig {
   explicit PlannerRig(WorldDesc desc = {}) {
     if (!desc.bounds) desc.bounds = Box2{Vec2(0, 0), Vec2(4, 4)};
     world = std::make_shared<World>(std::move(desc));
-    nav.planner.kind = PlannerKind::AStar;
-    nav.planner.progress_window = 2.0;
-    nav.planner.max_recoveries = 2;
     ControllerConfig cfg;
     cfg.params = nav;
+    cfg.planner.kind = PlannerKind::AStar;
+    cfg.planner.progress_window = 2.0;
+    cfg.planner.max_recoveries = 2;
     c = ControllerMaker().make(cfg, {robot, nav, "r", 0, world.get()});
   }
   Decision at(const Pose2& pose, double t, const Vec2& goal = Vec2(3.5, 2.0)) {
@@ -320,10 +320,10 @@ TEST(PlannerController, RefusesASampleBudgetAboveTheLimitWhenMade) {
   WorldDesc desc;
   desc.bounds = Box2{Vec2(0, 0), Vec2(4, 4)};
   const World world(std::move(desc));
-  nav.planner.kind = PlannerKind::RrtConnect;
   ControllerConfig cfg;
   cfg.params = nav;
-  cfg.params.planner.max_samples = kMaxRrtConnectSamples + 1;
+  cfg.planner.kind = PlannerKind::RrtConnect;
+  cfg.planner.max_samples = kMaxRrtConnectSamples + 1;
   EXPECT_THROW(ControllerMaker().make(cfg, {robot, cfg.params, "r", 0, &world}),
                std::invalid_argument);
   // At the limit it is made, with whatever search is installed (a stand-in when this test binary
@@ -332,7 +332,7 @@ TEST(PlannerController, RefusesASampleBudgetAboveTheLimitWhenMade) {
   if (!saved)
     set_rrt_connect_search([](const FreeRaster&, GridCell, GridCell, std::uint64_t, int,
                               std::vector<Vec2>&) { return false; });
-  cfg.params.planner.max_samples = kMaxRrtConnectSamples;
+  cfg.planner.max_samples = kMaxRrtConnectSamples;
   EXPECT_NE(ControllerMaker().make(cfg, {robot, cfg.params, "r", 0, &world}), nullptr);
   set_rrt_connect_search(saved);
 }
@@ -375,7 +375,7 @@ Observation dwa_obs(const RobotSpec& robot, const NavigationParams& nav, const P
 TEST(Dwa, AcceleratesWithinTheWindowTowardsAGoalAhead) {
   RobotSpec robot = find_robot_preset("turtlebot3_burger")->robot;
   NavigationParams nav = find_robot_preset("turtlebot3_burger")->navigation;
-  DwaController c(nav, robot);
+  DwaController c(nav, DwaParams{}, robot);
   const Decision d = c.decide(dwa_obs(robot, nav, {Vec2::Zero(), 0.0}, Vec2(5, 0), {}));
   ASSERT_EQ(d.command.kind(), Command::Kind::Unicycle);
   // From rest, one step of 0.05 s at 2.5 m/s^2: at most 0.125 m/s, and straight ahead.
@@ -387,7 +387,7 @@ TEST(Dwa, AcceleratesWithinTheWindowTowardsAGoalAhead) {
 TEST(Dwa, NeverDrivesAtAWallItCannotStopBefore) {
   RobotSpec robot = find_robot_preset("turtlebot3_burger")->robot;
   NavigationParams nav = find_robot_preset("turtlebot3_burger")->navigation;
-  DwaController c(nav, robot);
+  DwaController c(nav, DwaParams{}, robot);
   // A wall of points 0.15 m ahead of the body, across the way to the goal.
   std::vector<Vec2> wall;
   for (double y = -1.0; y <= 1.0; y += 0.02) wall.emplace_back(0.105 + 0.15, y);
@@ -429,7 +429,7 @@ TEST(Dwa, WorkPerStepIsBoundedByValidation) {
   s.world = std::make_shared<const World>(std::move(desc));
   RobotTask& t = s.robots.emplace_back();
   t.robot = p.robot;
-  t.controller.kind = std::string(kDwaKindName);
+  t.controller.kind = "dwa";
   t.controller.params = p.navigation;
   t.start = {Vec2(0, 0), 0.0};
   t.goals = {Vec2(4, 1)};
@@ -440,13 +440,13 @@ TEST(Dwa, WorkPerStepIsBoundedByValidation) {
                        {length / 2, -width / 2},
                        {length / 2, width / 2},
                        {-length / 2, width / 2}};
-  DwaParams& d = t.controller.params.dwa;
+  DwaParams& d = t.controller.dwa;
   d.v_samples = 25;  // 25 x 25 x 25 poses x 64 discs = 10^6 checks: the limit
   d.omega_samples = 25;
   d.horizon = 2.5;
   d.sim_step = 0.1;
   EXPECT_NO_THROW(validate_scenario(s, "s.yaml"));
-  EXPECT_NO_THROW(DwaController(t.controller.params, t.robot));
+  EXPECT_NO_THROW(DwaController(t.controller.params, t.controller.dwa, t.robot));
   d.omega_samples = 26;
   try {
     validate_scenario(s, "s.yaml");
@@ -472,7 +472,8 @@ TEST(Dwa, WorkPerStepIsBoundedByValidation) {
     EXPECT_NE(e.detail.find("more than the 64 allowed"), std::string::npos) << e.detail;
   }
   // The controller refuses it too, made without validation (a library user's own scenario).
-  EXPECT_THROW(DwaController(t.controller.params, t.robot), std::invalid_argument);
+  EXPECT_THROW(DwaController(t.controller.params, t.controller.dwa, t.robot),
+               std::invalid_argument);
   // Another controller kind does not cover the footprint with discs: the sliver is its business.
   t.controller.kind = "hybrid";
   EXPECT_NO_THROW(validate_scenario(s, "s.yaml"));
@@ -497,10 +498,10 @@ struct GuardRig {
     WorldDesc desc;
     desc.bounds = Box2{Vec2(-2, -1), Vec2(4, 5)};
     world = std::make_shared<World>(std::move(desc));
-    nav.planner.kind = PlannerKind::AStar;
-    nav.planner.guard_horizon = horizon;
     ControllerConfig cfg;
     cfg.params = nav;
+    cfg.planner.kind = PlannerKind::AStar;
+    cfg.planner.guard_horizon = horizon;
     c = ControllerMaker().make(cfg, {robot, nav, "r", 0, world.get()});
   }
   // What the robot drives after deciding at `pose`: a velocity through the pipeline (as the

@@ -147,10 +147,9 @@ Observation observation(const RobotSpec& robot, const NavigationParams& params,
 TEST(Orca, TheLayerActsOnlyWhenAMovingRobotIsNear) {
   const RobotSpec robot = find_robot_preset("quickbot")->robot;
   NavigationParams params;
-  params.robot_avoidance = RobotAvoidance::Orca;
   auto inner = std::make_unique<Straight>();
   Straight* straight = inner.get();
-  auto layer = make_orca_layer(std::move(inner), robot);
+  auto layer = make_orca_layer(std::move(inner), robot, RobotAvoidanceParams{});
   EXPECT_EQ(layer->mode_names(), straight->mode_names());
 
   const std::vector<Vec2> wall{Vec2(0.0, 0.5)};

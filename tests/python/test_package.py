@@ -45,5 +45,5 @@ def test_the_attributes_the_docs_use_work_without_their_own_import():
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert p.stdout.strip() == "True"
     params = floornav.NavigationParams()
-    assert params.planner.kind == "none" and params.dwa.horizon > 0
+    assert params.v0 > 0 and floornav.ControllerConfig().planner.kind == "none"
     assert floornav.ParallelEnv and floornav.Box and floornav.Dict

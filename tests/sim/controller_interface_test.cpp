@@ -49,7 +49,7 @@ TEST(ControllerInterface, TheBuiltInKindGivesTheSameRunThroughAFactory) {
   wrapped.set_controller("hybrid_again", [](const ControllerContext& c) {
     ControllerConfig config;
     config.params = c.params;
-    return make_builtin_controller(config);
+    return make_builtin_controller(config, c);
   });
   const RunResult a = simulate(builtin), b = simulate(wrapped);
   ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
@@ -178,7 +178,7 @@ TEST(ControllerInterface, FleetsMakeOneControllerPerRobot) {
     made.push_back(c.robot_index);
     ControllerConfig config;
     config.params = c.params;
-    return make_builtin_controller(config);
+    return make_builtin_controller(config, c);
   });
   const FleetResult f = simulate_fleet(s);
   EXPECT_EQ(made.size(), s.robots.size());

@@ -32,7 +32,7 @@ std::uint64_t trajectory_hash(const RunResult& r) {
 
 std::uint64_t hash_of(const std::string& file, bool safety = true) {
   Scenario s = load_scenario_file(std::string(FLOORNAV_SCENARIO_DIR) + "/" + file);
-  s.robot().controller.params.safety.enabled = safety;
+  s.robot().controller.safety.enabled = safety;
   return trajectory_hash(simulate(s));
 }
 }  // namespace

@@ -76,12 +76,12 @@ TEST(PlannerOutcomes, PlannerReachesAGoalTheChapterAloneDoesNotReachInTime) {
   EXPECT_EQ(alone.status, RunStatus::Timeout) << "the chapter alone goes the long way";
   EXPECT_FALSE(alone.collided);
 
-  s.robot().controller.params.planner.kind = PlannerKind::AStar;
+  s.robot().controller.planner.kind = PlannerKind::AStar;
   // East round the end of the wall: about 6.5 m; the chapter alone drove 24 m and timed out.
   expect_short_way(simulate(s), 8.0);
 
   // Mapless, from its own lidar only: it finds the way too.
-  s.robot().controller.params.planner.map = PlannerMap::Sensed;
+  s.robot().controller.planner.map = PlannerMap::Sensed;
   const RunResult sensed = simulate(s);
   EXPECT_EQ(sensed.status, RunStatus::Reached);
   EXPECT_FALSE(sensed.collided);
@@ -90,8 +90,8 @@ TEST(PlannerOutcomes, PlannerReachesAGoalTheChapterAloneDoesNotReachInTime) {
 
 TEST(PlannerOutcomes, SameScenarioSameTrajectoryBitForBit) {
   Scenario s = make("turtlebot3_burger", long_way(), {Vec2(0, 0), kPi / 2}, Vec2(0, 5), 60.0);
-  s.robot().controller.params.planner.kind = PlannerKind::AStar;
-  s.robot().controller.params.planner.map = PlannerMap::Sensed;
+  s.robot().controller.planner.kind = PlannerKind::AStar;
+  s.robot().controller.planner.map = PlannerMap::Sensed;
   const RunResult a = simulate(s), b = simulate(s);
   expect_same_trajectory(a, b);
 }
@@ -140,7 +140,7 @@ class WalledOffKnownMap : public ::testing::TestWithParam<WalledOffCase> {};
 TEST_P(WalledOffKnownMap, GoalIsStuckAtOnce) {
   Scenario s =
       make("turtlebot3_burger", walled_off(), {Vec2(1.0, 2.0), 0.0}, Vec2(4.5, 2.0), 120.0);
-  PlannerParams& planner = s.robot().controller.params.planner;
+  PlannerParams& planner = s.robot().controller.planner;
   planner.kind = GetParam().kind;
   if (GetParam().max_samples > 0) planner.max_samples = GetParam().max_samples;
   const RunResult r = simulate(s);
@@ -165,7 +165,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(PlannerOutcomes, WalledOffGoalTheChapterAloneCircles) {
   Scenario s =
       make("turtlebot3_burger", walled_off(), {Vec2(1.0, 2.0), 0.0}, Vec2(4.5, 2.0), 120.0);
-  s.robot().controller.params.planner.kind = PlannerKind::None;
+  s.robot().controller.planner.kind = PlannerKind::None;
   const RunResult alone = simulate(s);
   EXPECT_NE(alone.status, RunStatus::Reached);
   EXPECT_GT(alone.steps, 100);
@@ -176,8 +176,8 @@ TEST(PlannerOutcomes, WalledOffGoalTheChapterAloneCircles) {
 TEST(PlannerOutcomes, WalledOffGoalOnTheSensedMapIsNotReachedAndRecoveriesAreTried) {
   Scenario s =
       make("turtlebot3_burger", walled_off(), {Vec2(1.0, 2.0), 0.0}, Vec2(4.5, 2.0), 120.0);
-  s.robot().controller.params.planner.kind = PlannerKind::AStar;
-  s.robot().controller.params.planner.map = PlannerMap::Sensed;
+  s.robot().controller.planner.kind = PlannerKind::AStar;
+  s.robot().controller.planner.map = PlannerMap::Sensed;
   const RunResult r = simulate(s);
   EXPECT_NE(r.status, RunStatus::Reached);
   EXPECT_FALSE(r.collided);
@@ -239,8 +239,8 @@ Scenario barn_world_180() {
   p.d_unsafe = 0.04;
   p.hysteresis = 0.04;
   p.obstacle_range = 0.4;
-  p.planner.kind = PlannerKind::AStar;
-  p.planner.map = PlannerMap::Sensed;
+  s.robot().controller.planner.kind = PlannerKind::AStar;
+  s.robot().controller.planner.map = PlannerMap::Sensed;
   return s;
 }
 }  // namespace
@@ -251,12 +251,12 @@ Scenario barn_world_180() {
 // would bring the rectangle within 2 cm of a sensed or remembered point, and gets through.
 TEST(PlannerOutcomes, FootprintGuardGetsTheJackalThroughAGapWhereTheStackWithoutItTouches) {
   Scenario s = barn_world_180();
-  s.robot().controller.params.safety.enabled = false;  // the planner stack alone
+  s.robot().controller.safety.enabled = false;  // the planner stack alone
   const RunResult unguarded = simulate(s);
   EXPECT_EQ(unguarded.status, RunStatus::Collision);
   EXPECT_TRUE(unguarded.collided);
 
-  s.robot().controller.params.planner.guard_horizon = 0.5;
+  s.robot().controller.planner.guard_horizon = 0.5;
   const RunResult guarded = simulate(s);
   EXPECT_EQ(guarded.status, RunStatus::Reached);
   EXPECT_FALSE(guarded.collided);
@@ -276,7 +276,7 @@ TEST(PlannerOutcomes, RrtConnectQuickBotTakesTheShortWayTheChapterAloneMisses) {
   const RunResult alone = simulate(s);
   EXPECT_NE(alone.status, RunStatus::Reached) << "the chapter alone goes the long way";
 
-  s.robot().controller.params.planner.kind = PlannerKind::RrtConnect;
+  s.robot().controller.planner.kind = PlannerKind::RrtConnect;
   // East round the end of the wall (about 6.5 m, as astar's); string pulling straightens the
   // sampled path, so it is not much longer.
   expect_short_way(simulate(s), 9.0);
@@ -285,8 +285,8 @@ TEST(PlannerOutcomes, RrtConnectQuickBotTakesTheShortWayTheChapterAloneMisses) {
 TEST(PlannerOutcomes, RrtConnectSameSeedSameTrajectoryBitForBit) {
   // Mapless: many plans (each path is checked every second and replanned when blocked).
   Scenario s = make("turtlebot3_burger", long_way(), {Vec2(0, 0), kPi / 2}, Vec2(0, 5), 150.0);
-  s.robot().controller.params.planner.kind = PlannerKind::RrtConnect;
-  s.robot().controller.params.planner.map = PlannerMap::Sensed;
+  s.robot().controller.planner.kind = PlannerKind::RrtConnect;
+  s.robot().controller.planner.map = PlannerMap::Sensed;
   s.sim.seed = 11;
   const RunResult a = simulate(s), b = simulate(s);
   // It gets there, the long way: 17.2 m where astar drives 6.8 m (docs/SCENARIOS.md says why).
@@ -325,7 +325,7 @@ Scenario empty_hall_with_rrt_connect() {
   WorldDesc hall;
   hall.bounds = Box2{Vec2(-1, -1), Vec2(6, 4)};
   Scenario s = make("turtlebot3_burger", std::move(hall), {Vec2(0, 0), 0.0}, Vec2(4, 2), 60.0);
-  s.robot().controller.params.planner.kind = PlannerKind::RrtConnect;
+  s.robot().controller.planner.kind = PlannerKind::RrtConnect;
   return s;
 }
 

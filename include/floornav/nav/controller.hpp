@@ -19,10 +19,15 @@
 #include <string_view>
 #include <vector>
 
+#include "floornav/core/param_fields.hpp"
 #include "floornav/geometry/pose2.hpp"
 #include "floornav/geometry/vec2.hpp"
 #include "floornav/kinematics/differential_drive.hpp"
+#include "floornav/nav/dwa_params.hpp"
 #include "floornav/nav/navigation_params.hpp"
+#include "floornav/nav/planner_params.hpp"
+#include "floornav/nav/robot_avoidance_params.hpp"
+#include "floornav/nav/safety_params.hpp"
 #include "floornav/robot/robot_spec.hpp"
 #include "floornav/sensing/range_sensor.hpp"
 
@@ -60,7 +65,7 @@ struct Observation {
   std::span<const NearbyRobot> robots;
   Vec2 velocity{Vec2::Zero()};              ///< m/s, world frame: this robot's last driven V
   const RobotSpec* robot{nullptr};          ///< the robot's base, body and sensors
-  const NavigationParams* params{nullptr};  ///< the controller section's values
+  const NavigationParams* params{nullptr};  ///< the controller section's chapter keys
 
   /// |x - x_g|, m.
   double goal_distance() const { return (goal - pose.position).norm(); }
@@ -96,6 +101,16 @@ class Command {
   double a_;
   double b_;
 };
+
+inline constexpr EnumName<Command::Kind> kCommandKindNames[]{
+    {Command::Kind::Velocity, "velocity"},
+    {Command::Kind::Unicycle, "unicycle"},
+    {Command::Kind::Wheels, "wheels"},
+    {Command::Kind::GoalReached, "goal_reached"},
+    {Command::Kind::Stuck, "stuck"}};
+constexpr std::span<const EnumName<Command::Kind>> enum_names(Command::Kind) {
+  return kCommandKindNames;
+}
 
 /// A command with the controller's mode (an index into Controller::mode_names()) and, when a
 /// transition fired at this step, the index of its guard (into guard_names(); -1: none). The
@@ -139,7 +154,7 @@ class Controller {
 /// What a controller factory is told about the robot it makes a controller for.
 struct ControllerContext {
   const RobotSpec& robot;
-  const NavigationParams& params;  ///< the robot's controller section (preset defaults + file)
+  const NavigationParams& params;  ///< the chapter's keys of the robot's controller section
   std::string_view robot_name;
   std::size_t robot_index{0};  ///< in the fleet (0 for a lone robot)
   /// The map known in advance (the simulator passes its world), for planners that plan on one
@@ -157,17 +172,35 @@ using ControllerFactory = std::function<std::unique_ptr<Controller>(const Contro
 ControllerFactory make_controller(std::function<Command(const Observation&)> decide,
                                   std::string mode_name = "drive");
 
-/// A robot's `controller:` section: which controller and its parameters. `params` also holds
-/// what the simulator itself reads for any controller: the pipeline's cruise speed v0, heading
-/// PID and slow_when_turning for velocity commands, and obstacle_memory for the observation.
+/// A robot's `controller:` section: which controller, and the parameters of each layer in its
+/// own type. `params` also holds what the simulator itself reads for any controller: the
+/// pipeline's cruise speed v0, heading PID and slow_when_turning for velocity commands, and
+/// obstacle_memory for the observation. The planner, robot avoidance and the safety layer wrap
+/// every controller, a user's too (ControllerMaker, the simulator).
 struct ControllerConfig {
-  /// hybrid | hard_switch | blended | go_to_goal, or the name of a user's controller.
+  /// A built-in kind (nav/controller_registry.hpp), or the name of a user's controller.
   std::string kind{"hybrid"};
-  NavigationParams params{};
+  NavigationParams params{};         ///< the chapter's keys, at the section's top level
+  RobotAvoidanceParams avoidance{};  ///< robot_avoidance, avoidance_*: robot_avoidance.hpp
+  PlannerParams planner{};           ///< `planner:` (planner_controller.hpp; kind none: off)
+  DwaParams dwa{};                   ///< `dwa:`, read by the dwa kind
+  SafetyParams safety{};             ///< `safety:` (safety_layer.hpp), on by default
   /// A user's controller; empty: the built-in kind named by `kind`.
   ControllerFactory factory;
 
   bool is_builtin() const { return !factory; }
+
+  /// The section's keys, `kind` and `preset` aside (those name things: the scenario reader reads
+  /// them first).
+  template <class Fields>
+  static void fields(Fields& f) {
+    using C = ControllerConfig;
+    f.flatten(&C::params);
+    f.flatten(&C::avoidance);
+    f.section("planner", &C::planner);
+    f.section("dwa", &C::dwa);
+    f.section("safety", &C::safety);
+  }
 };
 
 }  // namespace floornav

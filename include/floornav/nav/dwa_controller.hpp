@@ -23,14 +23,11 @@
 /// Speed is capped at sqrt(2 a d) at distance d from the goal, so it stops there.
 
 #include <span>
-#include <string_view>
 #include <vector>
 
 #include "floornav/nav/controller.hpp"
 
 namespace floornav {
-
-inline constexpr std::string_view kDwaKindName = "dwa";
 
 /// The most discs a footprint may take to cover (one per width along its long side: a footprint
 /// 64 times as long as it is wide). Each disc is checked at every pose of every roll-out.
@@ -52,7 +49,8 @@ double dwa_score(const DwaParams& p, double heading_error, double dist, double v
 
 class DwaController final : public Controller {
  public:
-  DwaController(const NavigationParams& params, const RobotSpec& robot);
+  /// `params` for v0 and epsilon, `dwa` for the window and the objective.
+  DwaController(const NavigationParams& params, const DwaParams& dwa, const RobotSpec& robot);
 
   Decision decide(const Observation& obs) override;
   void reset() override;

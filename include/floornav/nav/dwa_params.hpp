@@ -21,18 +21,20 @@ struct DwaParams {
 
   bool operator==(const DwaParams&) const = default;
 
-  template <class Archive>
-  void serialize(Archive& a) {
-    a("horizon", horizon, "roll-out time of each candidate, s");
-    a("sim_step", sim_step, "time between checked poses on a roll-out, s");
-    a("v_samples", v_samples, "forward speeds sampled in the window");
-    a("omega_samples", omega_samples, "turn rates sampled in the window");
-    a("heading", heading, "alpha: weight of facing the goal");
-    a("clearance", clearance, "beta: weight of the clearance along the arc");
-    a("velocity", velocity, "gamma: weight of forward speed");
-    a("max_clearance", max_clearance, "clearance that scores full marks, m");
-    a("margin", margin, "arcs closer than this to an obstacle are inadmissible, m");
-    a("range", range, "obstacle map radius round the robot, m (0: v0 x horizon + 1)");
+  /// Lists every field once, with its key and doc (core/param_fields.hpp).
+  template <class Fields>
+  static void fields(Fields& f) {
+    using P = DwaParams;
+    f("horizon", &P::horizon, "roll-out time of each candidate, s");
+    f("sim_step", &P::sim_step, "time between checked poses on a roll-out, s");
+    f("v_samples", &P::v_samples, "forward speeds sampled in the window");
+    f("omega_samples", &P::omega_samples, "turn rates sampled in the window");
+    f("heading", &P::heading, "alpha: weight of facing the goal");
+    f("clearance", &P::clearance, "beta: weight of the clearance along the arc");
+    f("velocity", &P::velocity, "gamma: weight of forward speed");
+    f("max_clearance", &P::max_clearance, "clearance that scores full marks, m");
+    f("margin", &P::margin, "arcs closer than this to an obstacle are inadmissible, m");
+    f("range", &P::range, "obstacle map radius round the robot, m (0: v0 x horizon + 1)");
   }
 };
 

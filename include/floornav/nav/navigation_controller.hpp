@@ -32,17 +32,34 @@ class NavigationController final : public Controller {
   NavigationAutomaton::State state_;
 };
 
-/// The built-in controller of `config.kind` (which must name one: see parse_controller_kind).
-std::unique_ptr<Controller> make_builtin_controller(const ControllerConfig& config);
+/// Built chapter automata, by kind and parameters: robots of one kind with equal parameters
+/// share one (100,000 robots, one automaton).
+class SharedAutomata {
+ public:
+  std::shared_ptr<const NavigationAutomaton> get(ControllerKind kind, const NavigationParams& p);
+
+ private:
+  struct Built {
+    ControllerKind kind;
+    NavigationParams params;
+    std::shared_ptr<const NavigationAutomaton> automaton;
+  };
+  std::vector<Built> built_;
+};
+
+/// The built-in controller that `config.kind` names (nav/controller_registry.hpp) for the robot of
+/// `context`, alone: no planning layer, no robot avoidance. Throws std::invalid_argument when
+/// the kind is not built in.
+std::unique_ptr<Controller> make_builtin_controller(const ControllerConfig& config,
+                                                    const ControllerContext& context);
 
 class KnownMapRasters;
 
-/// Makes the controllers of many robots: a user's factory is called per robot; robots of one
-/// built-in kind with equal parameters share one automaton (100,000 robots, one automaton).
-/// `dwa` makes a DwaController; a `planner.kind` other than none wraps the reactive controller
-/// in a PlannerController (planner_controller.hpp), and robots planning on one known map share
-/// its raster. With `params.robot_avoidance` set, the whole is wrapped in that layer
-/// (robot_avoidance.hpp).
+/// Makes the controllers of many robots: a user's factory is called per robot; a built-in kind
+/// comes from the registry (controller_registry.hpp), its robots sharing automata. A
+/// `planner.kind` other than none wraps the controller in a PlannerController
+/// (planner_controller.hpp), and robots planning on one known map share its raster. With
+/// `avoidance.kind` orca, the whole is wrapped in that layer (robot_avoidance.hpp).
 class ControllerMaker {
  public:
   ControllerMaker();
@@ -56,12 +73,7 @@ class ControllerMaker {
   std::unique_ptr<Controller> make_reactive(const ControllerConfig& config,
                                             const ControllerContext& context);
   std::shared_ptr<KnownMapRasters> rasters_;
-  struct Built {
-    ControllerKind kind;
-    NavigationParams params;
-    std::shared_ptr<const NavigationAutomaton> automaton;
-  };
-  std::vector<Built> built_;
+  SharedAutomata automata_;
 };
 
 }  // namespace floornav

@@ -1,20 +1,19 @@
 #pragma once
 /// @file
-/// The supervisor's parameters: speeds, the switching distances of Fig 5.11, the goal radius.
-/// All distances are clearances measured from the robot body's surface, so one set of defaults
-/// fits robots of different sizes up to their sensor range.
+/// The chapter supervisor's parameters: speeds, the switching distances of Fig 5.11, the goal
+/// radius, the heading PID. All distances are clearances measured from the robot body's surface,
+/// so one set of defaults fits robots of different sizes up to their sensor range. The layers
+/// around the supervisor have their own types: PlannerParams, DwaParams, RobotAvoidanceParams,
+/// SafetyParams (ControllerConfig holds them all).
 
-#include <optional>
-#include <string_view>
+#include <span>
 
-#include "floornav/nav/dwa_params.hpp"
+#include "floornav/core/enum_names.hpp"
 #include "floornav/nav/pid.hpp"
-#include "floornav/nav/planner_params.hpp"
-#include "floornav/nav/safety_params.hpp"
 
 namespace floornav {
 
-/// The four controller kinds of the command-line contract.
+/// The chapter's four automata (nav/navigation_automaton.hpp).
 enum class ControllerKind {
   GoToGoal,    ///< GTG only (eqs. 5.16-5.19): hits whatever is in the way
   HardSwitch,  ///< GTG <-> AO on |x - x_o| vs d_o (Fig 5.7): can chatter (Fig 5.9)
@@ -22,17 +21,14 @@ enum class ControllerKind {
   Hybrid,      ///< the complete automaton of Fig 5.11: GTG, FB-cw, FB-ccw, AO, STOP
 };
 
-std::optional<ControllerKind> parse_controller_kind(std::string_view name);
-std::string_view to_string(ControllerKind kind);
-
-/// How a robot avoids the other robots of its fleet (nav/robot_avoidance.hpp).
-enum class RobotAvoidance {
-  None,  ///< the chapter: other robots are obstacles like any other
-  Orca,  ///< a reciprocal-velocity layer between the controller's command and the wheels
-};
-
-std::optional<RobotAvoidance> parse_robot_avoidance(std::string_view name);
-std::string_view to_string(RobotAvoidance avoidance);
+inline constexpr EnumName<ControllerKind> kControllerKindNames[]{
+    {ControllerKind::GoToGoal, "go_to_goal"},
+    {ControllerKind::HardSwitch, "hard_switch"},
+    {ControllerKind::Blended, "blended"},
+    {ControllerKind::Hybrid, "hybrid"}};
+constexpr std::span<const EnumName<ControllerKind>> enum_names(ControllerKind) {
+  return kControllerKindNames;
+}
 
 struct NavigationParams {
   double v0{0.15};               ///< m/s cruise speed, the cap on |u|
@@ -59,54 +55,39 @@ struct NavigationParams {
   int chatter_switches{8};       ///< this many switches ...
   double chatter_window{2.0};    ///< ... within this many seconds is a chatter (Zeno) episode
   PidGains heading_pid{};        ///< eqs. 5.12-5.15
-  /// The planning layer over the automaton (nav/planner_controller.hpp); `kind: none` (the
-  /// default) is the chapter alone.
-  PlannerParams planner{};
-  DwaParams dwa{};  ///< the `dwa` controller kind (nav/dwa_controller.hpp)
-  /// Robot-robot avoidance (robot_avoidance.hpp); read by name, not by serialize().
-  RobotAvoidance robot_avoidance{RobotAvoidance::Orca};
-  double avoidance_range{1.0};    ///< m between centres: robots told to this one (NearbyRobot)
-  double avoidance_horizon{2.0};  ///< s: ORCA's time horizon tau for other robots
-  double avoidance_margin{0.02};  ///< m added to the sum of two robots' radii
-  /// The safety layer between the controller and the wheels (nav/safety_layer.hpp); it is the
-  /// simulator's, under every controller, so user controllers get it too.
-  SafetyParams safety{};
 
   bool operator==(const NavigationParams&) const = default;
 
-  template <class Archive>
-  void serialize(Archive& a) {
-    a("v0", v0, "cruise speed, m/s (cap on |u|)");
-    a("gtg_a", gtg_a, "shape of the capped go-to-goal gain K = v0(1-exp(-a|e|^2))/|e|, 1/m^2");
-    a("d_o", d_o, "clearance at which an obstacle is met (GTG -> FB; hard_switch GTG <-> AO), m");
-    a("d_fb", d_fb, "clearance that follow-boundary keeps, m");
-    a("k_fb", k_fb, "follow-boundary distance-keeping gain, 1/m");
-    a("d_unsafe", d_unsafe, "clearance below which avoid-obstacle takes over, m");
-    a("hysteresis", hysteresis, "AO is left at d_unsafe + hysteresis, m");
-    a("progress_margin", progress_margin, "delta of the progress guard |x-x_g| < d_tau - delta, m");
-    a("epsilon", epsilon, "goal radius: any mode -> STOP, m");
-    a("blend_near", blend_near, "blended: sigma_2 = 1 at this clearance, m");
-    a("blend_far", blend_far, "blended: sigma_2 = 0 beyond this clearance, m");
-    a("obstacle_memory", obstacle_memory, "seconds a sensed obstacle point is remembered");
-    a("obstacle_range", obstacle_range,
+  /// Lists every field once, with its key and doc (core/param_fields.hpp).
+  template <class Fields>
+  static void fields(Fields& f) {
+    using P = NavigationParams;
+    f("v0", &P::v0, "cruise speed, m/s (cap on |u|)");
+    f("gtg_a", &P::gtg_a, "shape of the capped go-to-goal gain K = v0(1-exp(-a|e|^2))/|e|, 1/m^2");
+    f("d_o", &P::d_o,
+      "clearance at which an obstacle is met (GTG -> FB; hard_switch GTG <-> AO), m");
+    f("d_fb", &P::d_fb, "clearance that follow-boundary keeps, m");
+    f("k_fb", &P::k_fb, "follow-boundary distance-keeping gain, 1/m");
+    f("d_unsafe", &P::d_unsafe, "clearance below which avoid-obstacle takes over, m");
+    f("hysteresis", &P::hysteresis, "AO is left at d_unsafe + hysteresis, m");
+    f("progress_margin", &P::progress_margin,
+      "delta of the progress guard |x-x_g| < d_tau - delta, m");
+    f("epsilon", &P::epsilon, "goal radius: any mode -> STOP, m");
+    f("blend_near", &P::blend_near, "blended: sigma_2 = 1 at this clearance, m");
+    f("blend_far", &P::blend_far, "blended: sigma_2 = 0 beyond this clearance, m");
+    f("obstacle_memory", &P::obstacle_memory, "seconds a sensed obstacle point is remembered");
+    f("obstacle_range", &P::obstacle_range,
       "sensed points farther than this clearance are ignored by the behaviours, m (0: all)");
-    a("clear_shot_corridor", clear_shot_corridor,
+    f("clear_shot_corridor", &P::clear_shot_corridor,
       "m; > 0: a clear shot is a free corridor of the body's width this long towards the goal "
       "(0: eq. 5.27)");
-    a("footprint_clearance", footprint_clearance,
+    f("footprint_clearance", &P::footprint_clearance,
       "robots with a footprint: clearance from the footprint polygon, not the body disc");
-    a("slow_when_turning", slow_when_turning, "scale V by max(0, cos(heading error))");
-    a("chatter_switches", chatter_switches, "switches within chatter_window that count as chatter");
-    a("chatter_window", chatter_window, "window of the chatter (Zeno) detector, s");
-    a("avoidance_range", avoidance_range,
-      "robot_avoidance: other robots within this distance (centres) are avoided, m");
-    a("avoidance_horizon", avoidance_horizon, "robot_avoidance orca: time horizon tau, s");
-    a("avoidance_margin", avoidance_margin,
-      "robot_avoidance orca: added to the sum of two robots' radii, m");
-    a.section("pid", heading_pid);
-    a.section("planner", planner);
-    a.section("dwa", dwa);
-    a.section("safety", safety);
+    f("slow_when_turning", &P::slow_when_turning, "scale V by max(0, cos(heading error))");
+    f("chatter_switches", &P::chatter_switches,
+      "switches within chatter_window that count as chatter");
+    f("chatter_window", &P::chatter_window, "window of the chatter (Zeno) detector, s");
+    f.section("pid", &P::heading_pid);
   }
 };
 

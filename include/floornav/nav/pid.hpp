@@ -13,12 +13,14 @@ struct PidGains {
 
   bool operator==(const PidGains&) const = default;
 
-  template <class Archive>
-  void serialize(Archive& a) {
-    a("kp", kp, "proportional gain, 1/s");
-    a("ki", ki, "integral gain, 1/s^2");
-    a("kd", kd, "derivative gain");
-    a("integral_limit", integral_limit, "anti-windup clamp on the integral, rad s");
+  /// Lists every field once, with its key and doc (core/param_fields.hpp).
+  template <class Fields>
+  static void fields(Fields& f) {
+    using P = PidGains;
+    f("kp", &P::kp, "proportional gain, 1/s");
+    f("ki", &P::ki, "integral gain, 1/s^2");
+    f("kd", &P::kd, "derivative gain");
+    f("integral_limit", &P::integral_limit, "anti-windup clamp on the integral, rad s");
   }
 };
 

@@ -75,10 +75,11 @@ class KnownMapRasters {
 class PlannerController final : public Controller {
  public:
   struct Setup {
-    std::unique_ptr<Controller> inner;         ///< the reactive controller that drives
-    NavigationParams params;                   ///< the robot's controller section (planner inside)
-    const RobotSpec* robot{nullptr};           ///< must outlive the controller
-    const World* map{nullptr};                 ///< the known map (planner.map: known)
+    std::unique_ptr<Controller> inner;  ///< the reactive controller that drives
+    NavigationParams params;            ///< the chapter's keys of the robot's controller section
+    PlannerParams planner;              ///< its `planner:` section
+    const RobotSpec* robot{nullptr};    ///< must outlive the controller
+    const World* map{nullptr};          ///< the known map (planner.map: known)
     std::shared_ptr<KnownMapRasters> rasters;  ///< shared raster cache; made when null
     std::uint64_t seed{1};  ///< the run's seed: rrt_connect's samples (ControllerContext::seed)
   };

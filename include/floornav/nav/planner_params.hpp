@@ -5,10 +5,9 @@
 /// A length of 0 means "derived from the robot" (see each field); every default leaves the
 /// chapter alone (`kind: none`).
 
-#include <array>
 #include <span>
-#include <string_view>
-#include <utility>
+
+#include "floornav/core/enum_names.hpp"
 
 namespace floornav {
 
@@ -27,17 +26,17 @@ enum class PlannerMap {
   Sensed,  ///< a rolling occupancy grid built from the robot's own range readings (no prior map)
 };
 
-inline std::span<const std::pair<PlannerKind, std::string_view>> enum_names(PlannerKind) {
-  static constexpr std::array<std::pair<PlannerKind, std::string_view>, 3> kNames{
-      {{PlannerKind::None, "none"},
-       {PlannerKind::AStar, "astar"},
-       {PlannerKind::RrtConnect, "rrt_connect"}}};
-  return kNames;
+inline constexpr EnumName<PlannerKind> kPlannerKindNames[]{
+    {PlannerKind::None, "none"},
+    {PlannerKind::AStar, "astar"},
+    {PlannerKind::RrtConnect, "rrt_connect"}};
+constexpr std::span<const EnumName<PlannerKind>> enum_names(PlannerKind) {
+  return kPlannerKindNames;
 }
-inline std::span<const std::pair<PlannerMap, std::string_view>> enum_names(PlannerMap) {
-  static constexpr std::array<std::pair<PlannerMap, std::string_view>, 2> kNames{
-      {{PlannerMap::Known, "known"}, {PlannerMap::Sensed, "sensed"}}};
-  return kNames;
+inline constexpr EnumName<PlannerMap> kPlannerMapNames[]{{PlannerMap::Known, "known"},
+                                                         {PlannerMap::Sensed, "sensed"}};
+constexpr std::span<const EnumName<PlannerMap>> enum_names(PlannerMap) {
+  return kPlannerMapNames;
 }
 
 /// The most samples one rrt_connect plan may draw (`max_samples`): a plan's time grows faster than
@@ -81,31 +80,34 @@ struct PlannerParams {
 
   bool operator==(const PlannerParams&) const = default;
 
-  template <class Archive>
-  void serialize(Archive& a) {
-    a("kind", kind, "none (the chapter alone) | astar | rrt_connect");
-    a("map", map, "known (the world's map) | sensed (a rolling grid from the robot's ranges)");
-    a("radius", radius, "disc the plan is made for, m (0: the body radius)");
-    a("inflation", inflation, "margin the plan keeps beyond the radius, m");
-    a("cell_size", cell_size, "planning cell, m (0: the map's cells, or radius / 3)");
-    a("lookahead", lookahead, "subgoal distance along the path, m (0: 6 x body radius)");
-    a("replan_period", replan_period, "s between plans on the sensed map");
-    a("progress_window", progress_window, "progress checker window, s");
-    a("progress_distance", progress_distance,
+  /// Lists every field once, with its key and doc (core/param_fields.hpp).
+  template <class Fields>
+  static void fields(Fields& f) {
+    using P = PlannerParams;
+    f("kind", &P::kind, "none (the chapter alone) | astar | rrt_connect");
+    f("map", &P::map, "known (the world's map) | sensed (a rolling grid from the robot's ranges)");
+    f("radius", &P::radius, "disc the plan is made for, m (0: the body radius)");
+    f("inflation", &P::inflation, "margin the plan keeps beyond the radius, m");
+    f("cell_size", &P::cell_size, "planning cell, m (0: the map's cells, or radius / 3)");
+    f("lookahead", &P::lookahead, "subgoal distance along the path, m (0: 6 x body radius)");
+    f("replan_period", &P::replan_period, "s between plans on the sensed map");
+    f("progress_window", &P::progress_window, "progress checker window, s");
+    f("progress_distance", &P::progress_distance,
       "path length that must be gained within the window, m (0: the body radius)");
-    a("backup_distance", backup_distance, "recovery back-up, m (0: the body radius)");
-    a("recovery_turn", recovery_turn, "recovery turn on the spot, rad");
-    a("max_recoveries", max_recoveries, "recoveries without progress before `stuck`");
-    a("window", window, "rolling grid side, m (0: 20)");
-    a("decay", decay, "s after which an unseen rolling-grid cell fades by one step");
-    a("sense_range", sense_range, "m of each beam entered in the rolling grid (0: sensor range)");
-    a("memory_range", memory_range,
+    f("backup_distance", &P::backup_distance, "recovery back-up, m (0: the body radius)");
+    f("recovery_turn", &P::recovery_turn, "recovery turn on the spot, rad");
+    f("max_recoveries", &P::max_recoveries, "recoveries without progress before `stuck`");
+    f("window", &P::window, "rolling grid side, m (0: 20)");
+    f("decay", &P::decay, "s after which an unseen rolling-grid cell fades by one step");
+    f("sense_range", &P::sense_range,
+      "m of each beam entered in the rolling grid (0: sensor range)");
+    f("memory_range", &P::memory_range,
       "remembered cells within this clearance are obstacle points for the automaton, m (0: off)");
-    a("max_samples", max_samples, "rrt_connect: samples per plan before it gives up");
-    a("guard_horizon", guard_horizon,
+    f("max_samples", &P::max_samples, "rrt_connect: samples per plan before it gives up");
+    f("guard_horizon", &P::guard_horizon,
       "s: sweep the footprint along each command this long and slow or replace it when it "
       "would come within guard_margin of a sensed or remembered point (0: off)");
-    a("guard_margin", guard_margin, "m the footprint guard keeps between footprint and points");
+    f("guard_margin", &P::guard_margin, "m the footprint guard keeps between footprint and points");
   }
 };
 

@@ -26,6 +26,7 @@
 
 #include "floornav/geometry/vec2.hpp"
 #include "floornav/nav/controller.hpp"
+#include "floornav/nav/robot_avoidance_params.hpp"
 
 namespace floornav {
 
@@ -74,9 +75,11 @@ std::size_t drop_robot_points(std::span<const Vec2> points, std::span<const Near
                               double tolerance, std::span<const Vec2> current, double memory,
                               double slack, std::span<Vec2> out);
 
-/// Wraps a controller with the ORCA layer above. `robot` sizes the buffers once (no allocation
-/// per step). The wrapped controller's modes and guards are reported unchanged.
+/// Wraps a controller with the ORCA layer above (`params.kind` is not looked at: the caller
+/// chose the layer). `robot` sizes the buffers once (no allocation per step). The wrapped
+/// controller's modes and guards are reported unchanged.
 std::unique_ptr<Controller> make_orca_layer(std::unique_ptr<Controller> inner,
-                                            const RobotSpec& robot);
+                                            const RobotSpec& robot,
+                                            const RobotAvoidanceParams& params);
 
 }  // namespace floornav

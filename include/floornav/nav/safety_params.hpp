@@ -4,10 +4,9 @@
 /// every controller; `controller.safety: off` is the chapter's robot alone, for the teaching
 /// scenes that must show a collision.
 
-#include <array>
 #include <span>
-#include <string_view>
-#include <utility>
+
+#include "floornav/core/enum_names.hpp"
 
 namespace floornav {
 
@@ -17,10 +16,10 @@ enum class SafetyMap {
   Sensed,  ///< its own range returns alone, remembered ones included (mapless benchmarks: BARN)
 };
 
-inline std::span<const std::pair<SafetyMap, std::string_view>> enum_names(SafetyMap) {
-  static constexpr std::array<std::pair<SafetyMap, std::string_view>, 2> kNames{
-      {{SafetyMap::Known, "known"}, {SafetyMap::Sensed, "sensed"}}};
-  return kNames;
+inline constexpr EnumName<SafetyMap> kSafetyMapNames[]{{SafetyMap::Known, "known"},
+                                                       {SafetyMap::Sensed, "sensed"}};
+constexpr std::span<const EnumName<SafetyMap>> enum_names(SafetyMap) {
+  return kSafetyMapNames;
 }
 
 struct SafetyParams {
@@ -42,17 +41,19 @@ struct SafetyParams {
 
   bool operator==(const SafetyParams&) const = default;
 
-  template <class Archive>
-  void serialize(Archive& a) {
-    a("enabled", enabled, "the safety layer between the controller and the wheels (on|off)");
-    a("map", map, "known (the floor plan and the range returns) | sensed (the returns alone)");
-    a("margin", margin, "protective field beyond the body: never entered while moving, m");
-    a("reaction_time", reaction_time, "added to the time needed to stop, s");
-    a("slowdown_distance", slowdown_distance,
+  /// Lists every field once, with its key and doc (core/param_fields.hpp).
+  template <class Fields>
+  static void fields(Fields& f) {
+    using P = SafetyParams;
+    f("enabled", &P::enabled, "the safety layer between the controller and the wheels (on|off)");
+    f("map", &P::map, "known (the floor plan and the range returns) | sensed (the returns alone)");
+    f("margin", &P::margin, "protective field beyond the body: never entered while moving, m");
+    f("reaction_time", &P::reaction_time, "added to the time needed to stop, s");
+    f("slowdown_distance", &P::slowdown_distance,
       "slow-down field: within this gap of anything, speed is capped at slowdown_speed, m "
       "(0: off)");
-    a("slowdown_speed", slowdown_speed, "speed cap inside the slow-down field, m/s");
-    a("person_margin", person_margin, "extra room kept from people, m");
+    f("slowdown_speed", &P::slowdown_speed, "speed cap inside the slow-down field, m/s");
+    f("person_margin", &P::person_margin, "extra room kept from people, m");
   }
 };
 

@@ -7,7 +7,7 @@
 ///   - `chapter`: the chapter's automaton alone, as the textbook has it: no planner, no safety
 ///     layer, no reciprocal avoidance (the chapter-alone rows of docs/BENCHMARKS.md).
 /// Without a preset a controller section is the chapter's automaton with the safety layer and
-/// reciprocal avoidance (the defaults of NavigationParams).
+/// reciprocal avoidance (the defaults of ControllerConfig).
 
 #include <span>
 #include <string_view>

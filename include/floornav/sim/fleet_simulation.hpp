@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "floornav/core/enum_names.hpp"
 #include "floornav/sim/crowd.hpp"
 #include "floornav/sim/robot_agent.hpp"
 #include "floornav/sim/robot_neighbour_grid.hpp"
@@ -32,7 +33,13 @@ namespace floornav {
 /// What a robot's body touched.
 enum class ContactKind { World, Robot, Person, Forklift };
 
-std::string_view to_string(ContactKind kind);
+inline constexpr EnumName<ContactKind> kContactKindNames[]{{ContactKind::World, "world"},
+                                                           {ContactKind::Robot, "robot"},
+                                                           {ContactKind::Person, "person"},
+                                                           {ContactKind::Forklift, "forklift"}};
+constexpr std::span<const EnumName<ContactKind>> enum_names(ContactKind) {
+  return kContactKindNames;
+}
 
 /// Two robots that touched, a robot that hit the world (`other` = -1), or a robot that touched a
 /// person or a forklift (`other`: its index in the crowd).

@@ -8,23 +8,18 @@
 #include <vector>
 
 #include "floornav/automaton/hybrid_automaton.hpp"
+#include "floornav/core/enum_names.hpp"
 
 namespace floornav {
 
 enum class RunStatus { Reached, Collision, Timeout, Stuck };
 
-inline std::string_view to_string(RunStatus s) {
-  switch (s) {
-    case RunStatus::Reached:
-      return "reached";
-    case RunStatus::Collision:
-      return "collision";
-    case RunStatus::Timeout:
-      return "timeout";
-    case RunStatus::Stuck:
-      return "stuck";
-  }
-  return "unknown";
+inline constexpr EnumName<RunStatus> kRunStatusNames[]{{RunStatus::Reached, "reached"},
+                                                       {RunStatus::Collision, "collision"},
+                                                       {RunStatus::Timeout, "timeout"},
+                                                       {RunStatus::Stuck, "stuck"}};
+constexpr std::span<const EnumName<RunStatus>> enum_names(RunStatus) {
+  return kRunStatusNames;
 }
 
 /// One row of trajectory.csv: the state after a step and the commands that drove it.

@@ -40,22 +40,25 @@ struct SimConfig {
   int record_ranges_every{0};
   RecordOptions record{};  ///< extra trajectory columns (not a scenario key; see above)
 
-  template <class Archive>
-  void serialize(Archive& a) {
-    a("dt", dt, "fixed time step, s");
-    a("t_max", t_max, "simulated time limit, s");
-    a("seed", seed, "random seed (sensor noise)");
-    a("stuck_window", stuck_window, "a robot that stays within stuck_radius this long is stuck, s");
-    a("stuck_radius", stuck_radius, "m; 0 means the body radius");
-    a("deadlock_window", deadlock_window,
+  /// Lists every field once, with its key and doc (core/param_fields.hpp).
+  template <class Fields>
+  static void fields(Fields& f) {
+    using P = SimConfig;
+    f("dt", &P::dt, "fixed time step, s");
+    f("t_max", &P::t_max, "simulated time limit, s");
+    f("seed", &P::seed, "random seed (sensor noise)");
+    f("stuck_window", &P::stuck_window,
+      "a robot that stays within stuck_radius this long is stuck, s");
+    f("stuck_radius", &P::stuck_radius, "m; 0 means the body radius");
+    f("deadlock_window", &P::deadlock_window,
       "a robot held up among moving bodies this long is stuck (deadlock), s");
-    a("livelock_window", livelock_window,
+    f("livelock_window", &P::livelock_window,
       "a robot moving among moving bodies without nearing its goal this long is stuck "
       "(livelock), s");
-    a("record_trajectory", record_trajectory, "keep every step for the CSV and SVG outputs");
-    a("park_finished", park_finished,
+    f("record_trajectory", &P::record_trajectory, "keep every step for the CSV and SVG outputs");
+    f("park_finished", &P::park_finished,
       "fleets: a robot that has finished stays where it stopped, an obstacle to the others");
-    a("record_ranges_every", record_ranges_every,
+    f("record_ranges_every", &P::record_ranges_every,
       "record every sensor's range every this many steps (0: never), for the HTML replay");
   }
 };

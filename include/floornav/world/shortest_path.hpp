@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "floornav/core/enum_names.hpp"
 #include "floornav/geometry/pose2.hpp"
 #include "floornav/geometry/vec2.hpp"
 
@@ -156,7 +157,15 @@ enum class OptimumStatus {
   InvalidInput,    ///< non-finite point or radius, or no goals
 };
 
-std::string_view to_string(OptimumStatus s);
+inline constexpr EnumName<OptimumStatus> kOptimumStatusNames[]{
+    {OptimumStatus::Found, "found"},
+    {OptimumStatus::Unreachable, "unreachable"},
+    {OptimumStatus::NoFreeCell, "no_free_cell"},
+    {OptimumStatus::RasterTooLarge, "raster_too_large"},
+    {OptimumStatus::InvalidInput, "invalid_input"}};
+constexpr std::span<const EnumName<OptimumStatus>> enum_names(OptimumStatus) {
+  return kOptimumStatusNames;
+}
 
 struct Optimum {
   OptimumStatus status{OptimumStatus::InvalidInput};
