@@ -17,7 +17,8 @@
 #include <vector>
 
 #include "bench_cases.hpp"
-#include "floornav/world/shortest_path.hpp"
+#include "floornav/planning/octile_astar.hpp"
+#include "floornav/runner/scenario_optimum.hpp"
 #include "floornav/world/world.hpp"
 
 namespace floornav {

@@ -1,22 +1,22 @@
 #!/usr/bin/env python3
 """Checks that no include runs against the architecture's direction.
 
-    core, automaton <- geometry <- world <- {kinematics, sensing} <- robot <- nav <- sim
+    core, automaton <- geometry <- world <- {kinematics, sensing, planning} <- robot <- nav <- sim
       <- scenario <- {io, render} <- runner <- app
 
 and ompl (the library floornav::ompl) on top of them, so that no other library includes it.
 
 A file of a module may include its own module's headers and those of modules below it, never a
-module above it or beside it (kinematics/sensing, io/render, core/automaton are siblings). A
-source file's private headers ("name.hpp" without floornav/) must be its own module's: no
-private header is reached across modules. Exit status 1 lists every violation.
+module above it or beside it (kinematics/sensing/planning, io/render, core/automaton are
+siblings). A source file's private headers ("name.hpp" without floornav/) must be its own
+module's: no private header is reached across modules. Exit status 1 lists every violation.
 """
 import pathlib
 import re
 import sys
 
 RANK = {"core": 0, "automaton": 0, "geometry": 1, "world": 2, "kinematics": 3, "sensing": 3,
-        "robot": 4, "nav": 5, "sim": 6, "scenario": 7, "io": 8, "render": 8, "runner": 9,
+        "planning": 3, "robot": 4, "nav": 5, "sim": 6, "scenario": 7, "io": 8, "render": 8, "runner": 9,
         "ompl": 10}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 

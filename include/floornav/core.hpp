@@ -1,10 +1,11 @@
 #pragma once
 /// @file
 /// floornav::core, everything that does no I/O: the geometry and the obstacle world, the
-/// differential-drive kinematics (eqs. 5.5-5.11), range sensing, robots and their presets, the
-/// behaviours of sections 5.3-5.4 and the navigation automata (Fig 5.11), the controller
-/// interface a user implements (nav/controller.hpp), the generic hybrid automaton engine
-/// (automaton/hybrid_automaton.hpp), the simulator (one robot or a fleet) and the scenario model.
+/// differential-drive kinematics (eqs. 5.5-5.11), range sensing, grid planning (rasters, octile
+/// A*, jump point search, string pulling), robots and their presets, the behaviours of sections
+/// 5.3-5.4 and the navigation automata (Fig 5.11), the controller interface a user implements
+/// (nav/controller.hpp), the generic hybrid automaton engine (automaton/hybrid_automaton.hpp),
+/// the simulator (one robot or a fleet) and the scenario model.
 /// A scenario built in code runs with `simulate(scenario)`; reading one from a file is floornav::io
 /// (floornav/io.hpp).
 
@@ -53,6 +54,13 @@
 #include "floornav/nav/safety_params.hpp"
 #include "floornav/nav/sampling_planner.hpp"
 #include "floornav/nav/supervisor_guards.hpp"
+#include "floornav/planning/free_cells.hpp"
+#include "floornav/planning/free_raster.hpp"
+#include "floornav/planning/jump_point_search.hpp"
+#include "floornav/planning/line_of_sight.hpp"
+#include "floornav/planning/octile_astar.hpp"
+#include "floornav/planning/raster_frame.hpp"
+#include "floornav/planning/string_pulling.hpp"
 #include "floornav/robot/body_clearance.hpp"
 #include "floornav/robot/robot_spec.hpp"
 #include "floornav/scenario/controller_presets.hpp"
@@ -81,5 +89,4 @@
 #include "floornav/sim/vec_simulation.hpp"
 #include "floornav/world/fan_scratch.hpp"
 #include "floornav/world/occupancy_grid.hpp"
-#include "floornav/world/shortest_path.hpp"
 #include "floornav/world/world.hpp"

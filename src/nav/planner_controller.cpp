@@ -11,6 +11,9 @@
 #include "floornav/kinematics/differential_drive.hpp"
 #include "floornav/nav/heading_tracker.hpp"
 #include "floornav/nav/navigation_automaton.hpp"
+#include "floornav/planning/free_cells.hpp"
+#include "floornav/planning/line_of_sight.hpp"
+#include "floornav/planning/string_pulling.hpp"
 #include "floornav/sensing/obstacle_memory.hpp"
 #include "floornav/world/world.hpp"
 
@@ -56,7 +59,7 @@ bool same_frame(const RasterFrame& a, const RasterFrame& b) {
 std::shared_ptr<const KnownMapRaster> KnownMapRasters::get(const World& world, double radius,
                                                            double cell, const Vec2& from,
                                                            const Vec2& goal) {
-  OptimumOptions options;
+  RasterOptions options;
   if (cell > 0.0) {  // as given (planner.cell_size), not made finer for small robots
     options.cell_size = cell;
     options.cell_finer_than_radius = false;

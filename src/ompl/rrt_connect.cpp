@@ -18,6 +18,7 @@
 
 #include "floornav/nav/planner_params.hpp"
 #include "floornav/nav/sampling_planner.hpp"
+#include "floornav/planning/line_of_sight.hpp"
 
 namespace floornav {
 

@@ -13,7 +13,7 @@
 #include "floornav/nav/planner_params.hpp"
 #include "floornav/nav/sampling_planner.hpp"
 #include "floornav/ompl/rrt_connect.hpp"
-#include "floornav/world/shortest_path.hpp"
+#include "floornav/planning/line_of_sight.hpp"
 
 namespace floornav {
 namespace {

@@ -12,8 +12,8 @@
 
 #include "floornav/core/rng.hpp"
 #include "floornav/runner/batch.hpp"
+#include "floornav/runner/scenario_optimum.hpp"
 #include "floornav/scenario/presets.hpp"
-#include "floornav/world/shortest_path.hpp"
 #include "floornav/world/world.hpp"
 
 namespace floornav {

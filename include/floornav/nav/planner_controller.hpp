@@ -42,7 +42,8 @@
 #include "floornav/nav/progress_checker.hpp"
 #include "floornav/nav/rolling_grid.hpp"
 #include "floornav/nav/sampling_planner.hpp"
-#include "floornav/world/shortest_path.hpp"
+#include "floornav/planning/octile_astar.hpp"
+#include "floornav/planning/raster_frame.hpp"
 
 namespace floornav {
 

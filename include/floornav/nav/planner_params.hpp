@@ -14,7 +14,7 @@ namespace floornav {
 /// Which planner (`planner.kind`).
 enum class PlannerKind {
   None,   ///< the chapter alone: the automaton drives straight for the goal
-  AStar,  ///< octile A* on the inflated raster, string-pulled (world/shortest_path.hpp)
+  AStar,  ///< octile A* on the inflated raster, string-pulled (planning/octile_astar.hpp)
   /// OMPL's RRT-Connect in R^2 on the same inflated raster, seeded from sim.seed, a budget of
   /// max_samples per plan, string-pulled like astar (nav/sampling_planner.hpp)
   RrtConnect,

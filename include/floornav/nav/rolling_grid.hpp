@@ -25,8 +25,8 @@
 #include <vector>
 
 #include "floornav/geometry/vec2.hpp"
+#include "floornav/planning/free_raster.hpp"
 #include "floornav/sensing/range_sensor.hpp"
-#include "floornav/world/shortest_path.hpp"
 
 namespace floornav {
 

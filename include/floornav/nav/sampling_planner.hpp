@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "floornav/geometry/vec2.hpp"
-#include "floornav/world/shortest_path.hpp"
+#include "floornav/planning/free_raster.hpp"
 
 namespace floornav {
 

@@ -12,10 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "floornav/runner/scenario_optimum.hpp"
 #include "floornav/scenario/scenario.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/run_result.hpp"
-#include "floornav/world/shortest_path.hpp"
 
 namespace floornav {
 
