@@ -35,6 +35,7 @@
 #include "floornav/runner/run_outputs.hpp"
 #include "floornav/runner/run_summary.hpp"
 #include "floornav/scenario/presets.hpp"
+#include "progress_bar.hpp"
 #include "sweep_id.hpp"
 
 namespace fs = std::filesystem;
@@ -222,7 +223,7 @@ int run_sweep(const CaseSource& source, SweepHasher& hash, const BatchRequest& r
   BatchOptions opt;
   opt.jobs = rq.jobs;
   opt.out_dir = rq.out;
-  opt.progress = isatty(STDERR_FILENO) != 0;
+  if (isatty(STDERR_FILENO)) opt.progress = app::draw_progress_bar;
   opt.timing = !rq.no_timing;
   opt.resume = rq.resume;
   opt.optimum = !rq.no_optimum;

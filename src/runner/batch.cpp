@@ -32,6 +32,7 @@
 #include "floornav/render/trajectory_svg.hpp"
 #include "floornav/runner/run_outputs.hpp"
 #include "floornav/runner/run_summary.hpp"
+#include "floornav/runner/scenario_optimum.hpp"
 
 namespace floornav {
 
@@ -283,18 +284,6 @@ bool in_shard(std::size_t id, std::size_t cases, int k, int n) {
   return id < cases && id % static_cast<std::size_t>(n) == static_cast<std::size_t>(k - 1);
 }
 
-void draw_progress(std::size_t done, std::size_t total, double elapsed) {
-  const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
-  const double eta = rate > 0 ? static_cast<double>(total - done) / rate : 0.0;
-  constexpr int kWidth = 30;
-  const int filled = total ? static_cast<int>(kWidth * done / total) : kWidth;
-  std::string bar(static_cast<std::size_t>(filled), '#');
-  bar.resize(kWidth, '.');
-  std::fprintf(stderr, "\r[%s] %zu/%zu  %.1f runs/s  ETA %.0f s ", bar.c_str(), done, total, rate,
-               eta);
-  std::fflush(stderr);
-}
-
 /// "case 7, 10, 13 and 5 more".
 std::string list_cases(const std::vector<std::size_t>& ids) {
   std::string out;
@@ -396,208 +385,308 @@ BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& opt
   return run_batch(list, options);
 }
 
-BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
-  const auto results_path = options.out_dir / "results.jsonl";
-  const auto sweep_path = options.out_dir / "sweep.json";
-  const std::size_t n = cases.ids.size();
-  std::vector<std::optional<Json>> lines(n);
-  std::size_t resumed = 0;
-  // The sweep's case count as sweep.json will say: a resumed folder keeps a larger count it had
-  // (a resume with a smaller --limit runs fewer cases, but never drops lines already finished).
-  std::size_t sweep_cases = options.sweep.cases;
-  // Finished lines of this shard outside this call's cases (beyond --limit): kept as they are.
+namespace {
+
+/// What a folder being resumed already holds for this shard (nothing for a fresh batch).
+struct ResumedLines {
+  std::vector<std::optional<Json>> lines;  ///< by position in the case list: set when finished
+  std::size_t count{0};                    ///< lines taken from the folder
+  /// The sweep's case count as sweep.json will say: a resumed folder keeps a larger count it had
+  /// (a resume with a smaller --limit runs fewer cases, but never drops lines already finished).
+  std::size_t sweep_cases{0};
+  /// Finished lines of this shard outside this call's cases (beyond --limit): kept as they are.
   std::map<std::size_t, Json> beyond;
-  if (options.resume) {
-    // Only a folder of this very sweep and shard may be resumed: its lines are kept as they are.
-    const auto old = read_sweep(options.out_dir);
-    std::error_code ec;
-    if (!old && std::filesystem::exists(results_path, ec))
-      throw InputError(options.out_dir.string(), "",
-                       "has a results.jsonl but no sweep.json, so which sweep its lines belong to "
-                       "cannot be checked: give another --out, or leave out --resume to start "
-                       "again");
-    if (old) {
-      if ((*old)["sweep_id"] != options.sweep.id || (*old)["shard"] != options.sweep.shard ||
-          (*old)["shards"] != options.sweep.shards)
-        throw InputError(
-            sweep_path.string(), "",
-            fmt::format("holds shard {}/{} of sweep {}, not shard {}/{} of this sweep ({}): "
-                        "give another --out, or leave out --resume to start again",
-                        (*old)["shard"].get<int>(), (*old)["shards"].get<int>(),
-                        (*old)["sweep_id"].get<std::string>(), options.sweep.shard,
-                        options.sweep.shards, options.sweep.id));
-      sweep_cases = std::max(sweep_cases, (*old)["cases"].get<std::size_t>());
-    }
-    std::map<std::size_t, std::size_t> position;  // case id -> index in `ids`
-    for (std::size_t i = 0; i < n; ++i) position[cases.ids[i]] = i;
-    for (auto& [id, line] : read_results(results_path, true)) {
-      if (auto it = position.find(id); it != position.end()) {
-        lines[it->second] = std::move(line);
-        ++resumed;
-      } else if (in_shard(id, sweep_cases, options.sweep.shard, options.sweep.shards)) {
-        beyond.emplace(id, std::move(line));
-      }
+};
+
+/// Stage 1, resume: the lines kept from the folder. Only a folder of this very sweep and shard may
+/// be resumed (InputError otherwise); its lines are kept as they are.
+ResumedLines read_resumed_lines(const CaseList& cases, const BatchOptions& options) {
+  const std::size_t n = cases.ids.size();
+  ResumedLines r;
+  r.lines.resize(n);
+  r.sweep_cases = options.sweep.cases;
+  if (!options.resume) return r;
+  const auto results_path = options.out_dir / "results.jsonl";
+  const auto old = read_sweep(options.out_dir);
+  std::error_code ec;
+  if (!old && std::filesystem::exists(results_path, ec))
+    throw InputError(options.out_dir.string(), "",
+                     "has a results.jsonl but no sweep.json, so which sweep its lines belong to "
+                     "cannot be checked: give another --out, or leave out --resume to start "
+                     "again");
+  if (old) {
+    if ((*old)["sweep_id"] != options.sweep.id || (*old)["shard"] != options.sweep.shard ||
+        (*old)["shards"] != options.sweep.shards)
+      throw InputError(
+          (options.out_dir / "sweep.json").string(), "",
+          fmt::format("holds shard {}/{} of sweep {}, not shard {}/{} of this sweep ({}): "
+                      "give another --out, or leave out --resume to start again",
+                      (*old)["shard"].get<int>(), (*old)["shards"].get<int>(),
+                      (*old)["sweep_id"].get<std::string>(), options.sweep.shard,
+                      options.sweep.shards, options.sweep.id));
+    r.sweep_cases = std::max(r.sweep_cases, (*old)["cases"].get<std::size_t>());
+  }
+  std::map<std::size_t, std::size_t> position;  // case id -> index in `ids`
+  for (std::size_t i = 0; i < n; ++i) position[cases.ids[i]] = i;
+  for (auto& [id, line] : read_results(results_path, true)) {
+    if (auto it = position.find(id); it != position.end()) {
+      r.lines[it->second] = std::move(line);
+      ++r.count;
+    } else if (in_shard(id, r.sweep_cases, options.sweep.shard, options.sweep.shards)) {
+      r.beyond.emplace(id, std::move(line));
     }
   }
-  // Created only now, after every check: bad input leaves no folder behind.
+  return r;
+}
+
+/// Stage 2, the folder: created only now, after every check (bad input leaves no folder behind),
+/// cleared of stale per-case files, with this shard's sweep.json.
+void prepare_folder(const CaseList& cases, const BatchOptions& options, const ResumedLines& r) {
   ensure_directory(options.out_dir);
   // Per-case pictures and bags are stale unless their case's line is kept (so all of them in a
   // fresh batch): a case that runs now writes its own, an unfinished case or a case of no sweep
   // must not show one. The cases of another shard (folders shared by shards) are not ours.
   std::set<std::size_t> kept;
-  for (std::size_t i = 0; i < n; ++i)
-    if (lines[i]) kept.insert(cases.ids[i]);
-  for (const auto& line : beyond) kept.insert(line.first);
+  for (std::size_t i = 0; i < r.lines.size(); ++i)
+    if (r.lines[i]) kept.insert(cases.ids[i]);
+  for (const auto& line : r.beyond) kept.insert(line.first);
   const auto stale = [&](std::size_t id) {
-    return !kept.count(id) && (id >= sweep_cases || in_shard(id, sweep_cases, options.sweep.shard,
-                                                             options.sweep.shards));
+    return !kept.count(id) &&
+           (id >= r.sweep_cases ||
+            in_shard(id, r.sweep_cases, options.sweep.shard, options.sweep.shards));
   };
   if (options.pictures != BatchPictures::None)
     remove_stale_case_files(options.pictures_dir, {".svg", ".html"}, stale);
   if (options.mcap != BatchPictures::None)
     remove_stale_case_files(options.mcap_dir, {".mcap"}, stale);
   SweepInfo written = options.sweep;
-  written.cases = sweep_cases;
+  written.cases = r.sweep_cases;
   write_file_atomically(
-      sweep_path, sweep_json_text(written, shard_size(sweep_cases, written.shard, written.shards)));
+      options.out_dir / "sweep.json",
+      sweep_json_text(written, shard_size(r.sweep_cases, written.shard, written.shards)));
+}
 
-  std::vector<std::size_t> todo;
-  for (std::size_t i = 0; i < n; ++i)
-    if (!lines[i]) todo.push_back(i);
+/// Stage 3, the ordered writer: results.jsonl while the batch runs. The resumed lines are
+/// rewritten first (atomically, so that the file never holds a case twice), then each fresh line
+/// is appended in case order as soon as every line before it is finished. Every write and flush
+/// is checked: after the first failure (a full disk) nothing more is written.
+class OrderedWriter {
+ public:
+  OrderedWriter(std::filesystem::path path, const ResumedLines& resumed)
+      : path_(std::move(path)), file_(nullptr, &std::fclose) {
+    write_file_atomically(path_, [&](const std::function<void(std::string_view)>& sink) {
+      for (const auto& l : resumed.lines)
+        if (l) sink(l->dump() + "\n");
+      for (const auto& [id, l] : resumed.beyond) sink(l.dump() + "\n");
+    });
+    file_.reset(std::fopen(path_.c_str(), "a"));
+    if (!file_)
+      throw OutputError(path_.string(), std::string("cannot write: ") + std::strerror(errno));
+  }
 
-  // Lines are appended in case order; a finished case waits until all before it are written.
-  // The file is rewritten (atomically) at the end, so resumed files end up identical too.
-  // Resumed lines are rewritten first, so that the file never holds a case twice.
-  write_file_atomically(results_path, [&](const std::function<void(std::string_view)>& sink) {
-    for (const auto& l : lines)
-      if (l) sink(l->dump() + "\n");
-    for (const auto& [id, l] : beyond) sink(l.dump() + "\n");
-  });
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out_file(std::fopen(results_path.c_str(), "a"),
-                                                           &std::fclose);
-  if (!out_file)
-    throw OutputError(results_path.string(), std::string("cannot write: ") + std::strerror(errno));
-  std::FILE* out = out_file.get();
-
-  std::mutex mutex;
-  std::condition_variable cv;
-  std::size_t next_job = 0, done = n - todo.size(), ran = 0;
-  std::vector<bool> fresh(n, false);
-  std::atomic<bool> halt{false};  // the user's stop, or a failure: workers abandon their cases
-  std::exception_ptr failure;
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const int jobs = options.jobs > 0 ? options.jobs : static_cast<int>(hw);
-  auto user_stop = [&] { return options.stop && options.stop->load(); };
-
-  auto worker = [&] {
-    OptimumCache optimum_cache;
-    while (true) {
-      std::size_t i;
-      {
-        std::lock_guard lock(mutex);
-        if (next_job >= todo.size() || halt.load() || user_stop()) return;
-        i = todo[next_job++];
-      }
-      std::optional<Json> line;
-      try {
-        const BatchCase c = cases.make(cases.ids[i]);
-        line = run_case(c, options, &halt, optimum_cache);
-      } catch (...) {
-        std::lock_guard lock(mutex);
-        if (!failure) failure = std::current_exception();
-        halt.store(true);
-      }
-      {
-        std::lock_guard lock(mutex);
-        if (line) {
-          lines[i] = std::move(line);
-          fresh[i] = true;
-          ++done;
-          ++ran;
-        }
-      }
-      cv.notify_one();
+  /// Appends the fresh lines from the first one not written yet up to the first unfinished case.
+  void append_ready(const std::vector<std::optional<Json>>& lines, const std::vector<bool>& fresh) {
+    while (error_.empty() && written_upto_ < lines.size() && lines[written_upto_]) {
+      if (fresh[written_upto_]) append(*lines[written_upto_]);
+      ++written_upto_;
     }
-  };
+  }
 
-  const auto t0 = std::chrono::steady_clock::now();
-  std::vector<std::thread> threads;
-  // Whatever leaves this scope (a writer that throws, an allocation that fails) leaves it with
-  // every worker stopped and joined: an exception never passes a joinable thread (which would
-  // end the process), and the caller's error message is the one printed.
-  struct JoinAll {
-    std::vector<std::thread>& threads;
+  /// Appends the fresh lines left (finished out of order before an interruption: kept too) and
+  /// closes the file.
+  void close(const std::vector<std::optional<Json>>& lines, const std::vector<bool>& fresh) {
+    for (std::size_t i = written_upto_; i < lines.size() && error_.empty(); ++i)
+      if (lines[i] && fresh[i]) append(*lines[i]);
+    if (std::fclose(file_.release()) != 0 && error_.empty()) error_ = std::strerror(errno);
+  }
+
+  bool failed() const { return !error_.empty(); }
+
+  /// The OutputError of the first failed write, if there was one.
+  void throw_if_failed() const {
+    if (failed())
+      throw OutputError(path_.string(),
+                        "cannot write: " + error_ + " (the batch stopped; --resume goes on)");
+  }
+
+ private:
+  void append(const Json& l) {
+    const std::string text = l.dump() + "\n";
+    if (std::fputs(text.c_str(), file_.get()) < 0 || std::fflush(file_.get()) != 0)
+      error_ = std::strerror(errno);
+  }
+
+  std::filesystem::path path_;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
+  std::size_t written_upto_{0};  // fresh lines [0, written_upto_) are on disk
+  std::string error_;
+};
+
+/// Stage 4, the pool: worker threads take the unfinished cases in order and run them, while the
+/// calling thread writes the finished lines in order and reports progress. A worker's failure, a
+/// failed write or the user's stop halts it: the workers abandon their cases.
+class CasePool {
+ public:
+  CasePool(const CaseList& cases, const BatchOptions& options,
+           std::vector<std::optional<Json>>& lines)
+      : cases_(cases), options_(options), lines_(lines), fresh_(lines.size(), false) {
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      if (!lines[i]) todo_.push_back(i);
+    done_ = lines.size() - todo_.size();
+  }
+
+  /// Runs the cases until all are done or the pool halts, appending their lines to `writer`.
+  /// Rethrows a worker's exception (after the writer's own error, which comes first).
+  void run(OrderedWriter& writer) {
+    const auto t0 = std::chrono::steady_clock::now();
+    {
+      Workers workers{{}, halt_};
+      const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+      const int jobs = options_.jobs > 0 ? options_.jobs : static_cast<int>(hw);
+      const int count = std::max(1, std::min<int>(jobs, static_cast<int>(todo_.size())));
+      for (int k = 0; k < count && !todo_.empty(); ++k)
+        workers.threads.emplace_back(&CasePool::work, this);
+      for (bool over = false; !over;) over = write_ready(writer, t0);
+      for (auto& t : workers.threads) t.join();
+    }
+    writer.close(lines_, fresh_);
+    report(t0, true);
+    writer.throw_if_failed();
+    if (failure_) std::rethrow_exception(failure_);
+  }
+
+  std::size_t ran() const { return ran_; }
+
+ private:
+  /// Whatever leaves `run` (a writer that throws, an allocation that fails) leaves it with every
+  /// worker stopped and joined: an exception never passes a joinable thread (which would end the
+  /// process), and the caller's error message is the one printed.
+  struct Workers {
+    std::vector<std::thread> threads;
     std::atomic<bool>& halt;
-    ~JoinAll() {
+    ~Workers() {
       halt.store(true);
       for (auto& t : threads)
         if (t.joinable()) t.join();
     }
-  } join_all{threads, halt};
-  const int workers = std::max(1, std::min<int>(jobs, static_cast<int>(todo.size())));
-  for (int k = 0; k < workers && !todo.empty(); ++k) threads.emplace_back(worker);
-
-  // Writer loop: append finished lines in order while workers run. Every write and flush is
-  // checked: at the first failure (a full disk) the workers stop and nothing more is run.
-  std::size_t written_upto = 0;  // fresh lines [0, written_upto) are on disk
-  std::string write_error;
-  auto append = [&](const Json& l) {
-    const std::string text = l.dump() + "\n";
-    if (std::fputs(text.c_str(), out) < 0 || std::fflush(out) != 0)
-      write_error = std::strerror(errno);
   };
-  while (true) {
-    std::unique_lock lock(mutex);
-    cv.wait_for(lock, std::chrono::milliseconds(100));
-    if (user_stop()) halt.store(true);
-    while (write_error.empty() && written_upto < n && lines[written_upto]) {
-      if (fresh[written_upto]) append(*lines[written_upto]);
-      ++written_upto;
-    }
-    if (!write_error.empty()) halt.store(true);
-    const bool all_done = done == n;
-    const bool idle = next_job >= todo.size() || halt.load();
-    if (options.progress)
-      draw_progress(done, n,
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    if (all_done || (idle && halt.load())) break;
-  }
-  for (auto& t : threads) t.join();
-  // Lines finished out of order before an interruption are kept too.
-  for (std::size_t i = written_upto; i < n && write_error.empty(); ++i)
-    if (lines[i] && fresh[i]) append(*lines[i]);
-  if (std::fclose(out_file.release()) != 0 && write_error.empty())
-    write_error = std::strerror(errno);
-  if (options.progress) std::fprintf(stderr, "\n");
-  if (!write_error.empty())
-    throw OutputError(results_path.string(),
-                      "cannot write: " + write_error + " (the batch stopped; --resume goes on)");
-  if (failure) std::rethrow_exception(failure);
 
+  bool user_stop() const { return options_.stop && options_.stop->load(); }
+
+  /// A worker: takes the next case until none is left or the pool halts.
+  void work() {
+    OptimumCache optimum_cache;
+    for (std::size_t i; take(i);) {
+      std::optional<Json> line;
+      try {
+        const BatchCase c = cases_.make(cases_.ids[i]);
+        line = run_case(c, options_, &halt_, optimum_cache);
+      } catch (...) {
+        std::lock_guard lock(mutex_);
+        if (!failure_) failure_ = std::current_exception();
+        halt_.store(true);
+      }
+      hand_in(i, std::move(line));
+    }
+  }
+
+  bool take(std::size_t& i) {
+    std::lock_guard lock(mutex_);
+    if (next_job_ >= todo_.size() || halt_.load() || user_stop()) return false;
+    i = todo_[next_job_++];
+    return true;
+  }
+
+  /// A finished case's line (none when the case was abandoned or failed).
+  void hand_in(std::size_t i, std::optional<Json> line) {
+    {
+      std::lock_guard lock(mutex_);
+      if (line) {
+        lines_[i] = std::move(line);
+        fresh_[i] = true;
+        ++done_;
+        ++ran_;
+      }
+    }
+    cv_.notify_one();
+  }
+
+  /// One round of the calling thread: waits for a line (at most 100 ms), appends what is ready in
+  /// order and reports progress. True when every case is done, or when the pool halted and no
+  /// case is left to start.
+  bool write_ready(OrderedWriter& writer, std::chrono::steady_clock::time_point t0) {
+    std::unique_lock lock(mutex_);
+    cv_.wait_for(lock, std::chrono::milliseconds(100));
+    if (user_stop()) halt_.store(true);
+    writer.append_ready(lines_, fresh_);
+    if (writer.failed()) halt_.store(true);
+    const bool all_done = done_ == lines_.size();
+    const bool idle = next_job_ >= todo_.size() || halt_.load();
+    report(t0, false);
+    return all_done || (idle && halt_.load());
+  }
+
+  void report(std::chrono::steady_clock::time_point t0, bool finished) const {
+    if (!options_.progress) return;
+    BatchProgress p;
+    p.done = done_;
+    p.total = lines_.size();
+    p.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    p.finished = finished;
+    options_.progress(p);
+  }
+
+  const CaseList& cases_;
+  const BatchOptions& options_;
+  std::vector<std::optional<Json>>& lines_;  // by position in the case list
+  std::vector<bool> fresh_;                  // lines run by this call (not resumed)
+  std::vector<std::size_t> todo_;            // positions of the unfinished cases
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::size_t next_job_{0}, done_{0}, ran_{0};
+  std::atomic<bool> halt_{false};  // the user's stop, or a failure: workers abandon their cases
+  std::exception_ptr failure_;
+};
+
+/// Stage 5, aggregation: the outcome and aggregate.json; results.jsonl in canonical form (every
+/// line in case order, whatever order resumed runs appended them in) when nothing was interrupted.
+BatchOutcome aggregate_batch(const BatchOptions& options, ResumedLines& r, std::size_t ran) {
+  const std::size_t n = r.lines.size();
   BatchOutcome outcome;
   outcome.total = n;
-  outcome.resumed = resumed;
+  outcome.resumed = r.count;
   outcome.ran = ran;
   std::vector<Json> finished;
-  for (auto& l : lines)
+  for (auto& l : r.lines)
     if (l) finished.push_back(*l);
   outcome.completed = finished.size();
   outcome.interrupted = outcome.completed < n;
   // Lines kept from beyond this call's cases come after its own (their numbers are larger).
-  for (auto& [id, l] : beyond) finished.push_back(std::move(l));
+  for (auto& [id, l] : r.beyond) finished.push_back(std::move(l));
   outcome.aggregate = aggregate_results(finished);
   outcome.aggregate["sweep_id"] = options.sweep.id;
   outcome.aggregate["complete"] =
       !outcome.interrupted &&
-      finished.size() >= shard_size(sweep_cases, options.sweep.shard, options.sweep.shards);
+      finished.size() >= shard_size(r.sweep_cases, options.sweep.shard, options.sweep.shards);
   if (!outcome.interrupted) {
-    // Canonical form: every line in case order, whatever order resumed runs appended them in.
-    write_file_atomically(results_path, [&](const std::function<void(std::string_view)>& sink) {
-      for (const Json& l : finished) sink(l.dump() + "\n");
-    });
+    write_file_atomically(options.out_dir / "results.jsonl",
+                          [&](const std::function<void(std::string_view)>& sink) {
+                            for (const Json& l : finished) sink(l.dump() + "\n");
+                          });
   }
   write_file_atomically(options.out_dir / "aggregate.json", outcome.aggregate.dump(2) + "\n");
   return outcome;
+}
+
+}  // namespace
+
+BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options) {
+  ResumedLines resumed = read_resumed_lines(cases, options);
+  prepare_folder(cases, options, resumed);
+  OrderedWriter writer(options.out_dir / "results.jsonl", resumed);
+  CasePool pool(cases, options, resumed.lines);
+  pool.run(writer);
+  return aggregate_batch(options, resumed, pool.ran());
 }
 
 double barn_score(bool success, double time, double optimal_time) {
@@ -620,14 +709,17 @@ std::vector<std::size_t> shard_ids(std::size_t count, int k, int n) {
   return out;
 }
 
-MergeOutcome merge_batches(std::span<const std::filesystem::path> dirs,
-                           const std::filesystem::path& out_dir, bool allow_partial) {
-  if (dirs.empty()) throw InputError("", "merge", "no batch folders given");
-  struct Shard {
-    std::filesystem::path dir;
-    Json sweep;
-  };
-  std::vector<Shard> shards;
+namespace {
+
+/// A batch folder given to merge, with its sweep.json.
+struct ShardFolder {
+  std::filesystem::path dir;
+  Json sweep;
+};
+
+/// Merge stage 1: every folder exists and has a sweep.json.
+std::vector<ShardFolder> read_shard_folders(std::span<const std::filesystem::path> dirs) {
+  std::vector<ShardFolder> shards;
   for (const auto& d : dirs) {
     std::error_code ec;
     if (!std::filesystem::is_directory(d, ec))
@@ -641,20 +733,33 @@ MergeOutcome merge_batches(std::span<const std::filesystem::path> dirs,
                        "before sweeps were checked); its shards cannot be checked");
     shards.push_back({d, std::move(*s)});
   }
-  // One sweep, one shard count, each shard once.
-  const Json& first = shards.front().sweep;
-  const std::string id = first["sweep_id"];
-  const int n = first["shards"];
-  const std::size_t total = first["cases"];
+  return shards;
+}
+
+/// The shards of one sweep, by shard number.
+struct SweepShards {
+  std::string id;
+  int n{1};              ///< shards of the sweep
+  std::size_t total{0};  ///< cases of the sweep
   std::map<int, std::filesystem::path> by_shard;
-  for (const Shard& s : shards) {
-    if (s.sweep["sweep_id"] != id || s.sweep["cases"] != total)
+};
+
+/// Merge stage 2: one sweep, one shard count, each shard once.
+SweepShards check_one_sweep(const std::vector<ShardFolder>& shards) {
+  const Json& first = shards.front().sweep;
+  SweepShards out;
+  out.id = first["sweep_id"];
+  out.n = first["shards"];
+  out.total = first["cases"];
+  const int n = out.n;
+  for (const ShardFolder& s : shards) {
+    if (s.sweep["sweep_id"] != out.id || s.sweep["cases"] != out.total)
       throw InputError(
           s.dir.string(), "",
           fmt::format("is sweep {} ({} cases), but {} is sweep {} ({} cases): mixed "
                       "sweeps cannot be merged",
                       s.sweep["sweep_id"].get<std::string>(), s.sweep["cases"].get<std::size_t>(),
-                      shards.front().dir.string(), id, total));
+                      shards.front().dir.string(), out.id, out.total));
     if (s.sweep["shards"] != n)
       throw InputError(s.dir.string(), "",
                        fmt::format("is shard {}/{}, but {} is a shard of {}: the same sweep split "
@@ -664,61 +769,82 @@ MergeOutcome merge_batches(std::span<const std::filesystem::path> dirs,
     const int k = s.sweep["shard"];
     if (k < 1 || k > n)
       throw InputError((s.dir / "sweep.json").string(), "", fmt::format("shard {}/{}?", k, n));
-    if (auto [it, fresh] = by_shard.emplace(k, s.dir); !fresh)
+    if (auto [it, fresh] = out.by_shard.emplace(k, s.dir); !fresh)
       throw InputError(s.dir.string(), "",
                        fmt::format("is shard {}/{} again (so is {}): give each shard once", k, n,
                                    it->second.string()));
   }
-  MergeOutcome outcome;
-  outcome.total = total;
-  for (int k = 1; k <= n; ++k)
-    if (!by_shard.count(k)) outcome.missing_shards.push_back(k);
-  if (!outcome.missing_shards.empty() && !allow_partial) {
-    std::string missing;
-    for (std::size_t i = 0; i < outcome.missing_shards.size(); ++i)
-      missing += (i ? ", " : "") + fmt::format("{}/{}", outcome.missing_shards[i], n);
-    throw InputError("", "merge",
-                     fmt::format("shard{} {} of sweep {} {} missing: give every shard's folder "
-                                 "(or --allow-partial to merge what there is, marked incomplete)",
-                                 outcome.missing_shards.size() == 1 ? "" : "s", missing, id,
-                                 outcome.missing_shards.size() == 1 ? "is" : "are"));
+  return out;
+}
+
+/// Merge stage 3: the shards not given; an error unless `allow_partial`.
+std::vector<int> missing_shards(const SweepShards& s, bool allow_partial) {
+  std::vector<int> missing_ones;
+  for (int k = 1; k <= s.n; ++k)
+    if (!s.by_shard.count(k)) missing_ones.push_back(k);
+  if (missing_ones.empty() || allow_partial) return missing_ones;
+  std::string missing;
+  for (std::size_t i = 0; i < missing_ones.size(); ++i)
+    missing += (i ? ", " : "") + fmt::format("{}/{}", missing_ones[i], s.n);
+  throw InputError("", "merge",
+                   fmt::format("shard{} {} of sweep {} {} missing: give every shard's folder "
+                               "(or --allow-partial to merge what there is, marked incomplete)",
+                               missing_ones.size() == 1 ? "" : "s", missing, s.id,
+                               missing_ones.size() == 1 ? "is" : "are"));
+}
+
+/// Merge stage 4: the lines of shard k, which holds exactly its own cases, and all of them unless
+/// `allow_partial`. Checked by arithmetic on the case numbers, never by listing a shard's cases:
+/// sweep.json's count is bounded (kMaxSweepCases) but still far more than needs to be held.
+std::map<std::size_t, Json> read_shard_lines(const std::filesystem::path& dir, int k,
+                                             const SweepShards& s, bool allow_partial) {
+  const int n = s.n;
+  const std::size_t total = s.total;
+  auto lines = read_results(dir / "results.jsonl", false);
+  for (const auto& [case_id, line] : lines)
+    if (!in_shard(case_id, total, k, n))
+      throw InputError((dir / "results.jsonl").string(), "",
+                       fmt::format("holds case {}, which is not a case of shard {}/{} of {} cases",
+                                   case_id, k, n, total));
+  const std::size_t expected = shard_size(total, k, n);
+  if (lines.size() < expected && !allow_partial) {
+    std::vector<std::size_t> missing;  // the first few, for the message
+    for (std::size_t i = static_cast<std::size_t>(k - 1); i < total && missing.size() < 5;
+         i += static_cast<std::size_t>(n))
+      if (!lines.count(i)) missing.push_back(i);
+    const std::size_t more = expected - lines.size() - missing.size();
+    throw InputError(dir.string(), "",
+                     fmt::format("shard {}/{} is incomplete: {} of its {} cases are missing "
+                                 "(case {}{}); finish it with --resume, or --allow-partial",
+                                 k, n, expected - lines.size(), expected, list_cases(missing),
+                                 more ? fmt::format(" and {} more", more) : std::string()));
   }
-  // Each shard holds exactly its own cases, and all of them. Checked by arithmetic on the case
-  // numbers, never by listing a shard's cases: sweep.json's count is bounded (kMaxSweepCases) but
-  // still far more than needs to be held.
+  return lines;
+}
+
+}  // namespace
+
+MergeOutcome merge_batches(std::span<const std::filesystem::path> dirs,
+                           const std::filesystem::path& out_dir, bool allow_partial) {
+  if (dirs.empty()) throw InputError("", "merge", "no batch folders given");
+  const SweepShards sweep = check_one_sweep(read_shard_folders(dirs));
+  MergeOutcome outcome;
+  outcome.total = sweep.total;
+  outcome.missing_shards = missing_shards(sweep, allow_partial);
   std::map<std::size_t, Json> all;
-  for (const auto& [k, dir] : by_shard) {
-    auto lines = read_results(dir / "results.jsonl", false);
-    for (const auto& [case_id, line] : lines)
-      if (!in_shard(case_id, total, k, n))
-        throw InputError(
-            (dir / "results.jsonl").string(), "",
-            fmt::format("holds case {}, which is not a case of shard {}/{} of {} cases", case_id, k,
-                        n, total));
-    const std::size_t expected = shard_size(total, k, n);
-    if (lines.size() < expected && !allow_partial) {
-      std::vector<std::size_t> missing;  // the first few, for the message
-      for (std::size_t i = static_cast<std::size_t>(k - 1); i < total && missing.size() < 5;
-           i += static_cast<std::size_t>(n))
-        if (!lines.count(i)) missing.push_back(i);
-      const std::size_t more = expected - lines.size() - missing.size();
-      throw InputError(dir.string(), "",
-                       fmt::format("shard {}/{} is incomplete: {} of its {} cases are missing "
-                                   "(case {}{}); finish it with --resume, or --allow-partial",
-                                   k, n, expected - lines.size(), expected, list_cases(missing),
-                                   more ? fmt::format(" and {} more", more) : std::string()));
-    }
+  for (const auto& [k, dir] : sweep.by_shard) {
+    auto lines = read_shard_lines(dir, k, sweep, allow_partial);
     all.merge(lines);
   }
   std::vector<Json> lines;
   lines.reserve(all.size());
   for (auto& [case_id, j] : all) lines.push_back(std::move(j));
   outcome.merged = lines.size();
-  outcome.complete = outcome.merged == total;
+  outcome.complete = outcome.merged == sweep.total;
   outcome.aggregate = aggregate_results(lines);
-  outcome.aggregate["sweep_id"] = id;
+  outcome.aggregate["sweep_id"] = sweep.id;
   outcome.aggregate["complete"] = outcome.complete;
-  if (!outcome.complete) outcome.aggregate["missing_cases"] = total - outcome.merged;
+  if (!outcome.complete) outcome.aggregate["missing_cases"] = sweep.total - outcome.merged;
   // The merged folder is the whole sweep as one batch (shard 1 of 1): merged files equal one
   // big run's. All three appear together.
   OutputFolder folder(out_dir);
@@ -726,7 +852,7 @@ MergeOutcome merge_batches(std::span<const std::filesystem::path> dirs,
     for (const Json& l : lines) sink(l.dump() + "\n");
   });
   folder.write("aggregate.json", outcome.aggregate.dump(2) + "\n");
-  SweepInfo merged{id, 1, 1, total};
+  SweepInfo merged{sweep.id, 1, 1, sweep.total};
   folder.write("sweep.json", sweep_json_text(merged, outcome.merged));
   folder.commit();
   return outcome;

@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -141,6 +142,50 @@ TEST(Batch, ResumeRunsOnlyTheUnfinishedCases) {
   const auto third = run_batch(cases, o);
   EXPECT_EQ(third.ran, 0u);
   for (std::size_t i = 0; i < 5; ++i) EXPECT_EQ(counter.of(i), steps0) << i;
+  fs::remove_all(dir);
+}
+
+// Progress is reported to the caller's callback, never drawn by the runner: from the calling
+// thread only (the app's bar is not thread-safe), counts that never go back, resumed cases counted
+// as done from the start, and one last report, `finished`, after every case's line is written.
+TEST(Batch, ReportsProgressToTheCallbackFromTheCallingThread) {
+  const fs::path dir = fresh_dir("progress");
+  StepCounter counter;
+  std::vector<BatchCase> cases;
+  for (std::size_t i = 0; i < 4; ++i) cases.push_back(counting_case(counter, i));
+  run_batch(std::span(cases).subspan(0, 1), options_for(dir));
+  BatchOptions o = options_for(dir);
+  o.resume = true;
+  std::vector<BatchProgress> reports;
+  std::vector<std::thread::id> threads;
+  std::vector<std::size_t> lines_at_finish;
+  o.progress = [&](const BatchProgress& p) {
+    reports.push_back(p);
+    threads.push_back(std::this_thread::get_id());
+    if (p.finished) lines_at_finish.push_back(lines_of(dir / "results.jsonl").size());
+  };
+  const auto outcome = run_batch(cases, o);
+  EXPECT_EQ(outcome.ran, 3u);
+  ASSERT_GE(reports.size(), 2u);
+  for (const std::thread::id& t : threads) EXPECT_EQ(t, std::this_thread::get_id());
+  EXPECT_GE(reports.front().done, 1u);  // the resumed case, done before any ran
+  for (std::size_t k = 0; k < reports.size(); ++k) {
+    EXPECT_EQ(reports[k].total, 4u);
+    EXPECT_EQ(reports[k].finished, k + 1 == reports.size()) << k;
+    EXPECT_GE(reports[k].elapsed, 0.0);
+    if (k > 0) {
+      EXPECT_GE(reports[k].done, reports[k - 1].done) << k;
+      EXPECT_GE(reports[k].elapsed, reports[k - 1].elapsed) << k;
+    }
+  }
+  EXPECT_EQ(reports.back().done, 4u);
+  EXPECT_EQ(lines_at_finish, std::vector<std::size_t>{4u});
+  // Without a callback nothing is reported and the files are the same.
+  const std::string with = read(dir / "results.jsonl");
+  o.progress = nullptr;
+  o.resume = false;
+  run_batch(cases, o);
+  EXPECT_EQ(read(dir / "results.jsonl"), with);
   fs::remove_all(dir);
 }
 

@@ -37,12 +37,23 @@ struct SweepInfo {
   std::size_t cases{0};  ///< cases in the whole sweep (after --limit)
 };
 
+/// How far a batch has come (BatchOptions::progress).
+struct BatchProgress {
+  std::size_t done{0};   ///< cases with a result line (resumed ones included)
+  std::size_t total{0};  ///< cases of this call
+  double elapsed{0.0};   ///< s since the cases began to run
+  bool finished{false};  ///< the last report: no more cases run
+};
+
 struct BatchOptions {
   int jobs{0};                    ///< worker threads; 0 = all cores
   std::filesystem::path out_dir;  ///< results.jsonl, aggregate.json and sweep.json go here
-  bool progress{false};           ///< a progress bar on stderr
-  bool timing{true};              ///< false: wall_time is written as 0, so files compare equal
-  bool resume{false};             ///< keep the cases already in results.jsonl; run only the rest
+  /// Told how far the batch has come, about ten times a second and once more (`finished`) when
+  /// it stops running cases; from run_batch's own thread, never from a worker. The command line
+  /// draws its progress bar with it.
+  std::function<void(const BatchProgress&)> progress;
+  bool timing{true};   ///< false: wall_time is written as 0, so files compare equal
+  bool resume{false};  ///< keep the cases already in results.jsonl; run only the rest
   /// Cases without a given `optimal_length` get the grid optimum (scenario_optimum: octile A*
   /// on a raster of the world, string-pulled) as `optimal_length`, source "grid_astar".
   bool optimum{true};
@@ -114,8 +125,10 @@ struct BatchOutcome {
   nlohmann::ordered_json aggregate;
 };
 
-/// Runs every case; throws InputError when the output cannot be written (at the first failed
-/// write: the workers are stopped, nothing more runs).
+/// Runs every case, in stages: the resumed folder's lines (--resume), the folder itself, the
+/// workers with the ordered writer of results.jsonl, then the aggregate. Throws OutputError when
+/// the output cannot be written (at the first failed write: the workers are stopped, nothing more
+/// runs), InputError for a folder that cannot be resumed.
 BatchOutcome run_batch(const CaseList& cases, const BatchOptions& options);
 BatchOutcome run_batch(std::span<const BatchCase> cases, const BatchOptions& options);
 
