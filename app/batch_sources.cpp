@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include "floornav/core/input_error.hpp"
 #include "floornav/core/utf8.hpp"
@@ -99,20 +100,26 @@ CaseSource make_file_cases(std::span<const std::string> files,
   return {list->size(), make, true};
 }
 
-CaseSource make_scen_cases(const std::string& template_file, const std::string& scen_file,
-                           double cell_size, std::span<const std::string> overrides,
-                           SweepHasher& hash) {
+namespace {
+
+/// The rows of a .scen file: at least one, all on one map (a row naming another would otherwise
+/// run on the first row's map).
+std::shared_ptr<const std::vector<MovingAiCase>> load_scen_rows(const std::string& scen_file) {
   auto rows = std::make_shared<const std::vector<MovingAiCase>>(load_movingai_scen(scen_file));
   if (rows->empty()) throw InputError(scen_file, "", "no cases in the .scen file (only a header)");
   const MovingAiCase& first = rows->front();
-  // One map per .scen file: a row naming another would otherwise run on the first row's map.
   for (const MovingAiCase& row : *rows)
     if (row.map_file != first.map_file)
       throw InputError(scen_file, fmt::format("line {}", row.line),
                        fmt::format("names map '{}', but line {} names '{}': the rows of one .scen "
                                    "file are on one map",
                                    row.map_file, first.line, first.map_file));
-  // The map: the path in the .scen relative to it, or a file of that name beside it.
+  return rows;
+}
+
+/// The map of a .scen's rows: the path in the .scen relative to it, or a file of that name beside
+/// it; a grid the rows can index.
+std::filesystem::path find_scen_map(const std::string& scen_file, const MovingAiCase& first) {
   const std::filesystem::path scen_dir = std::filesystem::path(scen_file).parent_path();
   const std::filesystem::path named = scen_dir / first.map_file;
   const std::filesystem::path beside = scen_dir / std::filesystem::path(first.map_file).filename();
@@ -138,23 +145,23 @@ CaseSource make_scen_cases(const std::string& template_file, const std::string& 
                         ? "; a ROS map yaml has its own resolution and origin: run it with "
                           "floornav run or --grid instead"
                         : ""));
-  const std::string map_path = std::filesystem::absolute(map).lexically_normal().string();
-  hash.add("mode", "scen");
-  add_overrides(hash, overrides);
-  hash.add("cell_size", fmt::format("{}", cell_size));
-  hash.add_file("template", template_file);
-  hash.add_file("scen", scen_file);
-  hash.add_file("map", map);
+  return map;
+}
 
-  // The template with the benchmark's map, and the first row's start and goal in place of the
-  // template's: each of these values is blamed on where it came from, never on a --set.
+/// A row's start pose (facing its goal) and goal, in metres.
+std::pair<Pose2, Vec2> scen_start_and_goal(const MovingAiCase& row, double cell_size) {
+  const Vec2 s = movingai_cell_center(row.start_x, row.start_y, row.height, cell_size);
+  const Vec2 g = movingai_cell_center(row.goal_x, row.goal_y, row.height, cell_size);
+  return {Pose2{s, std::atan2(g.y() - s.y(), g.x() - s.x())}, g};
+}
+
+/// The template with the benchmark's map, and the first row's start and goal in place of the
+/// template's: each of these values is blamed on where it came from, never on a --set.
+Scenario load_scen_template(const std::string& template_file, const std::string& scen_file,
+                            const MovingAiCase& first, const std::string& map_path,
+                            double cell_size, std::span<const std::string> overrides) {
   const std::string first_line = fmt::format("line {}", first.line);
-  auto pose_of = [cell_size](const MovingAiCase& row) {  // kept by every case: no reference
-    const Vec2 s = movingai_cell_center(row.start_x, row.start_y, row.height, cell_size);
-    const Vec2 g = movingai_cell_center(row.goal_x, row.goal_y, row.height, cell_size);
-    return std::pair{Pose2{s, std::atan2(g.y() - s.y(), g.x() - s.x())}, g};
-  };
-  const auto [s0, g0] = pose_of(first);
+  const auto [s0, g0] = scen_start_and_goal(first, cell_size);
   std::vector<ScenarioOverride> sets = user_overrides(overrides);
   sets.push_back({"world.map=" + map_path, scen_file, first_line + " (its map)", true});
   sets.push_back(
@@ -163,22 +170,22 @@ CaseSource make_scen_cases(const std::string& template_file, const std::string& 
                   scen_file, first_line + " (its start)"});
   sets.push_back(
       {fmt::format("goal=[{},{}]", g0.x(), g0.y()), scen_file, first_line + " (its goal)"});
-  auto base = std::make_shared<const Scenario>(load_scenario_with_overrides(template_file, sets));
-  add_inputs(hash, *base);
-  if (base->is_fleet())
-    throw InputError(template_file, "robots", "a .scen template has one robot, not a robots list");
-  const OccupancyGrid* grid = base->world->grid();
+  return load_scenario_with_overrides(template_file, sets);
+}
 
-  // Every row is checked now (start and goal on free floor, the map's size): a bad row is an
-  // error before anything runs. One scenario is reused for the checks.
-  Scenario probe = *base;
-  for (const MovingAiCase& row : *rows) {
+/// Checks every row now (start and goal on free floor, the map's size): a bad row is an error
+/// before anything runs. One scenario is reused for the checks.
+void check_scen_rows(const Scenario& base, const std::vector<MovingAiCase>& rows,
+                     const std::string& scen_file, double cell_size) {
+  const OccupancyGrid* grid = base.world->grid();
+  Scenario probe = base;
+  for (const MovingAiCase& row : rows) {
     const std::string where = fmt::format("line {}", row.line);
     if (grid && (row.width != grid->width() || row.height != grid->height()))
       throw InputError(scen_file, where,
                        fmt::format("the row's map size {} x {} differs from the map's {} x {}",
                                    row.width, row.height, grid->width(), grid->height()));
-    const auto [start, goal] = pose_of(row);
+    const auto [start, goal] = scen_start_and_goal(row, cell_size);
     probe.robot().start = start;
     probe.robot().goals = {goal};
     try {
@@ -189,19 +196,47 @@ CaseSource make_scen_cases(const std::string& template_file, const std::string& 
           fmt::format("{}: {}", e.where == "goal" ? "its goal" : "its start", e.detail));
     }
   }
+}
+
+/// Case `id` of a .scen batch: the template on row `row`.
+BatchCase scen_case(const Scenario& base, const MovingAiCase& row, std::size_t id,
+                    const std::string& scen_file, double cell_size) {
+  BatchCase c;
+  c.scenario = base;
+  const auto [start, goal] = scen_start_and_goal(row, cell_size);
+  c.scenario.robot().start = start;
+  c.scenario.robot().goals = {goal};
+  c.scenario.name = fmt::format("{}-{}", base.name, id);
+  c.source = fmt::format("{}:{}", scen_file, row.line);
+  c.id = id;
+  c.optimal_length = row.optimal_length * cell_size;  // the scen's octile optimum, in m
+  return c;
+}
+
+}  // namespace
+
+CaseSource make_scen_cases(const std::string& template_file, const std::string& scen_file,
+                           double cell_size, std::span<const std::string> overrides,
+                           SweepHasher& hash) {
+  const auto rows = load_scen_rows(scen_file);
+  const MovingAiCase& first = rows->front();
+  const std::filesystem::path map = find_scen_map(scen_file, first);
+  const std::string map_path = std::filesystem::absolute(map).lexically_normal().string();
+  hash.add("mode", "scen");
+  add_overrides(hash, overrides);
+  hash.add("cell_size", fmt::format("{}", cell_size));
+  hash.add_file("template", template_file);
+  hash.add_file("scen", scen_file);
+  hash.add_file("map", map);
+  auto base = std::make_shared<const Scenario>(
+      load_scen_template(template_file, scen_file, first, map_path, cell_size, overrides));
+  add_inputs(hash, *base);
+  if (base->is_fleet())
+    throw InputError(template_file, "robots", "a .scen template has one robot, not a robots list");
+  check_scen_rows(*base, *rows, scen_file, cell_size);
   return {rows->size(),
-          [base, rows, cell_size, scen_file, pose_of](std::size_t id) {
-            const MovingAiCase& row = rows->at(id);
-            BatchCase c;
-            c.scenario = *base;
-            const auto [start, goal] = pose_of(row);
-            c.scenario.robot().start = start;
-            c.scenario.robot().goals = {goal};
-            c.scenario.name = fmt::format("{}-{}", base->name, id);
-            c.source = fmt::format("{}:{}", scen_file, row.line);
-            c.id = id;
-            c.optimal_length = row.optimal_length * cell_size;  // the scen's octile optimum, in m
-            return c;
+          [base, rows, cell_size, scen_file](std::size_t id) {
+            return scen_case(*base, rows->at(id), id, scen_file, cell_size);
           },
           true};
 }

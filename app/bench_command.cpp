@@ -212,161 +212,167 @@ struct Case {
   std::function<void(CaseResult&)> run;  ///< fills the result, or sets `skipped`
 };
 
-}  // namespace
+/// What the cases share: the time budget, where the shipped scenarios and maps are, and the
+/// 50-polygon floor (built on first use, outside any timing).
+class BenchInputs {
+ public:
+  explicit BenchInputs(const BenchOptions& options)
+      : budget(options.seconds_per_case),
+        scenario_dir(find_dir({options.scenario_dir, "scenarios", source_tree() / "scenarios"},
+                              "rectangle.yaml")),
+        maps_dir(
+            find_dir({options.maps_dir, fs::path("data") / "maps", source_tree() / "data" / "maps"},
+                     aws_warehouse_map("").relative_path())) {}
 
-int run_bench(const BenchOptions& options) {
-  if (!(options.seconds_per_case > 0.0)) {
-    fmt::print(stderr, "floornav: error: --seconds must be positive, got {}\n",
-               options.seconds_per_case);
-    return 2;
+  std::shared_ptr<const World> floor50() {
+    if (!floor_) floor_ = std::make_shared<const World>(make_factory_floor({}));
+    return floor_;
   }
-  const double budget = options.seconds_per_case;
-  const fs::path scenario_dir =
-      find_dir({options.scenario_dir, "scenarios", source_tree() / "scenarios"}, "rectangle.yaml");
-  const fs::path maps_dir =
-      find_dir({options.maps_dir, fs::path("data") / "maps", source_tree() / "data" / "maps"},
-               aws_warehouse_map("").relative_path());
 
-  // Shared by the cases that use it; built on first use, outside any timing.
-  std::shared_ptr<const World> floor;
-  const auto floor50 = [&] {
-    if (!floor) floor = std::make_shared<const World>(make_factory_floor({}));
-    return floor;
-  };
-  const auto scenario_file = [&](const char* file, CaseResult& r) -> std::optional<Scenario> {
+  /// A shipped scenario, or nullopt with `r` marked skipped when the folder was not found.
+  std::optional<Scenario> scenario_file(const char* file, CaseResult& r) const {
     if (scenario_dir.empty()) {
       r.skipped =
           fmt::format("{} not found (run from the repository, or pass a scenario dir)", file);
       return std::nullopt;
     }
     return load_scenario_file(scenario_dir / file);
-  };
+  }
 
-  const std::vector<Case> cases = {
+  const double budget;  ///< timed seconds per case
+  const fs::path scenario_dir;
+  const fs::path maps_dir;
+
+ private:
+  std::shared_ptr<const World> floor_;
+};
+
+/// The standard cases, in the order of the table (each a name and how it is measured).
+std::vector<Case> standard_cases(BenchInputs& in) {
+  return {
       {"quickbot_5ir_50_polygons",
-       [&](CaseResult& r) {
+       [&in](CaseResult& r) {
          r.what = "QuickBot, 5 IR (0.3 m), 20 x 20 m floor of 50 random polygons";
-         time_stepping(make_factory_floor_scenario(floor50(), 0), budget, r);
+         time_stepping(make_factory_floor_scenario(in.floor50(), 0), in.budget, r);
        }},
       {"quickbot_5ir_50_polygons_planner",
-       [&](CaseResult& r) {
+       [&in](CaseResult& r) {
          r.what =
              "the same QuickBot with the planner (A* on the known floor, a subgoal for the "
              "automaton; plans timed, restarts rebuild the raster untimed)";
-         Scenario s = make_factory_floor_scenario(floor50(), 0);
+         Scenario s = make_factory_floor_scenario(in.floor50(), 0);
          s.robot().controller.planner.kind = PlannerKind::AStar;
          s.robot().controller.planner.cell_size = 0.1;  // 200 x 200 planning cells
-         time_stepping(s, budget, r);
+         time_stepping(s, in.budget, r);
        }},
       {"lidar180_50_polygons",
-       [&](CaseResult& r) {
+       [&in](CaseResult& r) {
          r.what = "TurtleBot3 base, 180-beam 360-degree lidar (3.5 m), same floor";
-         time_stepping(make_factory_floor_scenario(floor50(), 180), budget, r);
+         time_stepping(make_factory_floor_scenario(in.floor50(), 180), in.budget, r);
        }},
       {"lidar360_aws_warehouse",
-       [&](CaseResult& r) {
+       [&in](CaseResult& r) {
          r.what = "TurtleBot3 Burger, 360-beam lidar, AWS small warehouse map (0.05 m cells)";
          const std::optional<Scenario> s =
-             maps_dir.empty() ? std::nullopt : make_aws_scenario(maps_dir);
+             in.maps_dir.empty() ? std::nullopt : make_aws_scenario(in.maps_dir);
          if (!s) {
            r.skipped = "AWS warehouse map not found (data/maps: run from the repository)";
            return;
          }
-         time_stepping(*s, budget, r);
+         time_stepping(*s, in.budget, r);
        }},
       {"fleet_100x_lidar180_50_polygons",
-       [&](CaseResult& r) {
+       [&in](CaseResult& r) {
          r.what = "100 180-beam lidar robots sensing each other on the 50-polygon floor, all cores";
-         time_fleet(make_fleet_scenario(floor50(), kFleetRobots, 180), 0, budget, r);
+         time_fleet(make_fleet_scenario(in.floor50(), kFleetRobots, 180), 0, in.budget, r);
        }},
       {"fleet_1000x_quickbot_warehouse",
-       [&](CaseResult& r) {
+       [&in](CaseResult& r) {
          r.what = "1,000 QuickBots (5 IR) sensing each other, 63 x 63 m warehouse, all cores";
          time_fleet(make_fleet_scenario(std::make_shared<const World>(make_fleet_warehouse(1000)),
                                         1000, 0),
-                    0, budget, r);
+                    0, in.budget, r);
        }},
       {"fleet_100000x_quickbot_warehouse",
-       [&](CaseResult& r) {
+       [&in](CaseResult& r) {
          r.what = "100,000 QuickBots (5 IR) sensing each other, 632 x 632 m warehouse, all cores";
          time_fleet(make_fleet_scenario(std::make_shared<const World>(make_fleet_warehouse(100000)),
                                         100000, 0),
-                    0, budget, r);
+                    0, in.budget, r);
        }},
       {"run_factory_delivery",
-       [&](CaseResult& r) {
+       [&in](CaseResult& r) {
          r.what = "whole run of scenarios/factory_delivery.yaml (QuickBot, trajectory kept)";
          std::optional<Scenario> s;
-         if (scenario_dir.empty())
+         if (in.scenario_dir.empty())
            s = load_scenario_text(app::kDemoScenarioYaml, "factory-delivery.yaml");
          else
-           s = scenario_file("factory_delivery.yaml", r);
-         time_runs(*s, budget, r);
+           s = in.scenario_file("factory_delivery.yaml", r);
+         time_runs(*s, in.budget, r);
        }},
       {"run_rectangle",
-       [&](CaseResult& r) {
+       [&in](CaseResult& r) {
          r.what = "whole run of scenarios/rectangle.yaml (QuickBot, trajectory kept)";
-         const std::optional<Scenario> s = scenario_file("rectangle.yaml", r);
-         if (s) time_runs(*s, budget, r);
+         const std::optional<Scenario> s = in.scenario_file("rectangle.yaml", r);
+         if (s) time_runs(*s, in.budget, r);
        }},
   };
+}
 
+/// Runs the cases whose name contains `filter` (all when it is empty), in order.
+std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const std::string& filter) {
   std::vector<CaseResult> results;
   for (const Case& c : cases) {
-    if (!options.filter.empty() && c.name.find(options.filter) == std::string::npos) continue;
+    if (!filter.empty() && c.name.find(filter) == std::string::npos) continue;
     CaseResult r;
     r.name = c.name;
     c.run(r);
     results.push_back(r);
   }
-  if (results.empty()) {
-    std::string names;
-    for (const Case& c : cases) names += (names.empty() ? "" : ", ") + c.name;
-    fmt::print(stderr, "floornav: error: --filter '{}' matches no case (cases: {})\n",
-               options.filter, names);
-    return 2;
-  }
+  return results;
+}
 
-  const std::string cpu = cpu_model();
-  const unsigned cores = std::thread::hardware_concurrency();
-  if (options.json) {
-    nlohmann::json out;
-    out["machine"] = {{"cpu", cpu},
-                      {"cores", cores},
-                      {"compiler", compiler()},
-                      {"build", build_type()},
-                      {"date", utc_date()}};
-    out["seconds_per_case"] = budget;
-    out["cases"] = nlohmann::json::array();
-    for (const CaseResult& r : results) {
-      nlohmann::json j = {{"name", r.name}, {"what", r.what}};
-      if (!r.skipped.empty()) {
-        j["skipped"] = r.skipped;
-      } else {
-        j["robots"] = r.robots;
-        j["robot_steps"] = r.robot_steps;
-        j["seconds"] = r.seconds;
-        j["robot_steps_per_s"] = r.steps_per_second();
-        j["world_steps_per_s"] = r.steps_per_second() / r.robots;
-        j["rays_per_step"] = r.rays_per_step;
-        j["rays_per_s"] = r.steps_per_second() * r.rays_per_step;
-        j["ns_per_step"] = r.ns_per_step();
-        if (r.runs > 0) {
-          j["runs"] = r.runs;
-          j["ms_per_run"] = 1e3 * r.seconds / static_cast<double>(r.runs);
-        } else {
-          j["restarts"] = r.restarts;
-        }
-      }
-      out["cases"].push_back(j);
-    }
-    fmt::print("{}\n", out.dump(2));
-    return 0;
+/// One case's measures as `--json` writes them.
+nlohmann::json case_json(const CaseResult& r) {
+  nlohmann::json j = {{"name", r.name}, {"what", r.what}};
+  if (!r.skipped.empty()) {
+    j["skipped"] = r.skipped;
+    return j;
   }
+  j["robots"] = r.robots;
+  j["robot_steps"] = r.robot_steps;
+  j["seconds"] = r.seconds;
+  j["robot_steps_per_s"] = r.steps_per_second();
+  j["world_steps_per_s"] = r.steps_per_second() / r.robots;
+  j["rays_per_step"] = r.rays_per_step;
+  j["rays_per_s"] = r.steps_per_second() * r.rays_per_step;
+  j["ns_per_step"] = r.ns_per_step();
+  if (r.runs > 0) {
+    j["runs"] = r.runs;
+    j["ms_per_run"] = 1e3 * r.seconds / static_cast<double>(r.runs);
+  } else {
+    j["restarts"] = r.restarts;
+  }
+  return j;
+}
 
+void print_json(const std::vector<CaseResult>& results, double budget) {
+  nlohmann::json out;
+  out["machine"] = {{"cpu", cpu_model()},
+                    {"cores", std::thread::hardware_concurrency()},
+                    {"compiler", compiler()},
+                    {"build", build_type()},
+                    {"date", utc_date()}};
+  out["seconds_per_case"] = budget;
+  out["cases"] = nlohmann::json::array();
+  for (const CaseResult& r : results) out["cases"].push_back(case_json(r));
+  fmt::print("{}\n", out.dump(2));
+}
+
+void print_table(const std::vector<CaseResult>& results, double budget) {
   fmt::print(
       "floornav bench: {} ({} cores), {}, {}; one thread (fleets: all cores), ~{:g} s per case\n",
-      cpu, cores, compiler(), build_type(), budget);
+      cpu_model(), std::thread::hardware_concurrency(), compiler(), build_type(), budget);
   fmt::print("{:<34} {:>15} {:>15} {:>10}  {}\n", "case", "robot-steps/s", "rays/s", "ns/step",
              "notes");
   for (const CaseResult& r : results) {
@@ -384,6 +390,30 @@ int run_bench(const BenchOptions& options) {
     fmt::print("{:<34} {:>15} {:>15} {:>10.0f}  {}\n", r.name, grouped(r.steps_per_second()),
                grouped(r.steps_per_second() * r.rays_per_step), r.ns_per_step(), notes);
   }
+}
+
+}  // namespace
+
+int run_bench(const BenchOptions& options) {
+  if (!(options.seconds_per_case > 0.0)) {
+    fmt::print(stderr, "floornav: error: --seconds must be positive, got {}\n",
+               options.seconds_per_case);
+    return 2;
+  }
+  BenchInputs inputs(options);
+  const std::vector<Case> cases = standard_cases(inputs);
+  const std::vector<CaseResult> results = run_cases(cases, options.filter);
+  if (results.empty()) {
+    std::string names;
+    for (const Case& c : cases) names += (names.empty() ? "" : ", ") + c.name;
+    fmt::print(stderr, "floornav: error: --filter '{}' matches no case (cases: {})\n",
+               options.filter, names);
+    return 2;
+  }
+  if (options.json)
+    print_json(results, inputs.budget);
+  else
+    print_table(results, inputs.budget);
   return 0;
 }
 

@@ -297,114 +297,281 @@ int check_standard_output(int status) {
   return status == 0 ? 1 : status;
 }
 
-int run_command(int argc, char** argv) {
-  CLI::App app{"floornav: reactive navigation of wheeled mobile robots on factory floors"};
-  app.set_version_flag("--version", "floornav " + floornav_version());
-  app.require_subcommand(1);
+/// `floornav run`'s arguments.
+struct RunArgs {
+  CLI::App* command{nullptr};
+  RunRequest rq;
+  std::string file;
+  bool no_optimum{false};
+  bool no_html{false};
+};
 
-  // run
-  RunRequest run_rq;
-  std::string run_file;
-  bool run_no_optimum = false;
+void add_run_command(CLI::App& app, RunArgs& a) {
   auto* run = app.add_subcommand("run",
                                  "Simulate one scenario; writes summary.json, trajectory.csv, "
                                  "transitions.csv, trajectory.svg and trajectory.html");
-  run->add_option("scenario", run_file, "scenario YAML file")->required();
-  run->add_option("--out", run_rq.out, "output folder (default: out/<scenario name>)");
-  run->add_option("--set", run_rq.sets, "override a scenario key: --set controller.kind=blended")
+  a.command = run;
+  run->add_option("scenario", a.file, "scenario YAML file")->required();
+  run->add_option("--out", a.rq.out, "output folder (default: out/<scenario name>)");
+  run->add_option("--set", a.rq.sets, "override a scenario key: --set controller.kind=blended")
       ->take_all();
-  run->add_flag("-q,--quiet", run_rq.quiet, "print nothing on success");
-  bool run_no_html = false;
-  run->add_flag("--no-html", run_no_html, "do not write trajectory.html (the replay)");
-  run->add_flag("--mcap", run_rq.mcap,
+  run->add_flag("-q,--quiet", a.rq.quiet, "print nothing on success");
+  run->add_flag("--no-html", a.no_html, "do not write trajectory.html (the replay)");
+  run->add_flag("--mcap", a.rq.mcap,
                 "also write run.mcap: the run as a ROS 2 bag (Foxglove, ros2 bag play)");
-  run->add_option("--threads", run_rq.threads,
+  run->add_option("--threads", a.rq.threads,
                   "threads stepping a fleet's robots (default: all cores; same result for any)")
       ->check(CLI::Range(1, 1024));
-  run->add_option("--config-out", run_rq.config_out,
+  run->add_option("--config-out", a.rq.config_out,
                   "also write the resolved scenario (presets and --set applied) as YAML to FILE");
-  run->add_option("--record", run_rq.record,
+  run->add_option("--record", a.rq.record,
                   "extra trajectory.csv columns: command, heading, clearance, goal, ranges or all "
                   "(comma-separated)");
-  run->add_flag("--no-optimum", run_no_optimum,
+  run->add_flag("--no-optimum", a.no_optimum,
                 "skip the grid optimum (and so the warning when the goal cannot be reached)");
+}
 
-  // batch
-  BatchRequest batch_rq;
-  batch_rq.out = "out/batch";
-  std::vector<std::string> batch_files;
-  std::string batch_scen, batch_cell, batch_worlds, batch_barn_paths;
+int run_scenario(RunArgs a) {
+  a.rq.file = a.file;
+  a.rq.optimum = !a.no_optimum;
+  a.rq.html = !a.no_html;
+  return run_one(load_scenario_file(a.file, a.rq.sets), a.rq);
+}
+
+/// `floornav batch`'s arguments: the scenarios, or a template and where its cases come from.
+struct BatchArgs {
+  CLI::App* command{nullptr};
+  BatchRequest rq;
+  std::vector<std::string> files;
+  std::string scen, cell, worlds, barn_paths;
+  int floors{0};
+  int shared_floors{0};
+  std::uint64_t floor_seed{1};
+};
+
+void add_batch_command(CLI::App& app, BatchArgs& a) {
+  a.rq.out = "out/batch";
   auto* batch = app.add_subcommand("batch",
                                    "Run many scenarios in parallel; writes results.jsonl, "
                                    "aggregate.json and sweep.json");
-  batch->add_option("scenarios", batch_files, "scenario YAML files (or one template with --scen)")
+  a.command = batch;
+  batch->add_option("scenarios", a.files, "scenario YAML files (or one template with --scen)")
       ->required();
-  add_batch_options(batch, batch_rq);
-  batch->add_option("--scen", batch_scen, "MovingAI .scen file: one case per row, on its map");
-  batch->add_option("--cell-size", batch_cell, "metres per grid cell for --scen (default 1)");
-  batch->add_option("--worlds", batch_worlds,
+  add_batch_options(batch, a.rq);
+  batch->add_option("--scen", a.scen, "MovingAI .scen file: one case per row, on its map");
+  batch->add_option("--cell-size", a.cell, "metres per grid cell for --scen (default 1)");
+  batch->add_option("--worlds", a.worlds,
                     "folder of Gazebo .world/.sdf files: one case per world, on the template");
-  batch->add_option("--barn-paths", batch_barn_paths,
+  batch->add_option("--barn-paths", a.barn_paths,
                     "with --worlds: BARN path_N.npy folder, adds optimal_time and the BARN score");
-  int batch_floors = 0;
-  std::uint64_t batch_floor_seed = 1;
   batch
-      ->add_option("--floors", batch_floors,
+      ->add_option("--floors", a.floors,
                    "one case per generated factory floor (20 x 20 m, 50 obstacles, a tour of 4 "
                    "goals): N floors, robot and controller from the template")
       ->check(CLI::Range(1, 100000));
-  int batch_shared_floors = 0;
   batch
-      ->add_option("--shared-floors", batch_shared_floors,
+      ->add_option("--shared-floors", a.shared_floors,
                    "one case per generated shared floor (a hall with pillars and boxes, 4 to 12 "
                    "robots with routes of 1 to 3 goals, people and a forklift on some): N floors, "
                    "every robot and controller the template's")
       ->check(CLI::Range(1, 100000));
-  batch->add_option("--floor-seed", batch_floor_seed,
+  batch->add_option("--floor-seed", a.floor_seed,
                     "with --floors or --shared-floors: the first floor's seed (1)");
+}
 
-  // sweep
-  BatchRequest sweep_rq;
-  sweep_rq.out = "out/sweep";
-  std::string sweep_template;
-  std::vector<std::string> sweep_grid;
+/// The options of `floornav batch` that exclude each other, checked before anything is read.
+void check_batch_sources(const BatchArgs& a) {
+  if (!a.scen.empty() && !a.worlds.empty())
+    throw InputError("", "--scen", "give either --scen or --worlds, not both");
+  if (!a.cell.empty() && a.scen.empty())
+    throw InputError("", "--cell-size", "applies only with --scen (a MovingAI .scen file)");
+  if (!a.barn_paths.empty() && a.worlds.empty())
+    throw InputError("", "--barn-paths", "applies only with --worlds");
+  if (a.floors > 0 && (!a.scen.empty() || !a.worlds.empty()))
+    throw InputError("", "--floors", "give --floors alone, not with --scen or --worlds");
+  if (a.shared_floors > 0 && (a.floors > 0 || !a.scen.empty() || !a.worlds.empty()))
+    throw InputError("", "--shared-floors",
+                     "give --shared-floors alone, not with --floors, --scen or --worlds");
+}
+
+/// The one template scenario that `option` (--floors, --worlds, ...) takes.
+const std::string& one_template(const BatchArgs& a, const char* option) {
+  if (a.files.size() != 1)
+    throw InputError("", option, fmt::format("give exactly one template scenario with {}", option));
+  return a.files[0];
+}
+
+/// Where `floornav batch`'s cases come from: generated floors, worlds, a .scen file's rows or the
+/// scenario files themselves.
+CaseSource batch_source(const BatchArgs& a, SweepHasher& hash) {
+  check_batch_sources(a);
+  if (a.shared_floors > 0)
+    return make_shared_floor_cases(one_template(a, "--shared-floors"), a.shared_floors,
+                                   a.floor_seed, a.rq.sets, hash);
+  if (a.floors > 0)
+    return make_floor_cases(one_template(a, "--floors"), a.floors, a.floor_seed, a.rq.sets, hash);
+  if (!a.worlds.empty())
+    return make_world_cases(one_template(a, "--worlds"), a.worlds, a.barn_paths, a.rq.sets, hash);
+  if (!a.scen.empty()) {
+    const std::string& file = one_template(a, "--scen");
+    const double cell = a.cell.empty() ? 1.0 : parse_cell_size(a.cell);
+    return make_scen_cases(file, a.scen, cell, a.rq.sets, hash);
+  }
+  return make_file_cases(a.files, a.rq.sets, hash);
+}
+
+/// `floornav sweep`'s arguments.
+struct SweepArgs {
+  CLI::App* command{nullptr};
+  BatchRequest rq;
+  std::string template_file;
+  std::vector<std::string> grid;
+};
+
+void add_sweep_command(CLI::App& app, SweepArgs& a) {
+  a.rq.out = "out/sweep";
   auto* sweep = app.add_subcommand(
       "sweep", "Run a template over a grid of parameter values (a batch whose lines carry them)");
-  sweep->add_option("template", sweep_template, "scenario YAML file")->required();
+  a.command = sweep;
+  sweep->add_option("template", a.template_file, "scenario YAML file")->required();
   sweep
-      ->add_option("--grid", sweep_grid,
+      ->add_option("--grid", a.grid,
                    "KEY=FROM:TO:COUNT or KEY=V1,V2,...; several --grid make a product")
       ->take_all()
       ->required();
-  add_batch_options(sweep, sweep_rq);
+  add_batch_options(sweep, a.rq);
+}
 
-  // merge
-  std::vector<std::string> merge_dirs;
-  std::string merge_out = "out/merged";
-  bool merge_partial = false;
+/// `floornav merge`'s arguments.
+struct MergeArgs {
+  CLI::App* command{nullptr};
+  std::vector<std::string> dirs;
+  std::string out = "out/merged";
+  bool partial{false};
+};
+
+void add_merge_command(CLI::App& app, MergeArgs& a) {
   auto* merge = app.add_subcommand("merge", "Join the shards of one sweep (checked)");
-  merge->add_option("dirs", merge_dirs, "batch output folders, one per shard")->required();
-  merge->add_option("--out", merge_out, "output folder (default: out/merged)");
-  merge->add_flag("--allow-partial", merge_partial,
+  a.command = merge;
+  merge->add_option("dirs", a.dirs, "batch output folders, one per shard")->required();
+  merge->add_option("--out", a.out, "output folder (default: out/merged)");
+  merge->add_flag("--allow-partial", a.partial,
                   "merge even when shards or cases are missing (aggregate says complete: false)");
+}
 
-  // demo
-  std::string demo_out;
+int run_merge(const MergeArgs& a) {
+  std::vector<fs::path> dirs(a.dirs.begin(), a.dirs.end());
+  const MergeOutcome o = merge_batches(dirs, a.out, a.partial);
+  std::string partial;
+  if (!o.complete) {
+    partial = fmt::format(" (PARTIAL: {} of {} cases", o.merged, o.total);
+    if (!o.missing_shards.empty())
+      partial += fmt::format(", {} shard(s) missing", o.missing_shards.size());
+    partial += "; aggregate.json says complete: false)";
+  }
+  fmt::print("{} cases merged{}: success {:.1f}% -> {}\n", o.merged, partial,
+             100.0 * o.aggregate["success_rate"].get<double>(), a.out);
+  return 0;
+}
+
+/// `floornav demo`'s arguments.
+struct DemoArgs {
+  CLI::App* command{nullptr};
+  std::string out;
+  bool no_html{false};
+};
+
+void add_demo_command(CLI::App& app, DemoArgs& a) {
   auto* demo = app.add_subcommand("demo", "Run the built-in factory floor demo (no files needed)");
-  demo->add_option("--out", demo_out, "output folder (default: out/factory-delivery)");
-  bool demo_no_html = false;
-  demo->add_flag("--no-html", demo_no_html, "do not write trajectory.html (the replay)");
+  a.command = demo;
+  demo->add_option("--out", a.out, "output folder (default: out/factory-delivery)");
+  demo->add_flag("--no-html", a.no_html, "do not write trajectory.html (the replay)");
+}
 
-  // bench
-  BenchOptions bench_opt;
+int run_demo(const DemoArgs& a) {
+  RunRequest rq;
+  rq.file = "factory-delivery.yaml";
+  rq.out = a.out;
+  rq.html = !a.no_html;
+  return run_one(load_scenario_text(app::kDemoScenarioYaml, "factory-delivery.yaml"), rq);
+}
+
+/// `floornav bench`'s arguments.
+struct BenchArgs {
+  CLI::App* command{nullptr};
+  BenchOptions options;
+};
+
+void add_bench_command(CLI::App& app, BenchArgs& a) {
   auto* bench = app.add_subcommand("bench", "Measure simulation speed on the standard cases");
-  bench->add_flag("--json", bench_opt.json, "one JSON object instead of the table");
-  bench->add_option("--seconds", bench_opt.seconds_per_case, "timed seconds per case (default 1)")
+  a.command = bench;
+  bench->add_flag("--json", a.options.json, "one JSON object instead of the table");
+  bench->add_option("--seconds", a.options.seconds_per_case, "timed seconds per case (default 1)")
       ->check(CLI::Range(1e-3, 3600.0));
-  bench->add_option("--filter", bench_opt.filter, "only cases whose name contains this");
+  bench->add_option("--filter", a.options.filter, "only cases whose name contains this");
+}
 
-  // presets
-  auto* presets = app.add_subcommand("presets", "List the robot presets");
+int print_presets() {
+  for (auto name : robot_preset_names()) {
+    const RobotPreset p = *find_robot_preset(name);
+    fmt::print(
+        "{:<18} R {:.4f} m, L {:.4f} m, body radius {:.3f} m, max {:.2f} m/s, {} "
+        "range sensors {:.2f}-{:.2f} m\n",
+        name, p.robot.drive.wheel_radius, p.robot.drive.track_width, p.robot.body_radius,
+        max_forward_speed(p.robot.drive), p.robot.sensors.size(), p.robot.sensors.front().min_range,
+        p.robot.sensors.front().max_range);
+  }
+  return 0;
+}
+
+/// Every subcommand's arguments, as the command line fills them in.
+struct Commands {
+  RunArgs run;
+  BatchArgs batch;
+  SweepArgs sweep;
+  MergeArgs merge;
+  DemoArgs demo;
+  BenchArgs bench;
+  CLI::App* presets{nullptr};
+};
+
+void add_commands(CLI::App& app, Commands& c) {
+  add_run_command(app, c.run);
+  add_batch_command(app, c.batch);
+  add_sweep_command(app, c.sweep);
+  add_merge_command(app, c.merge);
+  add_demo_command(app, c.demo);
+  add_bench_command(app, c.bench);
+  c.presets = app.add_subcommand("presets", "List the robot presets");
+}
+
+/// Runs the subcommand the command line chose; its exit status.
+int run_chosen(const Commands& c) {
+  if (*c.run.command) return run_scenario(c.run);
+  if (*c.demo.command) return run_demo(c.demo);
+  if (*c.bench.command) return run_bench(c.bench.options);
+  if (*c.presets) return print_presets();
+  if (*c.batch.command) {
+    SweepHasher hash;
+    const CaseSource source = batch_source(c.batch, hash);
+    return run_sweep(source, hash, c.batch.rq);
+  }
+  if (*c.sweep.command) {
+    SweepHasher hash;
+    const CaseSource source =
+        make_grid_cases(c.sweep.template_file, c.sweep.grid, c.sweep.rq.sets, hash);
+    return run_sweep(source, hash, c.sweep.rq);
+  }
+  if (*c.merge.command) return run_merge(c.merge);
+  return 0;
+}
+
+int run_command(int argc, char** argv) {
+  CLI::App app{"floornav: reactive navigation of wheeled mobile robots on factory floors"};
+  app.set_version_flag("--version", "floornav " + floornav_version());
+  app.require_subcommand(1);
+  Commands commands;
+  add_commands(app, commands);
 
   try {
     app.parse(argc, argv);
@@ -419,92 +586,7 @@ int run_command(int argc, char** argv) {
 
   try {
     check_arguments_are_utf8(argc, argv);
-    if (*run) {
-      run_rq.file = run_file;
-      run_rq.optimum = !run_no_optimum;
-      run_rq.html = !run_no_html;
-      return run_one(load_scenario_file(run_file, run_rq.sets), run_rq);
-    }
-    if (*demo) {
-      RunRequest rq;
-      rq.file = "factory-delivery.yaml";
-      rq.out = demo_out;
-      rq.html = !demo_no_html;
-      return run_one(load_scenario_text(app::kDemoScenarioYaml, "factory-delivery.yaml"), rq);
-    }
-    if (*bench) return run_bench(bench_opt);
-    if (*presets) {
-      for (auto name : robot_preset_names()) {
-        const RobotPreset p = *find_robot_preset(name);
-        fmt::print(
-            "{:<18} R {:.4f} m, L {:.4f} m, body radius {:.3f} m, max {:.2f} m/s, {} "
-            "range sensors {:.2f}-{:.2f} m\n",
-            name, p.robot.drive.wheel_radius, p.robot.drive.track_width, p.robot.body_radius,
-            max_forward_speed(p.robot.drive), p.robot.sensors.size(),
-            p.robot.sensors.front().min_range, p.robot.sensors.front().max_range);
-      }
-      return 0;
-    }
-    if (*batch) {
-      if (!batch_scen.empty() && !batch_worlds.empty())
-        throw InputError("", "--scen", "give either --scen or --worlds, not both");
-      if (!batch_cell.empty() && batch_scen.empty())
-        throw InputError("", "--cell-size", "applies only with --scen (a MovingAI .scen file)");
-      if (!batch_barn_paths.empty() && batch_worlds.empty())
-        throw InputError("", "--barn-paths", "applies only with --worlds");
-      if (batch_floors > 0 && (!batch_scen.empty() || !batch_worlds.empty()))
-        throw InputError("", "--floors", "give --floors alone, not with --scen or --worlds");
-      if (batch_shared_floors > 0 &&
-          (batch_floors > 0 || !batch_scen.empty() || !batch_worlds.empty()))
-        throw InputError("", "--shared-floors",
-                         "give --shared-floors alone, not with --floors, --scen or --worlds");
-      SweepHasher hash;
-      CaseSource source;
-      if (batch_shared_floors > 0) {
-        if (batch_files.size() != 1)
-          throw InputError("", "--shared-floors",
-                           "give exactly one template scenario with --shared-floors");
-        source = make_shared_floor_cases(batch_files[0], batch_shared_floors, batch_floor_seed,
-                                         batch_rq.sets, hash);
-      } else if (batch_floors > 0) {
-        if (batch_files.size() != 1)
-          throw InputError("", "--floors", "give exactly one template scenario with --floors");
-        source =
-            make_floor_cases(batch_files[0], batch_floors, batch_floor_seed, batch_rq.sets, hash);
-      } else if (!batch_worlds.empty()) {
-        if (batch_files.size() != 1)
-          throw InputError("", "--worlds", "give exactly one template scenario with --worlds");
-        source =
-            make_world_cases(batch_files[0], batch_worlds, batch_barn_paths, batch_rq.sets, hash);
-      } else if (!batch_scen.empty()) {
-        if (batch_files.size() != 1)
-          throw InputError("", "--scen", "give exactly one template scenario with --scen");
-        const double cell = batch_cell.empty() ? 1.0 : parse_cell_size(batch_cell);
-        source = make_scen_cases(batch_files[0], batch_scen, cell, batch_rq.sets, hash);
-      } else {
-        source = make_file_cases(batch_files, batch_rq.sets, hash);
-      }
-      return run_sweep(source, hash, batch_rq);
-    }
-    if (*sweep) {
-      SweepHasher hash;
-      const CaseSource source = make_grid_cases(sweep_template, sweep_grid, sweep_rq.sets, hash);
-      return run_sweep(source, hash, sweep_rq);
-    }
-    if (*merge) {
-      std::vector<fs::path> dirs(merge_dirs.begin(), merge_dirs.end());
-      const MergeOutcome o = merge_batches(dirs, merge_out, merge_partial);
-      std::string partial;
-      if (!o.complete) {
-        partial = fmt::format(" (PARTIAL: {} of {} cases", o.merged, o.total);
-        if (!o.missing_shards.empty())
-          partial += fmt::format(", {} shard(s) missing", o.missing_shards.size());
-        partial += "; aggregate.json says complete: false)";
-      }
-      fmt::print("{} cases merged{}: success {:.1f}% -> {}\n", o.merged, partial,
-                 100.0 * o.aggregate["success_rate"].get<double>(), merge_out);
-      return 0;
-    }
+    return run_chosen(commands);
   } catch (const OutputError& e) {  // an output that could not be written
     fmt::print(stderr, "floornav: error: {}\n", e.what());
     return 1;
@@ -520,7 +602,6 @@ int run_command(int argc, char** argv) {
                InputError("", "", e.what()).what());  // one line, whatever it says
     return 1;
   }
-  return 0;
 }
 
 }  // namespace

@@ -1,9 +1,10 @@
 #include "floornav/io/summary_json.hpp"
 
 #include <algorithm>
-
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace floornav {
 
@@ -84,20 +85,13 @@ nlohmann::ordered_json summary_to_json(const RunResult& r) {
   return j;
 }
 
-nlohmann::ordered_json fleet_summary_to_json(const FleetResult& f) {
-  Json j = Json::object();
-  j["scenario"] = f.scenario;
-  j["status"] = std::string(to_string(f.status));
-  j["reached_goal"] = f.reached == static_cast<int>(f.robots.size());
-  j["collided"] = f.collided > 0;
-  j["sim_time"] = number(f.sim_time);
-  double path = 0.0;
-  long long switches = 0;
-  // Mode time summed by name: robots may run different controllers.
+namespace {
+
+/// The robots' mode time summed by mode name (robots may run different controllers), in the
+/// order the names first appear.
+Json summed_mode_time(const FleetResult& f) {
   std::vector<std::pair<std::string, double>> modes;
   for (const RunResult& r : f.robots) {
-    path += r.path_length;
-    switches += r.mode_switches;
     for (std::size_t m = 0; m < r.mode_time.size(); ++m) {
       if (!(r.mode_time[m] > 0.0)) continue;
       const std::string name = mode_name(r, static_cast<int>(m));
@@ -108,37 +102,60 @@ nlohmann::ordered_json fleet_summary_to_json(const FleetResult& f) {
         it->second += r.mode_time[m];
     }
   }
-  j["path_length"] = number(path);
-  j["min_clearance"] = number(f.min_clearance);
-  j["mode_switches"] = switches;
   Json mode_time = Json::object();
   for (const auto& [name, t] : modes) mode_time[name] = number(t);
-  j["mode_time"] = std::move(mode_time);
-  j["steps"] = f.steps;
-  j["wall_time"] = number(f.wall_time);
+  return mode_time;
+}
 
-  int timeouts = 0, stuck = 0, robot_collisions = 0, world_collisions = 0;
-  int person_collisions = 0, forklift_collisions = 0;
+/// The fleet's collisions by what was hit.
+struct ContactCounts {
+  int world{0}, robot{0}, person{0}, forklift{0};
+};
+
+ContactCounts count_contacts(const std::vector<FleetCollision>& collisions) {
+  ContactCounts n;
+  for (const FleetCollision& c : collisions) {
+    switch (c.kind) {
+      case ContactKind::World:
+        ++n.world;
+        break;
+      case ContactKind::Robot:
+        ++n.robot;
+        break;
+      case ContactKind::Person:
+        ++n.person;
+        break;
+      case ContactKind::Forklift:
+        ++n.forklift;
+        break;
+    }
+  }
+  return n;
+}
+
+/// Each robot's mean heading error over its steps, weighted by its steps: the mean over every
+/// robot step.
+double mean_path_irregularity(const FleetResult& f) {
+  double heading_error = 0.0;
+  long long driven = 0;
+  for (const RunResult& r : f.robots) {
+    heading_error += r.path_irregularity * static_cast<double>(r.steps);
+    driven += r.steps;
+  }
+  return driven > 0 ? heading_error / static_cast<double>(driven) : 0.0;
+}
+
+/// summary.json's `fleet`: the robots' outcomes, deliveries and collisions counted.
+Json fleet_counts(const FleetResult& f) {
+  int timeouts = 0, stuck = 0;
+  double wait = 0.0, safety = 0.0;
   for (const RunResult& r : f.robots) {
     timeouts += r.status == RunStatus::Timeout;
     stuck += r.status == RunStatus::Stuck;
   }
-  for (const FleetCollision& c : f.collisions) {
-    switch (c.kind) {
-      case ContactKind::World:
-        ++world_collisions;
-        break;
-      case ContactKind::Robot:
-        ++robot_collisions;
-        break;
-      case ContactKind::Person:
-        ++person_collisions;
-        break;
-      case ContactKind::Forklift:
-        ++forklift_collisions;
-        break;
-    }
-  }
+  for (const RunResult& r : f.robots) wait += r.wait_time;
+  for (const RunResult& r : f.robots) safety += r.safety_time;
+  const ContactCounts contacts = count_contacts(f.collisions);
   Json fleet = Json::object();
   fleet["robots"] = f.robots.size();
   fleet["reached"] = f.reached;
@@ -150,67 +167,86 @@ nlohmann::ordered_json fleet_summary_to_json(const FleetResult& f) {
   fleet["deliveries_per_minute"] =
       f.sim_time > 0.0 ? number(60.0 * f.deliveries / f.sim_time) : Json(nullptr);
   fleet["robot_steps"] = f.robot_steps;
-  fleet["robot_collisions"] = robot_collisions;
-  fleet["world_collisions"] = world_collisions;
+  fleet["robot_collisions"] = contacts.robot;
+  fleet["world_collisions"] = contacts.world;
   if (!f.crowd.empty()) {
-    fleet["person_collisions"] = person_collisions;
-    fleet["forklift_collisions"] = forklift_collisions;
+    fleet["person_collisions"] = contacts.person;
+    fleet["forklift_collisions"] = contacts.forklift;
   }
-  double wait = 0.0;
-  for (const RunResult& r : f.robots) wait += r.wait_time;
   fleet["wait_time"] = number(wait);
-  double safety = 0.0;
-  for (const RunResult& r : f.robots) safety += r.safety_time;
   fleet["safety_time"] = number(safety);
-  // Each robot's mean over its steps, weighted by its steps: the mean over every robot step.
-  double heading_error = 0.0;
-  long long driven = 0;
-  for (const RunResult& r : f.robots) {
-    heading_error += r.path_irregularity * static_cast<double>(r.steps);
-    driven += r.steps;
-  }
-  fleet["path_irregularity"] =
-      number(driven > 0 ? heading_error / static_cast<double>(driven) : 0.0);
-  j["fleet"] = std::move(fleet);
-  if (!f.crowd.empty()) {
-    const CrowdMetrics& m = f.crowd.metrics;
-    Json crowd = Json::object();
-    crowd["people"] = f.crowd.people.size();
-    crowd["forklifts"] = f.crowd.forklifts.size();
-    crowd["person_contacts"] = m.person_contacts;
-    crowd["forklift_contacts"] = m.forklift_contacts;
-    crowd["intrusions"] = m.intrusions;
-    crowd["intrusion_time"] = number(m.intrusion_time);
-    crowd["personal_space"] = kPersonalSpace;
-    crowd["min_person_gap"] = number(m.min_person_gap);
-    crowd["people_blocked_time"] = number(m.people_blocked_time);
-    crowd["forklift_stopped_time"] = number(m.forklift_stopped_time);
-    j["crowd"] = std::move(crowd);
-  }
+  fleet["path_irregularity"] = number(mean_path_irregularity(f));
+  return fleet;
+}
 
-  auto robot_name = [&](int i) {
-    return i >= 0 && static_cast<std::size_t>(i) < f.robots.size()
-               ? Json(f.robots[static_cast<std::size_t>(i)].scenario)
-               : Json(nullptr);
-  };
+/// summary.json's `crowd`: the people and forklifts and what happened between them and the robots.
+Json crowd_json(const FleetResult& f) {
+  const CrowdMetrics& m = f.crowd.metrics;
+  Json crowd = Json::object();
+  crowd["people"] = f.crowd.people.size();
+  crowd["forklifts"] = f.crowd.forklifts.size();
+  crowd["person_contacts"] = m.person_contacts;
+  crowd["forklift_contacts"] = m.forklift_contacts;
+  crowd["intrusions"] = m.intrusions;
+  crowd["intrusion_time"] = number(m.intrusion_time);
+  crowd["personal_space"] = kPersonalSpace;
+  crowd["min_person_gap"] = number(m.min_person_gap);
+  crowd["people_blocked_time"] = number(m.people_blocked_time);
+  crowd["forklift_stopped_time"] = number(m.forklift_stopped_time);
+  return crowd;
+}
+
+/// Robot `i`'s name, or null for a number that names none.
+Json robot_name(const FleetResult& f, int i) {
+  return i >= 0 && static_cast<std::size_t>(i) < f.robots.size()
+             ? Json(f.robots[static_cast<std::size_t>(i)].scenario)
+             : Json(nullptr);
+}
+
+/// One entry of summary.json's `collisions`: when, which robot, what it hit (by name).
+Json collision_json(const FleetResult& f, const FleetCollision& c) {
+  Json e = Json::object();
+  e["t"] = number(c.time);
+  e["robot"] = robot_name(f, c.robot);
+  e["other"] = c.kind == ContactKind::Person && c.other >= 0 &&
+                       static_cast<std::size_t>(c.other) < f.crowd.people.size()
+                   ? Json(f.crowd.people[static_cast<std::size_t>(c.other)].name)
+               : c.kind == ContactKind::Forklift && c.other >= 0 &&
+                       static_cast<std::size_t>(c.other) < f.crowd.forklifts.size()
+                   ? Json(f.crowd.forklifts[static_cast<std::size_t>(c.other)].name)
+               : c.kind == ContactKind::Robot ? robot_name(f, c.other)
+                                              : Json(nullptr);
+  e["kind"] = std::string(to_string(c.kind));
+  return e;
+}
+
+}  // namespace
+
+nlohmann::ordered_json fleet_summary_to_json(const FleetResult& f) {
+  Json j = Json::object();
+  j["scenario"] = f.scenario;
+  j["status"] = std::string(to_string(f.status));
+  j["reached_goal"] = f.reached == static_cast<int>(f.robots.size());
+  j["collided"] = f.collided > 0;
+  j["sim_time"] = number(f.sim_time);
+  double path = 0.0;
+  long long switches = 0;
+  for (const RunResult& r : f.robots) {
+    path += r.path_length;
+    switches += r.mode_switches;
+  }
+  j["path_length"] = number(path);
+  j["min_clearance"] = number(f.min_clearance);
+  j["mode_switches"] = switches;
+  j["mode_time"] = summed_mode_time(f);
+  j["steps"] = f.steps;
+  j["wall_time"] = number(f.wall_time);
+  j["fleet"] = fleet_counts(f);
+  if (!f.crowd.empty()) j["crowd"] = crowd_json(f);
+
   Json collisions = Json::array();
   const std::size_t shown = std::min(f.collisions.size(), kSummaryMaxCollisions);
-  for (std::size_t k = 0; k < shown; ++k) {
-    const FleetCollision& c = f.collisions[k];
-    Json e = Json::object();
-    e["t"] = number(c.time);
-    e["robot"] = robot_name(c.robot);
-    e["other"] = c.kind == ContactKind::Person && c.other >= 0 &&
-                         static_cast<std::size_t>(c.other) < f.crowd.people.size()
-                     ? Json(f.crowd.people[static_cast<std::size_t>(c.other)].name)
-                 : c.kind == ContactKind::Forklift && c.other >= 0 &&
-                         static_cast<std::size_t>(c.other) < f.crowd.forklifts.size()
-                     ? Json(f.crowd.forklifts[static_cast<std::size_t>(c.other)].name)
-                 : c.kind == ContactKind::Robot ? robot_name(c.other)
-                                                : Json(nullptr);
-    e["kind"] = std::string(to_string(c.kind));
-    collisions.push_back(std::move(e));
-  }
+  for (std::size_t k = 0; k < shown; ++k) collisions.push_back(collision_json(f, f.collisions[k]));
   j["collisions"] = std::move(collisions);
   if (shown < f.collisions.size()) j["collisions_truncated"] = true;
 
