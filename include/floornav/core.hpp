@@ -88,5 +88,6 @@
 #include "floornav/sim/social_force.hpp"
 #include "floornav/sim/vec_simulation.hpp"
 #include "floornav/world/fan_scratch.hpp"
+#include "floornav/world/lower_envelope.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"

@@ -8,6 +8,7 @@
 #include "floornav/geometry/angle.hpp"
 #include "floornav/kinematics/unicycle.hpp"
 #include "floornav/nav/navigation_automaton.hpp"
+#include "floornav/world/lower_envelope.hpp"
 
 namespace floornav {
 
@@ -17,40 +18,16 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Felzenszwalb & Huttenlocher's exact 1-D squared distance transform: d[q] = min_p (q - p)^2 +
 // f[p] over the finite f[p] (infinity when there is none). v and z are scratch (n and n + 1).
 void edt_1d(const double* f, double* d, int n, int* v, double* z) {
-  int k = -1;
-  for (int q = 0; q < n; ++q) {
-    if (f[q] == kInf) continue;
-    if (k < 0) {
-      k = 0;
-      v[0] = q;
-      z[0] = -kInf;
-      z[1] = kInf;
-      continue;
-    }
-    while (true) {
-      const int p = v[k];
-      const double s = ((f[q] + double(q) * q) - (f[p] + double(p) * p)) / (2.0 * (q - p));
-      if (s <= z[k] && k > 0) {
-        --k;
-        continue;
-      }
-      ++k;
-      v[k] = q;
-      z[k] = s;
-      z[k + 1] = kInf;
-      break;
-    }
-  }
-  if (k < 0) {
+  const auto is_site = [f](int q) { return f[q] != kInf; };
+  const auto intersect = [f](int p, int q) {
+    return ((f[q] + double(q) * q) - (f[p] + double(p) * p)) / (2.0 * (q - p));
+  };
+  const auto emit = [f, d](int q, int p) {
+    const double dq = q - p;
+    d[q] = dq * dq + f[p];
+  };
+  if (!envelope_detail::lower_envelope(n, is_site, intersect, emit, v, z))
     std::fill(d, d + n, kInf);
-    return;
-  }
-  k = 0;
-  for (int q = 0; q < n; ++q) {
-    while (z[k + 1] < q) ++k;
-    const double dq = q - v[k];
-    d[q] = dq * dq + f[v[k]];
-  }
 }
 }  // namespace
 

@@ -183,6 +183,90 @@ void cast_fan(const World& world, std::span<const SensorBeam> beams, std::size_t
   }
 }
 
+// The shape of the fan of beams [i, end) that fan_discs needs: whether it is even (within 1e-6
+// rad of theta0 + k step, modulo 2 pi, and not overlapping itself after a full turn), its layout
+// for FanCone, and, for a fan no wider than a half turn (a 180-degree lidar), its centre line:
+// every beam is within pi / 2 + 1e-6 of it, so along the whole ray (p - o) . c >= -1e-6 t.
+struct DiscFanShape {
+  fan_detail::FanLayout layout;
+  bool even;
+  bool half_plane;
+  Vec2 centre_dir;
+};
+
+DiscFanShape disc_fan_shape(std::span<const SensorBeam> beams, std::size_t i, std::size_t end) {
+  const std::size_t n = end - i;
+  const double theta0 = beams[i].theta;
+  const double step = n > 1 ? wrap_angle(beams[i + 1].theta - theta0) : 0.0;
+  bool even = step > 0.0 && fan_detail::evenly_spaced(
+                                theta0, step, n, [&](std::size_t k) { return beams[i + k].theta; },
+                                std::nextafter(1e-6, 0.0));
+  // Beams that overlap after a full turn are all tested (as are uneven ones).
+  even = even && static_cast<double>(n - 1) * step <= 2.0 * kPi - 0.5 * step;
+  DiscFanShape shape;
+  shape.layout.first = theta0;
+  shape.layout.step = step;
+  shape.layout.inv_step = even ? 1.0 / step : 0.0;
+  shape.layout.n = static_cast<int>(n);
+  shape.even = even;
+  const double half_width = 0.5 * static_cast<double>(n - 1) * step;
+  shape.half_plane = even && half_width <= 0.5 * kPi + 1e-9;
+  const double centre_angle = theta0 + half_width;
+  shape.centre_dir =
+      shape.half_plane ? Vec2(std::cos(centre_angle), std::sin(centre_angle)) : Vec2::Zero();
+  return shape;
+}
+
+// Every beam of `beams` (n of them) against disc `c`, lowering ranges[k] to each hit.
+void disc_every_beam(const SensorBeam* beams, std::size_t n, const Vec2& origin, const Circle& c,
+                     double* ranges) {
+  for (std::size_t k = 0; k < n; ++k)
+    ranges[k] = ray_circle_hit(origin, beams[k].dir, c, ranges[k]);
+}
+
+// Beam k against the disc as disc_span tests it, alone.
+[[gnu::always_inline]] inline void disc_beam(const SensorBeam* beams, std::size_t k, double mx,
+                                             double my, double cc, double near, double* ranges) {
+  double& range = ranges[k];
+  if (!(range > near)) return;
+  const Vec2& dir = beams[k].dir;
+  const double b = mx * dir.x() + my * dir.y();
+  if (b > 0.0) return;
+  const double disc = b * b - cc;
+  if (disc < 0.0) return;
+  const double t = -b - std::sqrt(disc);
+  if (t < range) range = t;
+}
+
+// The beams k0 to k1 against the disc whose intersect_ray numbers that do not depend on the beam
+// are m = origin - centre and cc = |m|^2 - r^2 (once for all, the same bits; the origin is
+// outside the disc, so a beam hits at -b - sqrt(b^2 - cc) unless it points away, b > 0, or
+// passes by, b^2 < cc), only where its range so far is beyond `near`. Two beams at a time:
+// SSE2's lanes do the scalar test's IEEE operations in its order (b, b * b - cc, -b - the root),
+// and a lane takes t where it would (range > near, b not > 0, t < range; a negative b * b - cc
+// has a NaN root, which no comparison takes), so the ranges are the same to the bit.
+[[gnu::always_inline]] inline void disc_span(const SensorBeam* beams, int k0, int k1, double mx,
+                                             double my, double cc, double near, double* ranges) {
+  const __m128d vmx = _mm_set1_pd(mx), vmy = _mm_set1_pd(my), vcc = _mm_set1_pd(cc);
+  const __m128d vnear = _mm_set1_pd(near), sign = _mm_set1_pd(-0.0), zero = _mm_setzero_pd();
+  std::size_t k = static_cast<std::size_t>(k0);
+  const auto last = static_cast<std::size_t>(k1);
+  for (; k < last; k += 2) {
+    const __m128d d0 = _mm_loadu_pd(beams[k].dir.data());
+    const __m128d d1 = _mm_loadu_pd(beams[k + 1].dir.data());
+    const __m128d b = _mm_add_pd(_mm_mul_pd(vmx, _mm_unpacklo_pd(d0, d1)),
+                                 _mm_mul_pd(vmy, _mm_unpackhi_pd(d0, d1)));
+    const __m128d root = _mm_sqrt_pd(_mm_sub_pd(_mm_mul_pd(b, b), vcc));
+    const __m128d t = _mm_sub_pd(_mm_xor_pd(b, sign), root);
+    double* range = ranges + k;
+    const __m128d r = _mm_loadu_pd(range);
+    const __m128d take = _mm_andnot_pd(_mm_cmpgt_pd(b, zero),
+                                       _mm_and_pd(_mm_cmpgt_pd(r, vnear), _mm_cmplt_pd(t, r)));
+    _mm_storeu_pd(range, _mm_or_pd(_mm_and_pd(take, t), _mm_andnot_pd(take, r)));
+  }
+  if (k == last) disc_beam(beams, k, mx, my, cc, near, ranges);
+}
+
 // Other robots' bodies on a fan of beams [i, end) that share an origin, lowering ranges[k] to
 // each hit; every range is at most max_range on entry. For evenly spaced beams each disc is
 // tested only against the beams within its angular extent widened by 1e-5 rad on each side and
@@ -197,88 +281,27 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
                std::span<const Circle> others, std::span<double> ranges) {
   const std::size_t n = end - i;
   const Vec2 origin = beams[i].origin;
-  const double theta0 = beams[i].theta;
-  const double step = n > 1 ? wrap_angle(beams[i + 1].theta - theta0) : 0.0;
-  // Within 1e-6 rad of theta0 + k step, modulo 2 pi.
-  bool even = step > 0.0 && fan_detail::evenly_spaced(
-                                theta0, step, n, [&](std::size_t k) { return beams[i + k].theta; },
-                                std::nextafter(1e-6, 0.0));
-  // Beams that overlap after a full turn are all tested (as are uneven ones).
-  even = even && static_cast<double>(n - 1) * step <= 2.0 * kPi - 0.5 * step;
-  fan_detail::FanLayout layout;
-  layout.first = theta0;
-  layout.step = step;
-  layout.inv_step = even ? 1.0 / step : 0.0;
-  layout.n = static_cast<int>(n);
-  const fan_detail::FanCone cone(layout, 0.0);
-  // A fan no wider than a half turn (a 180-degree lidar): every beam is within pi / 2 + 1e-6 of
-  // its centre line c, so along the whole ray (p - o) . c >= -1e-6 t, and a disc more than its
-  // radius behind the origin along c (with a margin far above that and the rounding of the
-  // ray-disc test, at any distance within reach) meets no beam: skipped before its extent.
-  const double half_width = 0.5 * static_cast<double>(n - 1) * step;
-  const bool half_plane = even && half_width <= 0.5 * kPi + 1e-9;
-  const double centre_angle = theta0 + half_width;
-  const Vec2 centre_dir =
-      half_plane ? Vec2(std::cos(centre_angle), std::sin(centre_angle)) : Vec2::Zero();
-  const auto test = [&](std::size_t k, const Circle& c) {
-    ranges[i + k] = ray_circle_hit(origin, beams[i + k].dir, c, ranges[i + k]);
-  };
-  const auto every_beam = [&](const Circle& c) {
-    for (std::size_t k = 0; k < n; ++k) test(k, c);
-  };
-  if (!even) {  // an uneven fan: every pair
-    for (const Circle& c : others) every_beam(c);
+  const SensorBeam* fan_beams = beams.data() + i;
+  double* fan_ranges = ranges.data() + i;
+  const DiscFanShape shape = disc_fan_shape(beams, i, end);
+  if (!shape.even) {  // an uneven fan: every pair
+    for (const Circle& c : others) disc_every_beam(fan_beams, n, origin, c, fan_ranges);
     return;
   }
-  // The beams k0 to k1 against the disc whose intersect_ray numbers that do not depend on the
-  // beam are m = origin - centre and cc = |m|^2 - r^2 (once for all, the same bits; the origin
-  // is outside the disc, so a beam hits at -b - sqrt(b^2 - cc) unless it points away, b > 0, or
-  // passes by, b^2 < cc), only where its range so far is beyond `near`. Two beams at a time: SSE2's
-  // lanes do the scalar test's IEEE operations in its order (b, b * b - cc, -b - the root), and a
-  // lane takes t where it would (range > near, b not > 0, t < range; a negative b * b - cc has a
-  // NaN root, which no comparison takes), so the ranges are the same to the bit.
-  const auto test_span = [&](int k0, int k1, double mx, double my, double cc, double near) {
-    const auto test_near = [&](std::size_t k) {
-      double& range = ranges[i + k];
-      if (!(range > near)) return;
-      const Vec2& dir = beams[i + k].dir;
-      const double b = mx * dir.x() + my * dir.y();
-      if (b > 0.0) return;
-      const double disc = b * b - cc;
-      if (disc < 0.0) return;
-      const double t = -b - std::sqrt(disc);
-      if (t < range) range = t;
-    };
-    const __m128d vmx = _mm_set1_pd(mx), vmy = _mm_set1_pd(my), vcc = _mm_set1_pd(cc);
-    const __m128d vnear = _mm_set1_pd(near), sign = _mm_set1_pd(-0.0), zero = _mm_setzero_pd();
-    std::size_t k = static_cast<std::size_t>(k0);
-    const auto last = static_cast<std::size_t>(k1);
-    for (; k < last; k += 2) {
-      const __m128d d0 = _mm_loadu_pd(beams[i + k].dir.data());
-      const __m128d d1 = _mm_loadu_pd(beams[i + k + 1].dir.data());
-      const __m128d b = _mm_add_pd(_mm_mul_pd(vmx, _mm_unpacklo_pd(d0, d1)),
-                                   _mm_mul_pd(vmy, _mm_unpackhi_pd(d0, d1)));
-      const __m128d root = _mm_sqrt_pd(_mm_sub_pd(_mm_mul_pd(b, b), vcc));
-      const __m128d t = _mm_sub_pd(_mm_xor_pd(b, sign), root);
-      double* range = &ranges[i + k];
-      const __m128d r = _mm_loadu_pd(range);
-      const __m128d take = _mm_andnot_pd(_mm_cmpgt_pd(b, zero),
-                                         _mm_and_pd(_mm_cmpgt_pd(r, vnear), _mm_cmplt_pd(t, r)));
-      _mm_storeu_pd(range, _mm_or_pd(_mm_and_pd(take, t), _mm_andnot_pd(take, r)));
-    }
-    if (k == last) test_near(k);
-  };
+  const fan_detail::FanCone cone(shape.layout, 0.0);
   for (const Circle& c : others) {
     const Vec2 v = c.center - origin;
     // Behind the lidar first: half the bodies a fleet hands in are (it gathers them within the
-    // sensors' reach, so the test of `far` rarely skips one).
+    // sensors' reach, so the test of `far` rarely skips one). A disc more than its radius behind
+    // the origin along the centre line of a half-turn fan (with a margin far above the rounding
+    // of the ray-disc test, at any distance within reach) meets no beam.
     const double far = max_range + c.radius + 1.0;
-    if (half_plane && v.dot(centre_dir) < -(c.radius + 1e-5 * (1.0 + far))) continue;
+    if (shape.half_plane && v.dot(shape.centre_dir) < -(c.radius + 1e-5 * (1.0 + far))) continue;
     // Beyond max_range + r + 1 m, the test against `near` below would skip the disc: no root.
     if (v.squaredNorm() > far * far) continue;
     const double d = v.norm();
     if (d <= c.radius + 1e-9) {  // the origin inside the body
-      every_beam(c);
+      disc_every_beam(fan_beams, n, origin, c, fan_ranges);
       continue;
     }
     // No beam reaches the disc before its range ends.
@@ -287,7 +310,7 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
     const Vec2 m = origin - c.center;
     const double cc = m.squaredNorm() - c.radius * c.radius;
     if (!(cc > 0.0)) {
-      every_beam(c);
+      disc_every_beam(fan_beams, n, origin, c, fan_ranges);
       continue;
     }
     // The half-width: asin(r / d) <= tan(asin(r / d)) = r / sqrt(d^2 - r^2), with cc for
@@ -295,8 +318,9 @@ void fan_discs(std::span<const SensorBeam> beams, std::size_t i, std::size_t end
     // as 1 - (r / d)^2 was, far below the 1e-5 added). From cc, not d: its root and division
     // wait on no other root or division (the latency of the disc's chain halves).
     const double half = std::min(kPi, c.radius / std::sqrt(cc)) + 1e-5;
-    cone.for_spans_about(v.x(), v.y(), half,
-                         [&](int k0, int k1) { test_span(k0, k1, m.x(), m.y(), cc, near); });
+    cone.for_spans_about(v.x(), v.y(), half, [&](int k0, int k1) {
+      disc_span(fan_beams, k0, k1, m.x(), m.y(), cc, near, fan_ranges);
+    });
   }
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cell_index.hpp"
+#include "floornav/world/lower_envelope.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "grid_walk.hpp"
 
@@ -86,42 +87,20 @@ void compute_nearest(int width, int height, const std::vector<std::int32_t>& col
   for (std::size_t d = 1; d < w; ++d) inv_twice[d] = 1.0 / (2.0 * static_cast<double>(d));
   for (int y = 0; y < height; ++y) {
     const std::size_t row = static_cast<std::size_t>(y) * w;
-    int k = -1;
-    for (int q = 0; q < width; ++q) {
+    const auto is_site = [&](int q) {
       const std::int32_t code = column[row + q];
-      if (code < 0) continue;
+      if (code < 0) return false;
       const std::int64_t dy = y - (code >> 1);
       f[q] = dy * dy;
-      if (k < 0) {
-        k = 0;
-        v[0] = q;
-        z[0] = -kInf;
-        z[1] = kInf;
-        continue;
-      }
-      double s = 0.0;
-      for (;;) {
-        const int r = v[k];
-        // Intersection of the parabolas at r and q, written so that no term exceeds 2^53.
-        s = static_cast<double>(f[q] - f[r]) * inv_twice[q - r] + 0.5 * (q + r);
-        if (s <= z[k]) {
-          --k;  // z[0] = -inf stops this at k = 0
-        } else {
-          break;
-        }
-      }
-      ++k;
-      v[k] = q;
-      z[k] = s;
-      z[k + 1] = kInf;
-    }
-    if (k < 0) continue;  // the whole grid is free
-    int j = 0;
-    for (int x = 0; x < width; ++x) {
-      while (z[j + 1] < x) ++j;
-      const int q = v[j];
-      nearest[row + x] = (column[row + q] >> 1) * width + q;
-    }
+      return true;
+    };
+    // Intersection of the parabolas at r and q, written so that no term exceeds 2^53.
+    const auto intersect = [&](int r, int q) {
+      return static_cast<double>(f[q] - f[r]) * inv_twice[q - r] + 0.5 * (q + r);
+    };
+    const auto emit = [&](int x, int q) { nearest[row + x] = (column[row + q] >> 1) * width + q; };
+    // Rows without a site (the whole grid is free) keep -1.
+    envelope_detail::lower_envelope(width, is_site, intersect, emit, v.data(), z.data());
   }
 }
 

@@ -38,6 +38,92 @@ void at_most(double max_range, std::span<double> out) {
   for (double& r : out) r = std::min(max_range, r);
 }
 
+// Beam k's hit on segment [a, b] (edge e = b - a), kept when nearer than out[k].
+struct SegmentBeamTest {
+  const Vec2& origin;
+  const Vec2* dirs;
+  double* out;
+  const Vec2& a;
+  const Vec2& b;
+  const Vec2& e;
+  void operator()(int k) const { out[k] = ray_segment_hit(origin, dirs[k], a, b, e, out[k]); }
+};
+
+// Beam k's hit on a disc, kept when nearer than out[k].
+struct CircleBeamTest {
+  const Vec2& origin;
+  const Vec2* dirs;
+  double* out;
+  const Circle& circle;
+  void operator()(int k) const { out[k] = ray_circle_hit(origin, dirs[k], circle, out[k]); }
+};
+
+// The beams of an even fan from `origin` against one obstacle at a time, each tested only
+// against the beams its angular extent covers, lowering out[k] to each hit. Obstacles closer
+// than `near` to the origin are tested against every beam: their angular extent is
+// ill-conditioned. Beyond it, a beam outside an extent by kFanMargin passes the obstacle at
+// least near * kFanMargin away, far above the ray test's rounding.
+class ObstacleFan {
+ public:
+  ObstacleFan(const Vec2& origin, std::span<const Vec2> dirs, std::span<double> out,
+              const FanLayout& fan, double near, double reach)
+      : origin_(origin),
+        dirs_(dirs.data()),
+        out_(out.data()),
+        n_(fan.n),
+        near_(near),
+        reach_(reach),
+        reach2_(reach * reach),
+        cone_(fan, 0.0) {}  // beams and obstacles both in the world frame
+
+  double reach() const { return reach_; }
+  double reach2() const { return reach2_; }
+
+  // Segment [a, b] with edge e = b - a.
+  [[gnu::always_inline]] void segment(const Vec2& a, const Vec2& e, const Vec2& b) const {
+    const SegmentBeamTest test{origin_, dirs_, out_, a, b, e};
+    const Vec2 pa = a - origin_;
+    const Vec2 pb = pa + e;
+    const double len2 = e.squaredNorm();
+    const double cr = cross(pa, e);  // |e| times the distance from the origin to the line
+    // A segment wholly beyond reach cannot be hit before max_range: both ends are, and so is
+    // the line or the foot of the perpendicular falls outside the segment.
+    const double foot = -pa.dot(e);  // len2 times the foot's position along the segment
+    if (std::min(pa.squaredNorm(), pb.squaredNorm()) > reach2_ &&
+        (foot < 0.0 || foot > len2 || cr * cr > reach2_ * len2))
+      return;
+    if (!(cr * cr >= near_ * near_ * len2) || len2 == 0.0) return all_beams(test);
+    if (cr < 0.0) {  // b lies clockwise of a
+      cone_.for_beams(pb.x(), pb.y(), pa.x(), pa.y(), test);
+    } else {
+      cone_.for_beams(pa.x(), pa.y(), pb.x(), pb.y(), test);
+    }
+  }
+
+  [[gnu::always_inline]] void circle(const Circle& c) const {
+    const CircleBeamTest test{origin_, dirs_, out_, c};
+    const Vec2 pc = c.center - origin_;
+    const double dist = pc.norm();
+    if (!(dist > c.radius + near_)) return all_beams(test);
+    if (dist - c.radius > reach_) return;
+    const double half = std::asin(c.radius / dist);
+    cone_.for_beams_about(pc.x(), pc.y(), half, test);
+  }
+
+ private:
+  template <class Test>
+  void all_beams(const Test& test) const {
+    for (int k = 0; k < n_; ++k) test(k);
+  }
+
+  const Vec2 origin_;
+  const Vec2* dirs_;
+  double* out_;
+  int n_;
+  double near_, reach_, reach2_;
+  fan_detail::FanCone cone_;
+};
+
 }  // namespace
 
 void World::cast_fan(const Vec2& origin, std::span<const Vec2> dirs, std::span<const double> angles,
@@ -86,24 +172,17 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
     std::fill(out.begin(), out.end(), max_range);
   }
 
-  // Obstacles closer than `near` to the origin are tested against every beam: their angular
-  // extent is ill-conditioned. Beyond it, a beam outside an extent by kFanMargin passes the
-  // obstacle at least near * kFanMargin away, far above the ray test's rounding.
+  // Obstacles closer than `near` to the origin are tested against every beam (ObstacleFan).
   const double scale = 1.0 + std::max(std::abs(origin.x()), std::abs(origin.y())) + max_range;
   const double near = 1e-6 * scale;
-  const double reach = max_range + near;
+  const ObstacleFan obstacles(origin, dirs, out, *fan, near, max_range + near);
+  const double reach = obstacles.reach(), reach2 = obstacles.reach2();
   const Index& ix = index_;
   const int x0 = cell_x(origin.x() - reach), x1 = cell_x(origin.x() + reach);
   const int y0 = cell_y(origin.y() - reach), y1 = cell_y(origin.y() + reach);
   const std::size_t n_segments = segments_.size();
   std::uint32_t* mark = fresh_marks(scratch, n_segments + circles_.size());
   const std::uint32_t epoch = scratch.epoch;
-  const fan_detail::FanCone cone(*fan, 0.0);  // beams and obstacles both in the world frame
-  const auto all_beams = [&](auto&& test) {
-    for (int k = 0; k < fan->n; ++k) test(k);
-  };
-
-  const double reach2 = reach * reach;
   for (int y = y0; y <= y1; ++y) {
     // Distance from the origin to the row's span of y, then to each cell: a cell wholly beyond
     // reach holds no hit before max_range (such a hit lies in a cell that is within reach, and
@@ -120,45 +199,13 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
         if (mark[id] == epoch) continue;
         mark[id] = epoch;
         const SegmentRay& s = ix.segment_rays[k];
-        const Segment& ref = segments_[id];
-        const auto test = [&](int b) {
-          out[b] = ray_segment_hit(origin, dirs[b], s.a, ref.b, s.e, out[b]);
-        };
-        const Vec2 pa = s.a - origin;
-        const Vec2 pb = pa + s.e;
-        const double len2 = s.e.squaredNorm();
-        const double cr = cross(pa, s.e);  // |e| times the distance from the origin to the line
-        // A segment wholly beyond reach cannot be hit before max_range: both ends are, and so is
-        // the line or the foot of the perpendicular falls outside the segment.
-        const double foot = -pa.dot(s.e);  // len2 times the foot's position along the segment
-        if (std::min(pa.squaredNorm(), pb.squaredNorm()) > reach2 &&
-            (foot < 0.0 || foot > len2 || cr * cr > reach2 * len2))
-          continue;
-        if (!(cr * cr >= near * near * len2) || len2 == 0.0) {
-          all_beams(test);
-          continue;
-        }
-        if (cr < 0.0) {  // b lies clockwise of a
-          cone.for_beams(pb.x(), pb.y(), pa.x(), pa.y(), test);
-        } else {
-          cone.for_beams(pa.x(), pa.y(), pb.x(), pb.y(), test);
-        }
+        obstacles.segment(s.a, s.e, segments_[id].b);
       }
       for (std::uint32_t k = ix.circle_offsets[c]; k < ix.circle_offsets[c + 1]; ++k) {
         const std::uint32_t id = ix.circle_items[k];
         if (mark[n_segments + id] == epoch) continue;
         mark[n_segments + id] = epoch;
-        const Circle& ci = circles_[id];
-        const auto test = [&](int b) { out[b] = ray_circle_hit(origin, dirs[b], ci, out[b]); };
-        const Vec2 pc = ci.center - origin;
-        const double dist = pc.norm();
-        if (!(dist > ci.radius + near)) {
-          all_beams(test);
-          continue;
-        }
-        if (dist - ci.radius > reach) continue;
-        const double half = std::asin(ci.radius / dist);
-        cone.for_beams_about(pc.x(), pc.y(), half, test);
+        obstacles.circle(circles_[id]);
       }
     }
   }

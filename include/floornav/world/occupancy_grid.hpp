@@ -122,6 +122,9 @@ class OccupancyGrid {
   void compute_free_run();
   /// The runs of occupied cells that the fan tests (tile_runs_, tile_start_).
   void compute_boundary();
+  /// The stages of compute_boundary and of one cast_fan call (grid_fan.cpp).
+  struct BoundaryBuild;
+  class FanCast;
   /// `cast_ray`; with `skip`, free space is crossed `free_run_` cells at a time.
   double cast(const Vec2& origin_world, const Vec2& dir, double max_range, bool skip) const;
   /// The walk of `cast` with `skip`, from cell (ix, iy) entered at t0; cell units, grid frame.
