@@ -71,6 +71,12 @@ class VecEnv:
 
     ``scenario`` may be a list of scenarios (one per copy; ``n_envs`` then defaults to its
     length), all with the same number of sensors.
+
+    ``randomize`` (see :func:`episode_draw` and :func:`floor_draw`) draws per episode, from its
+    seed: the start and goal (``"start"``, ``"goal"``: ``"free"`` or a region), and with
+    ``"floor": "factory_floor"`` a generated floor (``floornav.factory_floor(scenario, f)``, the
+    scenario being the template) from ``"floor_seeds"`` (a range or a sequence; absent: any
+    seed). ``info["floor_seeds"]`` then names the floor each copy is on, at reset and every step.
     """
 
     metadata: dict = {"autoreset_mode": "same-step", "render_modes": list(RENDER_MODES)}
