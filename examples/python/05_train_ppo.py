@@ -1,11 +1,13 @@
-"""PPO trains a range-sensor policy on floornav.VecEnv with randomized starts and goals.
+"""PPO trains a range-sensor policy on floornav.VecEnv, on a new generated floor every episode.
 
 A short, readable PPO (clipped surrogate, GAE, one Gaussian policy and a value head in PyTorch,
-Debian's python3-torch) on copies of the chapter's floors, every episode drawn anew
-(randomize={"start": "free", "goal": "free"}). The policy sees the robot's ranges (scaled to
-[0, 1]) and its goal in its own frame; it outputs (v, omega) within the robot's limits. Every
-few iterations it is evaluated greedily on held-out floors (other worlds, other seeds): the
-share of episodes that reach the goal. Writes a learning curve and the figures as JSON.
+Debian's python3-torch). Every episode of every copy runs on a factory floor generated for it
+(randomize={"floor": "factory_floor"}: a 20 x 20 m hall of 50 random obstacles, drawn from the
+training floors' seeds) with its start and a goal a few metres away drawn anew. The policy sees
+the robot's ranges (scaled to [0, 1]) and its goal in its own frame; it outputs (v, omega)
+within the robot's limits. Every few iterations it is evaluated greedily on held-out floors
+(seeds never trained on, the same episodes each time): the share of episodes that reach the
+goal. Writes a learning curve and the figures as JSON.
 
 Run: PYTHONPATH=build/python /usr/bin/python3 examples/python/05_train_ppo.py [--minutes 30]
 (--quick: a few small iterations, the CI's smoke test.)
@@ -25,15 +27,16 @@ from torch import nn
 import floornav
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-TRAIN = ["rectangle.yaml", "convex_obstacle.yaml", "concave_obstacle.yaml", "point_obstacle.yaml"]
-HELD_OUT = ["circle_obstacle.yaml", "practice2_pillars.yaml"]
+TEMPLATE = ROOT / "scenarios" / "floor_template.yaml"  # a QuickBot, its 5 IR sensors
 SETTINGS = {"sim.dt": 0.05, "sim.t_max": 30, "robot.sensors.noise": 0.0}
-RANDOM = {"start": "free", "goal": "free", "clearance": 0.02, "goal_distance": (0.3, 2.5)}
+EPISODE = {"start": "free", "goal": "free", "clearance": 0.02, "goal_distance": (0.3, 2.5)}
+TRAIN_FLOORS = range(0, 1_000_000)            # each episode: one of these floors
+HELD_OUT_FLOORS = range(1_000_000, 1_000_064)  # never trained on
 
 
-def scenarios(names, n):
-    loaded = [floornav.load_scenario(ROOT / "scenarios" / f, SETTINGS) for f in names]
-    return [loaded[i % len(loaded)] for i in range(n)]
+def make_env(n, seed, floors):
+    return floornav.VecEnv(floornav.load_scenario(TEMPLATE, SETTINGS), n, seed=seed,
+                           randomize={"floor": "factory_floor", "floor_seeds": floors, **EPISODE})
 
 
 def features(obs, max_range):
@@ -70,7 +73,7 @@ class Policy(nn.Module):
 
 def evaluate(policy, n=32, seed=10_000):
     """Greedy episodes on the held-out floors: the share that reach their goal."""
-    env = floornav.VecEnv(scenarios(HELD_OUT, n), seed=seed, randomize=RANDOM)
+    env = make_env(n, seed, HELD_OUT_FLOORS)
     max_range = env.single_observation_space["ranges"].high
     obs, _ = env.reset()
     done = np.zeros(n, bool)
@@ -89,7 +92,7 @@ def evaluate(policy, n=32, seed=10_000):
 
 def train(args):
     torch.manual_seed(args.seed)
-    env = floornav.VecEnv(scenarios(TRAIN, args.envs), seed=args.seed, randomize=RANDOM)
+    env = make_env(args.envs, args.seed, TRAIN_FLOORS)
     max_range = env.single_observation_space["ranges"].high
     n, T = env.num_envs, args.horizon
     policy = Policy(len(max_range) + 3, env.single_action_space.high)

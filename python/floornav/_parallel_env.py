@@ -69,6 +69,10 @@ class ParallelEnv:
         self.render_mode: Optional[str] = _render_mode(render_mode)
         self.render_shape: tuple = _render_shape(render_shape)
         self.randomize: Optional[dict] = None if randomize is None else dict(randomize)
+        if randomize is not None and isinstance(randomize, Mapping) and \
+                (randomize.get("floor") is not None or randomize.get("floor_seeds") is not None):
+            raise ValueError("randomize['floor']: ParallelEnv steps the fleet of its scenario; for "
+                             "another floor, make a ParallelEnv of floornav.shared_floor(template, seed)")
         self._core = _floornav._ParallelCore(scenario, episode_draw(randomize), params)
         self.possible_agents: list = list(self._core.names())
         self.agents: list = []

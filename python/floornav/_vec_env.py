@@ -71,6 +71,12 @@ class VecEnv:
 
     ``scenario`` may be a list of scenarios (one per copy; ``n_envs`` then defaults to its
     length), all with the same number of sensors.
+
+    ``randomize`` (see :func:`episode_draw` and :func:`floor_draw`) draws per episode, from its
+    seed: the start and goal (``"start"``, ``"goal"``: ``"free"`` or a region), and with
+    ``"floor": "factory_floor"`` a generated floor (``floornav.factory_floor(scenario, f)``, the
+    scenario being the template) from ``"floor_seeds"`` (a range or a sequence; absent: any
+    seed). ``info["floor_seeds"]`` then names the floor each copy is on, at reset and every step.
     """
 
     metadata: dict = {"autoreset_mode": "same-step", "render_modes": list(RENDER_MODES)}
@@ -115,9 +121,11 @@ class VecEnv:
         #: What each reset draws anew (None: nothing; every episode starts as the scenario says).
         self.randomize: Optional[dict] = None if randomize is None else dict(randomize)
         draw = episode_draw(randomize)
+        floors = floor_draw(randomize)
         self.reward_params: RewardParams = params
         self.scenarios: list = scenarios
-        self._core = _floornav._VecCore(scenarios, threads or 0, copy, params, draw)
+        self._core = _floornav._VecCore(scenarios, threads or 0, copy, params, draw, floors)
+        self._floors = bool(floors.generator)
         self.num_envs: int = self._core.n_envs
         self.seed: int = _seed(seed)
         self._started = False
@@ -129,7 +137,10 @@ class VecEnv:
         self.action_high: np.ndarray = np.array([robot["max_speed"], robot["max_turn_rate"]])
         self.single_action_space: Box = Box(self.action_low, self.action_high, (2,), np.float64)
         self.action_space: Box = batch_space(self.single_action_space, self.num_envs)
-        self.single_observation_space: Dict = observation_space(scenarios)
+        # On generated floors, the route is a floor's (a tour of its goals), not the template's.
+        self.single_observation_space: Dict = observation_space(
+            scenarios + [_floornav_module().factory_floor(scenarios[0], 0)] if self._floors
+            else scenarios)
         self.observation_space: Dict = batch_space(self.single_observation_space, self.num_envs)
         #: Shapes of one copy's observation entries (without the leading n_envs).
         self.single_observation_shapes: dict = {
@@ -160,6 +171,8 @@ class VecEnv:
         self._return[:] = 0.0
         self._steps[:] = 0
         info = {"status": self._core.statuses(), "seeds": np.array(self._core.seeds(), dtype=np.uint64)}
+        if self._floors:
+            info["floor_seeds"] = self._core.floor_seeds()
         return obs, info
 
     def step(self, actions: Optional[np.ndarray]) -> tuple:
@@ -179,6 +192,8 @@ class VecEnv:
             if final is not None:
                 info["final_obs"] = final
                 info["_final_obs"] = self._core.ended_mask(terminated, truncated)
+        if self._floors:
+            info["floor_seeds"] = self._core.floor_seeds()
         self._return += reward
         self._steps += 1
         info["episode_return"] = self._return.copy()
@@ -268,7 +283,56 @@ def _render_shape(shape: Sequence[int]) -> tuple:
     return (h, w)
 
 
-_RANDOMIZE_KEYS = ("start", "goal", "clearance", "goal_distance", "max_tries")
+_RANDOMIZE_KEYS = ("start", "goal", "clearance", "goal_distance", "max_tries", "floor",
+                   "floor_seeds")
+
+#: The floor generators ``randomize["floor"]`` may name.
+FLOOR_GENERATORS: tuple = ("factory_floor",)
+
+
+def floor_draw(randomize: Optional[Mapping[str, Any]]) -> Any:
+    """``randomize["floor"]`` and ``randomize["floor_seeds"]`` (VecEnv) checked and turned into
+    the C++ floor draw: ``floor`` names the generator (``"factory_floor"``: the floors of
+    :func:`floornav.factory_floor`); ``floor_seeds`` the floors an episode draws from, uniformly
+    (a ``range`` or a sequence of seeds; absent or None: any 64-bit seed, a new floor almost
+    surely every episode)."""
+    draw = _floornav._FloorDraw()
+    if randomize is None or randomize.get("floor") is None:
+        if randomize is not None and randomize.get("floor_seeds") is not None:
+            raise ValueError("randomize['floor_seeds'] needs randomize['floor'] "
+                             f"(one of {list(FLOOR_GENERATORS)})")
+        return draw
+    generator = randomize["floor"]
+    if generator not in FLOOR_GENERATORS:
+        raise ValueError(f"randomize['floor'] is one of {list(FLOOR_GENERATORS)}, got {generator!r}")
+    draw.generator = generator
+    seeds = randomize.get("floor_seeds")
+    if seeds is None:
+        return draw
+    if isinstance(seeds, range):
+        if len(seeds) == 0:
+            raise ValueError(f"randomize['floor_seeds'] is empty: {seeds!r}")
+        if seeds.step < 0:
+            seeds = seeds[::-1]
+        _seed_in_range(seeds[0], "floor_seeds")
+        _seed_in_range(seeds[-1], "floor_seeds")
+        draw.start, draw.step, draw.count = seeds.start, seeds.step, len(seeds)
+        return draw
+    if isinstance(seeds, (str, bytes, Mapping)) or not isinstance(seeds, (Sequence, np.ndarray)):
+        raise ValueError("randomize['floor_seeds'] is a range or a sequence of floor seeds, "
+                         f"got {seeds!r}")
+    values = [_seed_in_range(v, "floor_seeds") for v in seeds]
+    if not values:
+        raise ValueError("randomize['floor_seeds'] is empty")
+    draw.seeds = values
+    return draw
+
+
+def _seed_in_range(value: Any, key: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) \
+            or not 0 <= value < 2**64:
+        raise ValueError(f"randomize[{key!r}]: a floor seed is an integer in [0, 2**64), got {value!r}")
+    return int(value)
 
 
 def episode_draw(randomize: Optional[Mapping[str, Any]]) -> Any:

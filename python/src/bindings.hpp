@@ -115,6 +115,22 @@ py::object robot_info(const RobotSpec& robot, std::string_view name);
 /// "running" or the run's status.
 std::string_view status_name(bool finished, RunStatus status);
 
+// --- pickle ----------------------------------------------------------------------------------
+
+/// A scenario's fields as pickle keeps them (text, origin, source, overrides, seed, generator,
+/// floor seed) and the scenario made again from them; a Python controller is not among them.
+py::tuple scenario_fields(const PyScenario& s);
+ScenarioPtr scenario_of_fields(const py::tuple& t);
+/// A copy of `base` whose controller, reported as `kind`, was a Python controller that pickle did
+/// not keep: running it raises ValueError saying so.
+ScenarioPtr with_unpickled_controller(const PyScenario& base, const std::string& kind);
+
+/// A result's data (run or fleet run, the summary's context once computed unless `with_context`
+/// is false) as CBOR bytes, every
+/// value bit for bit; load_run_result_data fills a result from them (ValueError if unreadable).
+py::bytes run_result_data(const PyRunResult& r, bool with_context = true);
+void load_run_result_data(PyRunResult& r, const py::bytes& data);
+
 // --- bind_* (one per file) -------------------------------------------------------------------
 
 void bind_behaviours(py::module_& m);

@@ -329,6 +329,36 @@ py::tuple batch(const std::vector<ScenarioPtr>& scenarios, int jobs, bool timing
   return py::make_tuple(result, json_to_python(aggregate));
 }
 
+// pickle: (scenario fields, the Python controller's kind or None, the result's data). A result of
+// a Python controller pickles too (the results of runs in other processes): its scenario comes
+// back with the controller's name and without the controller.
+py::tuple run_result_state(const PyRunResult& r) {
+  const py::object kind = r.scenario->python_controller
+                              ? py::object(py::str(r.scenario->scenario.robot().controller.kind))
+                              : py::object(py::none());
+  return py::make_tuple(scenario_fields(*r.scenario), kind, run_result_data(r));
+}
+
+std::shared_ptr<PyRunResult> run_result_of_state(const py::tuple& t) {
+  if (t.size() != 3)
+    throw py::value_error("a pickled RunResult is (scenario, controller kind, data)");
+  auto r = std::make_shared<PyRunResult>();
+  r->scenario = scenario_of_fields(t[0].cast<py::tuple>());
+  if (!t[1].is_none())
+    r->scenario = with_unpickled_controller(*r->scenario, t[1].cast<std::string>());
+  load_run_result_data(*r, t[2].cast<py::bytes>());
+  return r;
+}
+
+// Equal results: the same data, bit for bit (NaN equal to NaN, as in the files they write), of
+// scenarios with the same fields.
+bool same_result(const PyRunResult& a, const PyRunResult& b) {
+  if (&a == &b) return true;
+  if (!scenario_fields(*a.scenario).equal(scenario_fields(*b.scenario))) return false;
+  // the context aside: it is computed on first use, from the scenario
+  return run_result_data(a, false).equal(run_result_data(b, false));
+}
+
 }  // namespace
 
 void bind_run(py::module_& m) {
@@ -411,6 +441,16 @@ void bind_run(py::module_& m) {
           "Writes the CLI's files (summary.json, trajectory.csv, trajectory.svg, ...) into `out`; "
           "with mcap=True also run.mcap, the run as a ROS 2 bag (its sensor topics hold the "
           "ranges the run recorded: run with floornav.run(..., mcap=True) to record them).")
+      .def(py::pickle(&run_result_state, &run_result_of_state))
+      .def("__copy__", [](const std::shared_ptr<PyRunResult>& r) { return r; })  // immutable
+      .def("__deepcopy__",
+           [](const PyRunResult& r, py::handle) {
+             auto c = std::make_shared<PyRunResult>(r);
+             c->summary = py::object();  // dicts and arrays of its own, built on first use
+             c->trajectory = py::object();
+             return c;
+           })
+      .def("__eq__", &same_result, py::is_operator())
       .def("__repr__", [](const PyRunResult& r) {
         if (r.run) return fmt::format("<floornav.RunResult {}>", describe_run(*r.run));
         return fmt::format("<floornav.RunResult {}>", describe_fleet(*r.fleet));

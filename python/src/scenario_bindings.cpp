@@ -141,19 +141,15 @@ ScenarioPtr generated_floor(const PyScenario& base, const std::string& generator
   return s;
 }
 
-// pickle: (text, origin, source, overrides, seed, generator, floor seed); a Python controller is
-// not kept.
-py::tuple scenario_state(const PyScenario& s) {
-  if (s.python_controller)
-    throw py::type_error(fmt::format(
-        "cannot pickle scenario '{}': it has a Python controller (pickle the scenario before "
-        "with_controller, and call with_controller again after loading it)",
-        s.scenario.name));
+}  // namespace
+
+// The scenario's fields as pickle keeps them (a Python controller is not among them).
+py::tuple scenario_fields(const PyScenario& s) {
   return py::make_tuple(s.text, s.origin, s.source, s.overrides, s.scenario.sim.seed, s.generator,
                         s.floor_seed);
 }
 
-ScenarioPtr scenario_of_state(const py::tuple& t) {
+ScenarioPtr scenario_of_fields(const py::tuple& t) {
   if (t.size() != 7)
     throw py::value_error(
         "a pickled Scenario is (text, origin, source, overrides, seed, generator, floor seed)");
@@ -164,6 +160,37 @@ ScenarioPtr scenario_of_state(const py::tuple& t) {
   if (!generator.empty()) s = generated_floor(*s, generator, t[6].cast<std::uint64_t>());
   s->scenario.sim.seed = t[4].cast<std::uint64_t>();
   return s;
+}
+
+ScenarioPtr with_unpickled_controller(const PyScenario& base, const std::string& kind) {
+  auto s = std::make_shared<PyScenario>(base);
+  const std::string name = s->scenario.name;
+  s->scenario.set_controller(
+      kind, [name, kind](const ControllerContext&) -> std::unique_ptr<Controller> {
+        throw std::invalid_argument(fmt::format(
+            "scenario '{}' came out of a pickled RunResult without its Python controller '{}': "
+            "call with_controller again to run it",
+            name, kind));
+      });
+  s->python_controller = true;
+  return s;
+}
+
+namespace {
+
+// pickle: (text, origin, source, overrides, seed, generator, floor seed); a Python controller is
+// not kept.
+py::tuple scenario_state(const PyScenario& s) {
+  if (s.python_controller)
+    throw py::type_error(fmt::format(
+        "cannot pickle scenario '{}': it has a Python controller (pickle the scenario before "
+        "with_controller, and call with_controller again after loading it)",
+        s.scenario.name));
+  return scenario_fields(s);
+}
+
+ScenarioPtr scenario_of_state(const py::tuple& t) {
+  return scenario_of_fields(t);
 }
 
 ScenarioPtr with_controller(const PyScenario& base, py::object controller, py::object factory,

@@ -13,8 +13,10 @@
 
 #include "bindings.hpp"
 #include "floornav/core/input_error.hpp"
+#include "floornav/core/rng.hpp"
 #include "floornav/render/frame_raster.hpp"
 #include "floornav/render/palette.hpp"
+#include "floornav/scenario/factory_floor.hpp"
 #include "floornav/sim/vec_simulation.hpp"
 #include "status_code.hpp"
 
@@ -48,6 +50,25 @@ class Busy {
   std::atomic<bool>& flag_;
 };
 
+/// A generated floor per episode (VecEnv's randomize["floor"]): which floors an episode draws
+/// from, uniformly, with a stream of its seed.
+struct FloorDraw {
+  std::string generator;             ///< "factory_floor"; empty: the scenario's own world
+  std::vector<std::uint64_t> seeds;  ///< the floors to draw from; empty: `count` from `start`
+  std::uint64_t start{0}, step{1};   ///< the range start, start + step, ... (count of them)
+  std::uint64_t count{0};            ///< 0 (and no seeds): any floor, a 64-bit seed
+  bool any() const { return !generator.empty(); }
+
+  /// The floor of the episode whose sensor-noise seed is `seed`: a stream of its own (neither the
+  /// noise's nor the start and goal draws').
+  std::uint64_t pick(std::uint64_t seed) const {
+    Rng rng(seed ^ 0x9E6C63D0676A9A99ull);
+    if (!seeds.empty()) return seeds[rng.next() % seeds.size()];
+    if (count > 0) return start + step * (rng.next() % count);
+    return rng.next();
+  }
+};
+
 template <class T>
 T* data_of(py::array& a) {
   return static_cast<T*>(a.mutable_data());
@@ -56,12 +77,28 @@ T* data_of(py::array& a) {
 class VecCore {
  public:
   VecCore(std::vector<ScenarioPtr> scenarios, int threads, bool copy, RewardParams reward,
-          EpisodeDraw draw)
+          EpisodeDraw draw, FloorDraw floors)
       : scenarios_(std::move(scenarios)),
         vec_(copies_of(scenarios_), python_controller(scenarios_) ? 1 : threads, draw),
         copy_(copy),
-        reward_(reward) {
+        reward_(reward),
+        floor_draw_(std::move(floors)) {
     const std::size_t n = scenarios_.size();
+    if (floor_draw_.any()) {
+      if (floor_draw_.generator != "factory_floor")
+        throw py::value_error(
+            fmt::format("randomize['floor'] is 'factory_floor', got '{}'", floor_draw_.generator));
+      for (const ScenarioPtr& x : scenarios_)
+        if (!x->generator.empty())
+          throw py::value_error(fmt::format(
+              "randomize['floor']: scenario '{}' is already generated floor {} of {}; give "
+              "the template it was made from",
+              x->scenario.name, x->floor_seed, x->generator));
+      floors_.resize(n);
+      floor_seeds_.assign(n, 0);
+      vec_.set_copy_source(
+          [this](std::size_t i, std::uint64_t seed) { return next_floor(i, seed); });
+    }
     episode_.assign(n, 0);
     started_.assign(n, 0);
     distance_.assign(n, 0.0);
@@ -289,6 +326,28 @@ class VecCore {
 
   double dt_of(std::size_t i) const { return scenarios_[i]->scenario.sim.dt; }
 
+  // Copy i's next episode on a floor of its own, generated from its scenario (the template) for
+  // the floor this episode's seed draws. Runs on the stepping threads, one copy each.
+  VecCopy next_floor(std::size_t i, std::uint64_t seed) {
+    const PyScenario& base = *scenarios_[i];
+    const std::uint64_t floor = floor_draw_.pick(seed);
+    auto s =
+        std::make_shared<const Scenario>(make_generated_floor(base.scenario, floor, base.source));
+    floors_[i] = s;  // the previous floor goes (the episode on it has)
+    floor_seeds_[i] = floor;
+    return {s->world.get(), &s->robot(), &s->sim, s->name, &s->crowd};
+  }
+
+ public:
+  /// The floor each copy is on (its generator seed; randomize["floor"] only).
+  py::object floor_seeds() const {
+    if (!floor_draw_.any()) return py::none();
+    py::array_t<std::uint64_t> out(static_cast<py::ssize_t>(size()));
+    std::copy(floor_seeds_.begin(), floor_seeds_.end(), out.mutable_data());
+    return out;
+  }
+
+ private:
   // Copy i's observation into row i of the arrays, and what the next step's reward starts from.
   void write_observation(std::size_t i, Buffers& b) {
     const RobotAgent& a = vec_.agent(i);
@@ -395,8 +454,7 @@ class VecCore {
     for (std::size_t i : ids)
       if (!started_[i]) throw py::value_error("render: call reset() first");
     std::vector<const FrameRaster*> rasters(ids.size());
-    for (std::size_t k = 0; k < ids.size(); ++k)
-      rasters[k] = &raster_for(*scenarios_[ids[k]]->scenario.world, height, width);
+    for (std::size_t k = 0; k < ids.size(); ++k) rasters[k] = &raster_for(ids[k], height, width);
     const std::size_t bytes = rasters.empty() ? 0 : rasters.front()->bytes();
     py::array_t<std::uint8_t> frames({static_cast<py::ssize_t>(ids.size()),
                                       static_cast<py::ssize_t>(height),
@@ -413,16 +471,23 @@ class VecCore {
   }
 
  private:
-  const FrameRaster& raster_for(const World& world, int height, int width) {
+  // The raster of copy i's world now. A raster keeps the scenario that owns its world alive, so
+  // that its address names no other world; rasters of floors no copy is on any longer go.
+  const FrameRaster& raster_for(std::size_t i, int height, int width) {
+    std::shared_ptr<const void> owner = floors_.empty() || !floors_[i]
+                                            ? std::shared_ptr<const void>(scenarios_[i])
+                                            : std::shared_ptr<const void>(floors_[i]);
+    const World* world = vec_.copy(i).world;
+    std::erase_if(rasters_, [](const Raster& r) { return r.owner.use_count() == 1; });
     for (const auto& r : rasters_)
-      if (r.world == &world && r.raster->height() == height && r.raster->width() == width)
+      if (r.world == world && r.raster->height() == height && r.raster->width() == width)
         return *r.raster;
     std::unique_ptr<FrameRaster> raster;
     {
       py::gil_scoped_release nogil;
-      raster = std::make_unique<FrameRaster>(world, height, width);
+      raster = std::make_unique<FrameRaster>(*world, height, width);
     }
-    rasters_.push_back({&world, std::move(raster)});
+    rasters_.push_back({std::move(owner), world, std::move(raster)});
     return *rasters_.back().raster;
   }
 
@@ -442,6 +507,7 @@ class VecCore {
   }
 
   struct Raster {
+    std::shared_ptr<const void> owner;  ///< the scenario whose world it is
     const World* world;
     std::unique_ptr<FrameRaster> raster;
   };
@@ -452,6 +518,9 @@ class VecCore {
   VecSimulation vec_;
   bool copy_;
   RewardParams reward_;
+  FloorDraw floor_draw_;
+  std::vector<std::shared_ptr<const Scenario>> floors_;  ///< per copy: its episode's floor
+  std::vector<std::uint64_t> floor_seeds_;               ///< per copy: that floor's seed
   std::size_t beams_{0};
   std::uint64_t base_seed_{0};
   std::vector<std::uint64_t> episode_;
@@ -548,10 +617,19 @@ void bind_vec_env(py::module_& m) {
       .def_readwrite("max_goal_distance", &EpisodeDraw::max_goal_distance)
       .def_readwrite("max_tries", &EpisodeDraw::max_tries);
 
+  py::class_<FloorDraw>(m, "_FloorDraw")
+      .def(py::init<>())
+      .def_readwrite("generator", &FloorDraw::generator)
+      .def_readwrite("seeds", &FloorDraw::seeds)
+      .def_readwrite("start", &FloorDraw::start)
+      .def_readwrite("step", &FloorDraw::step)
+      .def_readwrite("count", &FloorDraw::count)
+      .def("pick", &FloorDraw::pick, py::arg("seed"));
+
   py::class_<VecCore>(m, "_VecCore")
-      .def(py::init<std::vector<ScenarioPtr>, int, bool, RewardParams, EpisodeDraw>(),
+      .def(py::init<std::vector<ScenarioPtr>, int, bool, RewardParams, EpisodeDraw, FloorDraw>(),
            py::arg("scenarios"), py::arg("threads"), py::arg("copy"), py::arg("reward"),
-           py::arg("draw"))
+           py::arg("draw"), py::arg("floors") = FloorDraw{})
       .def("render", &VecCore::render, py::arg("which"), py::arg("height"), py::arg("width"))
       .def("reset", &VecCore::reset, py::arg("seed") = py::none())
       .def("step", &VecCore::step, py::arg("actions"), py::arg("autoreset") = true)
@@ -560,6 +638,7 @@ void bind_vec_env(py::module_& m) {
       .def("ended_mask", &VecCore::ended_mask)
       .def("statuses", &VecCore::statuses)
       .def("seeds", &VecCore::seeds)
+      .def("floor_seeds", &VecCore::floor_seeds)
       .def_property_readonly("n_envs", &VecCore::size)
       .def_property_readonly("beam_count", &VecCore::beams)
       .def_property_readonly("threads", &VecCore::threads);

@@ -116,14 +116,14 @@ Vec2 away_from_box(const OrientedBox& b, const Vec2& p) {
 
 // The nearest point of the world's obstacles to `p`: down the clearance's gradient (central
 // differences; its direction is exact away from the medial axis).
-Vec2 nearest_world_point(const World& world, const Vec2& p) {
+Vec2 nearest_world_point(const World& world, const Vec2& p, ClearanceHint& hint) {
   constexpr double h = 1e-4;  // m
   const Vec2 dx(h, 0.0), dy(0.0, h);
-  const Vec2 g(world.clearance(p + dx) - world.clearance(p - dx),
-               world.clearance(p + dy) - world.clearance(p - dy));
+  const Vec2 g(world.clearance(p + dx, hint) - world.clearance(p - dx, hint),
+               world.clearance(p + dy, hint) - world.clearance(p - dy, hint));
   const double n = g.norm();
   if (!(n > 0.0)) return p;
-  return p - world.clearance(p) * (g / n);
+  return p - world.clearance(p, hint) * (g / n);
 }
 
 // The least slack of a half-plane constraint along the sampled centre path: the projection of
@@ -172,11 +172,12 @@ double SafetyLayer::sweep_reach(const UnicycleCommand& path) const {
 
 double SafetyLayer::slack(const Pose2& pose, const UnicycleCommand& command,
                           const SafetyScene& scene) const {
-  return measure(pose, command, scene, nullptr);
+  ClearanceHint hint;
+  return measure(pose, command, scene, nullptr, hint);
 }
 
 double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
-                            const SafetyScene& scene, Vec2* blocker) const {
+                            const SafetyScene& scene, Vec2* blocker, ClearanceHint& hint) const {
   const UnicycleCommand path = stopping_path(command);
   const double reach = sweep_reach(path);
   const double margin = params_.margin;
@@ -201,17 +202,17 @@ double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
       worst = std::min(worst, bound);
     } else {
       const PathSamples& s = path_samples();
-      double before = body_clearance(*scene.world, *robot_, pose);
+      double before = body_clearance(*scene.world, *robot_, pose, hint);
       const double need = std::min(margin, before);
       if (s.count == 1) worst = std::min(worst, before - need);
       const double world_worst = worst;
       for (int k = 1; k < s.count; ++k) {
         const double now =
-            body_clearance(*scene.world, *robot_, s.pose[static_cast<std::size_t>(k)]);
+            body_clearance(*scene.world, *robot_, s.pose[static_cast<std::size_t>(k)], hint);
         worst = std::min(worst, between(before, now, s.spacing) - need);
         before = now;
       }
-      if (blocker && worst < world_worst) *blocker = nearest_world_point(*scene.world, p);
+      if (blocker && worst < world_worst) *blocker = nearest_world_point(*scene.world, p, hint);
     }
   }
 
@@ -298,14 +299,15 @@ double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
   return worst;
 }
 
-double SafetyLayer::slowdown_cap(const Pose2& pose, const SafetyScene& scene) const {
+double SafetyLayer::slowdown_cap(const Pose2& pose, const SafetyScene& scene,
+                                 ClearanceHint& hint) const {
   const double field = params_.slowdown_distance;
   if (field <= 0.0) return kInf;
   const Vec2 p = pose.position;
   const double radius = robot_->footprint.empty() ? robot_->body_radius : body_reach_;
   bool inside = false;
   if (scene.world && scene.world_clearance < field)
-    inside = body_clearance(*scene.world, *robot_, pose) < field;
+    inside = body_clearance(*scene.world, *robot_, pose, hint) < field;
   for (const Vec2& q : scene.points) inside = inside || (q - p).norm() - radius < field;
   for (const SafetyDisc& b : scene.discs)
     inside = inside || (b.position - p).norm() - robot_->body_radius - b.radius < field;
@@ -314,7 +316,8 @@ double SafetyLayer::slowdown_cap(const Pose2& pose, const SafetyScene& scene) co
   return inside ? params_.slowdown_speed : kInf;
 }
 
-UnicycleCommand SafetyLayer::way_out(const Pose2& pose, const SafetyScene& scene) const {
+UnicycleCommand SafetyLayer::way_out(const Pose2& pose, const SafetyScene& scene,
+                                     ClearanceHint& hint) const {
   const DiffDriveParams& drive = robot_->drive;
   const double v = 0.25 * max_forward_speed(drive), w = 0.5 * max_turn_rate(drive);
   const std::array<UnicycleCommand, 9> options{{
@@ -332,7 +335,7 @@ UnicycleCommand SafetyLayer::way_out(const Pose2& pose, const SafetyScene& scene
   double best_slack = -kInf;
   for (const UnicycleCommand& o : options) {
     const UnicycleCommand c = wheels_to_unicycle(drive, saturate_wheels(drive, o));
-    const double s = slack(pose, c, scene);
+    const double s = measure(pose, c, scene, nullptr, hint);
     if (s > best_slack + kTolerance) {
       best_slack = s;
       best = c;
@@ -344,7 +347,8 @@ UnicycleCommand SafetyLayer::way_out(const Pose2& pose, const SafetyScene& scene
 SafetyVerdict SafetyLayer::filter(const Pose2& pose, const UnicycleCommand& wanted,
                                   const SafetyScene& scene) const {
   UnicycleCommand c = wanted;
-  const double cap = slowdown_cap(pose, scene);
+  ClearanceHint hint;  // every clearance below is measured near this pose
+  const double cap = slowdown_cap(pose, scene, hint);
   if (std::abs(c.v) > cap) c.v = std::copysign(cap, c.v);
   // What standing still keeps: normally a slack >= 0; below 0 when a body that moves on its own
   // is coming in and the robot can no longer keep its field by standing. Then any command that
@@ -352,10 +356,11 @@ SafetyVerdict SafetyLayer::filter(const Pose2& pose, const UnicycleCommand& want
   // A command that keeps its field passes whatever standing keeps (the floor is at most
   // -kTolerance): the common case costs one measure.
   Vec2 blocker = pose.position;
-  const double wanted_slack = measure(pose, c, scene, &blocker);
+  auto slack_of = [&](const UnicycleCommand& u) { return measure(pose, u, scene, nullptr, hint); };
+  const double wanted_slack = measure(pose, c, scene, &blocker, hint);
   if (wanted_slack >= -kTolerance) return {c, c.v != wanted.v || c.omega != wanted.omega};
-  const double floor = std::min(0.0, slack(pose, UnicycleCommand{}, scene)) - kTolerance;
-  auto allowed = [&](const UnicycleCommand& u) { return slack(pose, u, scene) >= floor; };
+  const double floor = std::min(0.0, slack_of(UnicycleCommand{})) - kTolerance;
+  auto allowed = [&](const UnicycleCommand& u) { return slack_of(u) >= floor; };
   if (wanted_slack >= floor) return {c, c.v != wanted.v || c.omega != wanted.omega};
   SafetyVerdict verdict;
   verdict.limited = true;
@@ -380,9 +385,8 @@ SafetyVerdict SafetyLayer::filter(const Pose2& pose, const UnicycleCommand& want
     verdict.command = largest([&](double s) { return UnicycleCommand{s * c.v, s * c.omega}; });
   // Something is coming in: a way out that keeps more than the controller's command does.
   if (floor < -kTolerance) {
-    const UnicycleCommand out = way_out(pose, scene);
-    if (slack(pose, out, scene) > slack(pose, verdict.command, scene) + kTolerance)
-      verdict.command = out;
+    const UnicycleCommand out = way_out(pose, scene, hint);
+    if (slack_of(out) > slack_of(verdict.command) + kTolerance) verdict.command = out;
   }
   return verdict;
 }

@@ -135,8 +135,30 @@ VecSimulation::VecSimulation(std::vector<VecCopy> copies, int threads, EpisodeDr
   scratch_.assign(copies_.size(), SensingScratch(beams_));
 }
 
+void VecSimulation::replace_copy(std::size_t i, VecCopy c) {
+  if (!c.world || !c.task || !c.sim)
+    throw std::invalid_argument("a copy needs a world, a task and sim settings");
+  const RobotModel& m = models_[i];  // null: the copy's agents keep models of their own
+  if ((m.robot && !(c.task->robot == *m.robot)) ||
+      (m.params && !(c.task->controller.params == *m.params)))
+    throw std::invalid_argument("a copy source must keep copy " + std::to_string(i) +
+                                "'s robot and controller parameters ('" + c.name + "' does not)");
+  sims_[i] = *c.sim;
+  sims_[i].record_trajectory = false;
+  tasks_[i] = *c.task;
+  keep_discs_[i].clear();
+  keep_boxes_[i].clear();
+  if (c.crowd && !c.crowd->empty()) crowd_starts(*c.crowd, keep_discs_[i], keep_boxes_[i]);
+  copies_[i] = std::move(c);
+}
+
 void VecSimulation::reset(std::size_t i, std::uint64_t seed) {
-  const VecCopy& c = copies_.at(i);
+  // The old episode's controller goes before the new one is made (and before a copy source
+  // replaces the world it ran in).
+  agents_.at(i).reset();
+  fleets_[i].reset();
+  if (source_) replace_copy(i, source_(i, seed));
+  const VecCopy& c = copies_[i];
   sims_[i].seed = seed;
   RobotTask& task = tasks_[i];
   if (draw_.any()) {
@@ -145,9 +167,6 @@ void VecSimulation::reset(std::size_t i, std::uint64_t seed) {
     Rng rng(episode_draw_seed(seed));
     draw_episode(draw_, *c.world, task, {keep_discs_[i], keep_boxes_[i]}, rng);
   }
-  // The old episode's controller goes before the new one is made.
-  agents_[i].reset();
-  fleets_[i].reset();
   if (c.crowd && !c.crowd->empty()) {
     fleets_[i] = std::make_unique<FleetSimulation>(*c.world, std::span<const RobotTask>(&task, 1),
                                                    sims_[i], c.name, c.crowd);

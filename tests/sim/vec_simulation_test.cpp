@@ -183,3 +183,43 @@ TEST(VecSimulation, RefusesBadSetUpsAndBadCommands) {
   bad[1] = Command::unicycle(std::nan(""), 0.0);
   EXPECT_THROW(vec.step(bad), std::domain_error);
 }
+
+// A copy source gives each episode a world of its own: a reset takes the copy it returns (its
+// world, start and seed), the episode runs as a Simulation of that scenario, and the next reset
+// asks again; a source that changes the robot is refused.
+TEST(VecSimulation, ACopySourceGivesEachEpisodeItsOwnCopy) {
+  const Scenario s = noisy();
+  const Scenario other = scenario_file("point_obstacle.yaml", {"robot.sensors.noise=0.01"});
+  ASSERT_EQ(other.robot().robot, s.robot().robot);
+  ASSERT_EQ(other.robot().controller.params, s.robot().controller.params);
+  VecSimulation vec(copies(s, 2), 1);
+  std::vector<std::pair<std::size_t, std::uint64_t>> asked;
+  vec.set_copy_source([&](std::size_t i, std::uint64_t seed) {
+    asked.emplace_back(i, seed);
+    const Scenario& x = seed % 2 ? other : s;
+    return VecCopy{x.world.get(), &x.robot(), &x.sim, x.name};
+  });
+  vec.reset(0, 7);  // odd: the other scenario
+  vec.reset(1, 8);
+  EXPECT_EQ(vec.copy(0).world, other.world.get());
+  EXPECT_EQ(vec.copy(1).world, s.world.get());
+  EXPECT_EQ(vec.task(0).start.position, other.robot().start.position);
+  Scenario seeded = other;
+  seeded.sim.seed = 7;
+  Simulation alone = make_simulation(seeded);
+  for (int k = 0; k < 300; ++k) {
+    const Command c = command_for(0, k);
+    vec.step(std::vector<Command>{c, c});
+    alone.step(c);
+    ASSERT_EQ(vec.agent(0).pose().position, alone.pose().position) << k;
+  }
+  vec.reset(0, 10);  // the next episode: asked again, on the first scenario
+  EXPECT_EQ(vec.copy(0).world, s.world.get());
+  EXPECT_EQ(asked, (std::vector<std::pair<std::size_t, std::uint64_t>>{{0, 7}, {1, 8}, {0, 10}}));
+
+  const Scenario pioneer = scenario_file("coppeliasim_pioneer.yaml");
+  vec.set_copy_source([&](std::size_t, std::uint64_t) {
+    return VecCopy{pioneer.world.get(), &pioneer.robot(), &pioneer.sim, "pioneer"};
+  });
+  EXPECT_THROW(vec.reset(1, 3), std::invalid_argument);
+}

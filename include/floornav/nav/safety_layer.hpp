@@ -39,6 +39,7 @@
 namespace floornav {
 
 class World;
+struct ClearanceHint;
 
 /// Which body of the floor a SafetyDisc or SafetyBox is (for reports: who held a robot up).
 struct BodyRef {
@@ -111,15 +112,17 @@ class SafetyLayer {
  private:
   /// slack(), and where `blocker` is given, the nearest point of what bound it (unchanged when
   /// nothing binds).
+  /// The world's clearance is measured through `hint` (bit for bit the plain query): one filter
+  /// measures many commands from one pose, along paths a few centimetres long.
   double measure(const Pose2& pose, const UnicycleCommand& command, const SafetyScene& scene,
-                 Vec2* blocker) const;
+                 Vec2* blocker, ClearanceHint& hint) const;
   /// The farthest any point of the body moves along the stopping path of `command`.
   double sweep_reach(const UnicycleCommand& path) const;
   /// The forward speed cap of the slow-down field at `pose` (+infinity when it does not apply).
-  double slowdown_cap(const Pose2& pose, const SafetyScene& scene) const;
+  double slowdown_cap(const Pose2& pose, const SafetyScene& scene, ClearanceHint& hint) const;
   /// Among a few ways out (standing, creeping forwards or back, straight or turning), the one
   /// with the largest slack: for when standing still no longer keeps the field.
-  UnicycleCommand way_out(const Pose2& pose, const SafetyScene& scene) const;
+  UnicycleCommand way_out(const Pose2& pose, const SafetyScene& scene, ClearanceHint& hint) const;
 
   const RobotSpec* robot_;
   SafetyParams params_;

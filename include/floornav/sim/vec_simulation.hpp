@@ -86,6 +86,14 @@ struct VecCopy {
   const CrowdSpec* crowd{nullptr};  ///< people and forklifts (none or empty: the robot alone)
 };
 
+/// Where copy i's episodes come from when each episode has a world of its own (a generated floor
+/// per episode): called as source(i, seed) by reset(i, seed), after copy i's previous episode is
+/// gone and before anything is drawn. The copy it returns replaces copy i's: the same robot and
+/// controller parameters (the models the copies share), its world, task, settings and crowd
+/// valid until the next call for i (the caller owns them). Called on the stepping threads, for
+/// different copies at once.
+using VecCopySource = std::function<VecCopy(std::size_t i, std::uint64_t seed)>;
+
 class VecSimulation {
  public:
   /// Every copy must have the same number of sensors (observations of one shape). The copies
@@ -130,12 +138,18 @@ class VecSimulation {
   /// Copy i's people and forklifts now (nullptr: none).
   const Crowd* crowd(std::size_t i) const { return fleets_[i] ? fleets_[i]->crowd() : nullptr; }
   const EpisodeDraw& draw() const { return draw_; }
+  /// From now on every reset takes copy i from `source` (none: the copy as made keeps its world).
+  void set_copy_source(VecCopySource source) { source_ = std::move(source); }
   /// The threads that step the copies, for other per-copy work (rendering frames).
   WorkerPool& pool() { return pool_; }
 
  private:
+  /// Copy i from source_ (its robot checked against the shared model) with its own settings.
+  void replace_copy(std::size_t i, VecCopy c);
+
   std::vector<VecCopy> copies_;
   EpisodeDraw draw_;
+  VecCopySource source_;
   std::vector<RobotTask> tasks_;  ///< per copy: the scenario's task, start and goal drawn
   std::vector<SimConfig> sims_;   ///< per copy: its seed, nothing recorded
   std::vector<std::optional<RobotAgent>> agents_;
