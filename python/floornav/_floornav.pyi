@@ -130,6 +130,7 @@ class _AvoidanceKeys:
     avoidance_range: float
     avoidance_horizon: float
     avoidance_margin: float
+    avoidance_neighbours: int
 
 class NavigationParams(_ChapterKeys):
     fields: tuple[str, ...]

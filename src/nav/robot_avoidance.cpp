@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <utility>
 
 #include "floornav/geometry/angle.hpp"
-#include "floornav/geometry/segment.hpp"
 #include "floornav/sensing/obstacle_memory.hpp"
 
 namespace floornav {
@@ -171,22 +171,18 @@ Vec2 solve_orca(std::span<const OrcaLine> lines, std::size_t hard, const Vec2& p
   return result;
 }
 
+double robot_return_tolerance(const RobotSpec& robot) {
+  return 1e-6 + 4.0 * robot.sensor_noise;
+}
+
 std::size_t drop_robot_points(std::span<const Vec2> points, std::span<const NearbyRobot> robots,
-                              double tolerance, std::span<const Vec2> current, double memory,
-                              double slack, std::span<Vec2> out) {
+                              double tolerance, std::span<Vec2> out) {
   std::size_t n = 0;
   for (const Vec2& q : points) {
-    // A remembered point (not among this step's returns) may be a robot's body where it stood
-    // up to `memory` seconds ago.
-    const bool remembered =
-        memory > 0.0 && std::find(current.begin(), current.end(), q) == current.end();
     bool robot = false;
     for (const NearbyRobot& b : robots) {
-      if (!b.moving) continue;
-      const double d = remembered
-                           ? distance(Segment{b.position - memory * b.velocity, b.position}, q)
-                           : (q - b.position).norm();
-      if (d <= b.radius + tolerance + (remembered ? slack : 0.0)) {
+      const double reach = b.radius + tolerance;
+      if (b.moving && (q - b.position).squaredNorm() <= reach * reach) {
         robot = true;
         break;
       }
@@ -231,13 +227,16 @@ Vec2 turn_first(const Vec2& u, const Observation& obs, std::span<const OrcaLine>
 // sized for them (no allocation in its steps); a fleet's other worker threads size theirs at their
 // first decision of each run_steps call.
 struct OrcaWork {
-  std::vector<Vec2> points, sensed;
+  std::vector<Vec2> sensed;
+  std::vector<std::uint32_t> nearest;                         ///< the robots' indices ORCA avoids
+  std::vector<std::pair<double, std::uint32_t>> by_distance;  ///< squared distance, index
   OrcaScratch scratch;
 
   void fit(std::size_t n) {
-    if (points.size() >= n) return;
-    points.resize(n);
+    if (sensed.size() >= n) return;
     sensed.resize(n);
+    nearest.reserve(256);
+    by_distance.reserve(256);
     scratch.lines.reserve(n + 64);
     scratch.projected.reserve(n + 64);
   }
@@ -265,21 +264,15 @@ class OrcaLayer final : public Controller {
     const NavigationParams& p = *obs.params;
     const double r_self = obs.robot->body_radius;
     OrcaWork& work = thread_orca_work();
-    work.fit(std::max(obs.points.size(), obs.sensed.size()));
+    work.fit(obs.sensed.size());
     // The moving robots leave the observation: only the still world reaches the controller.
-    const double tolerance = 1e-6 + 4.0 * obs.robot->sensor_noise;
+    // Remembered points hold none of them (RobotAgent::sense keeps moving robots' returns out of
+    // the memory).
     Observation still = obs;
-    still.sensed = {work.sensed.data(), drop_robot_points(obs.sensed, obs.robots, tolerance, {},
-                                                          0.0, 0.0, work.sensed)};
-    // Remembered points go when they lie along the way a robot came, widened by how far it could
-    // have swerved meanwhile (at this robot's cruise speed).
-    still.points =
-        obs.points.data() == obs.sensed.data()
-            ? still.sensed
-            : std::span<const Vec2>(
-                  work.points.data(),
-                  drop_robot_points(obs.points, obs.robots, tolerance, obs.sensed,
-                                    p.obstacle_memory, p.v0 * p.obstacle_memory, work.points));
+    still.sensed = {
+        work.sensed.data(),
+        drop_robot_points(obs.sensed, obs.robots, robot_return_tolerance(*obs.robot), work.sensed)};
+    if (obs.points.data() == obs.sensed.data()) still.points = still.sensed;
     const Decision d = inner_->decide(still);
     if (d.command.kind() != Command::Kind::Velocity) return d;
 
@@ -297,8 +290,8 @@ class OrcaLayer final : public Controller {
         lines.push_back(still_point_line(rel, r_still, kStillHorizon));
     }
     const std::size_t hard = lines.size();
-    for (const NearbyRobot& b : obs.robots) {
-      if (!b.moving) continue;
+    for (const std::uint32_t j : nearest_moving(obs.robots, x, work)) {
+      const NearbyRobot& b = obs.robots[j];
       lines.push_back(orca_line(b.position - x, obs.velocity, b.velocity,
                                 r_self + b.radius + params_.margin, params_.horizon, obs.dt, 0.5));
     }
@@ -327,6 +320,28 @@ class OrcaLayer final : public Controller {
   int mode() const override { return inner_->mode(); }
 
  private:
+  // The indices of the moving robots ORCA avoids: all of them, or the `neighbours` nearest to
+  // `x` (by distance, then by index: the same order on every machine), in the order told.
+  std::span<const std::uint32_t> nearest_moving(std::span<const NearbyRobot> robots, const Vec2& x,
+                                                OrcaWork& work) const {
+    std::vector<std::uint32_t>& order = work.nearest;
+    order.clear();
+    for (std::size_t j = 0; j < robots.size(); ++j)
+      if (robots[j].moving) order.push_back(static_cast<std::uint32_t>(j));
+    const auto k = static_cast<std::size_t>(params_.neighbours);
+    if (order.size() <= k) return order;
+    std::vector<std::pair<double, std::uint32_t>>& by_distance = work.by_distance;
+    by_distance.clear();
+    for (const std::uint32_t j : order)
+      by_distance.emplace_back((robots[j].position - x).squaredNorm(), j);
+    std::nth_element(by_distance.begin(), by_distance.begin() + static_cast<std::ptrdiff_t>(k),
+                     by_distance.end());
+    order.clear();
+    for (std::size_t n = 0; n < k; ++n) order.push_back(by_distance[n].second);
+    std::sort(order.begin(), order.end());
+    return order;
+  }
+
   std::unique_ptr<Controller> inner_;
   RobotAvoidanceParams params_;
   double bias_{0.0};  ///< rad: how far right the preferred velocity is turned (keep right)

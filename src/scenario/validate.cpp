@@ -148,6 +148,8 @@ void validate_avoidance(const RobotAvoidanceParams& a, const RobotKeys& k) {
   if (!(a.range > 0.0) || a.range > 1000.0) bad("avoidance_range", "must be in (0, 1000] m");
   if (!(a.horizon > 0.0)) bad("avoidance_horizon", "must be positive");
   if (!(a.margin >= 0.0)) bad("avoidance_margin", "must not be negative");
+  if (a.neighbours < 1 || a.neighbours > 1000)
+    bad("avoidance_neighbours", fmt::format("must be in [1, 1000], got {}", a.neighbours));
 }
 
 // The chapter's keys: the guards of Fig 5.11 need d_unsafe < d_fb < d_o, ...

@@ -182,23 +182,56 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
 
 void FleetSimulation::sense_robot(std::size_t i, SensingScratch& scratch,
                                   std::vector<Circle>& others) {
-  // The bodies this robot's sensors could reach, as they stood at the start of the step.
-  others.clear();
+  gather_robots(i, scratch, others);
   const Vec2 p = positions_[i];
-  const double reach = reach_[i];
-  grid_.for_each_near(p, reach + max_radius_, [&](std::size_t j) {
-    if (j == i) return;
-    const double r = reach + radius_[j];
-    if ((positions_[j] - p).squaredNorm() < r * r) others.push_back({positions_[j], radius_[j]});
-  });
-  if (!tell_range_.empty()) tell_nearby(i, scratch);
-  if (!safety_on_.empty()) gather_safety_bodies(i, scratch);
   if (crowd_) {
-    crowd_->people_near(p, reach, others);
+    if (!safety_on_.empty() && safety_on_[i])
+      crowd_->safety_bodies_near(p, radius_[i] + safety_reach_[i] + max_top_step_, sim_.dt,
+                                 tasks_[i].controller.safety.person_margin, scratch);
+    crowd_->people_near(p, reach_[i], others);
     agents_[i].sense(scratch, others, crowd_->forklifts());
   } else {
     agents_[i].sense(scratch, others);
   }
+}
+
+void FleetSimulation::gather_robots(std::size_t i, SensingScratch& scratch,
+                                    std::vector<Circle>& others) const {
+  // One pass over the grid for the three lists of other robots, each in the grid's order:
+  // the bodies this robot's sensors could reach, as they stood at the start of the step; the
+  // robots it is told of (tell_range_); the bodies its safety layer keeps clear of.
+  others.clear();
+  scratch.robot_count = 0;
+  scratch.safety_disc_count = 0;
+  scratch.safety_box_count = 0;
+  const Vec2 p = positions_[i];
+  const double reach = reach_[i];
+  const double tell = tell_range_.empty() ? 0.0 : tell_range_[i];
+  const bool safety = !safety_on_.empty() && safety_on_[i];
+  // Bodies beyond this gap cannot bind this step (SafetyLayer::slack's quick bound).
+  const double gap_reach = safety ? safety_reach_[i] + max_top_step_ : 0.0;
+  double look = std::max(reach + max_radius_, tell);
+  if (safety) look = std::max(look, radius_[i] + max_radius_ + gap_reach);
+  grid_.for_each_near(p, look, [&](std::size_t j) {
+    if (j == i) return;
+    const double d2 = (positions_[j] - p).squaredNorm();
+    const double r = reach + radius_[j];
+    if (d2 < r * r) others.push_back({positions_[j], radius_[j]});
+    if (d2 < tell * tell)
+      scratch.robots[scratch.robot_count++] = {positions_[j], velocities_[j], radius_[j],
+                                               moving_[j] != 0};
+    if (!safety) return;
+    const double keep = radius_[i] + radius_[j] + gap_reach;
+    if (d2 >= keep * keep) return;
+    const bool moving = moving_[j] != 0;
+    SafetyDisc& d = scratch.safety_discs[scratch.safety_disc_count++];
+    d.position = positions_[j];
+    d.radius = radius_[j];
+    d.reciprocal = moving && safety_on_[j];
+    d.approach = moving && !safety_on_[j] ? top_step_[j] : 0.0;
+    d.extra_margin = 0.0;
+    d.who = {BodyRef::Kind::Robot, static_cast<std::uint32_t>(j)};
+  });
 }
 
 void FleetSimulation::keep_sensing() {
@@ -238,43 +271,6 @@ void FleetSimulation::note_status(std::size_t i) {
   const RobotAgent& a = agents_[i];
   status_[i] = static_cast<std::uint8_t>((a.finished() ? kEnded : 0) |
                                          (a.result().collided ? kCollided : 0));
-}
-
-void FleetSimulation::tell_nearby(std::size_t i, SensingScratch& scratch) const {
-  scratch.robot_count = 0;
-  const double range = tell_range_[i];
-  if (range <= 0.0) return;
-  const Vec2 p = positions_[i];
-  grid_.for_each_near(p, range, [&](std::size_t j) {
-    if (j == i || (positions_[j] - p).squaredNorm() >= range * range) return;
-    scratch.robots[scratch.robot_count++] = {positions_[j], velocities_[j], radius_[j],
-                                             moving_[j] != 0};
-  });
-}
-
-void FleetSimulation::gather_safety_bodies(std::size_t i, SensingScratch& scratch) const {
-  scratch.safety_disc_count = 0;
-  scratch.safety_box_count = 0;
-  if (!safety_on_[i]) return;
-  const Vec2 p = positions_[i];
-  // Bodies beyond this gap cannot bind this step (SafetyLayer::slack's quick bound).
-  const double gap_reach = safety_reach_[i] + max_top_step_;
-  grid_.for_each_near(p, radius_[i] + max_radius_ + gap_reach, [&](std::size_t j) {
-    if (j == i) return;
-    const double r = radius_[i] + radius_[j] + gap_reach;
-    if ((positions_[j] - p).squaredNorm() >= r * r) return;
-    const bool moving = moving_[j] != 0;
-    SafetyDisc& d = scratch.safety_discs[scratch.safety_disc_count++];
-    d.position = positions_[j];
-    d.radius = radius_[j];
-    d.reciprocal = moving && safety_on_[j];
-    d.approach = moving && !safety_on_[j] ? top_step_[j] : 0.0;
-    d.extra_margin = 0.0;
-    d.who = {BodyRef::Kind::Robot, static_cast<std::uint32_t>(j)};
-  });
-  if (crowd_)
-    crowd_->safety_bodies_near(p, radius_[i] + gap_reach, sim_.dt,
-                               tasks_[i].controller.safety.person_margin, scratch);
 }
 
 void FleetSimulation::prepare_contacts() {

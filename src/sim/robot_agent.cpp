@@ -11,6 +11,7 @@
 #include "floornav/geometry/oriented_box.hpp"
 #include "floornav/kinematics/unicycle.hpp"
 #include "floornav/nav/heading_tracker.hpp"
+#include "floornav/nav/robot_avoidance.hpp"
 #include "floornav/robot/body_clearance.hpp"
 
 namespace floornav {
@@ -39,6 +40,7 @@ void SensingScratch::fit(std::size_t sensors) {
   ranges.assign(sensors, 0.0);
   // One more than the sensors: the point a safety stop met (RobotAgent::guard).
   sensed.assign(sensors + 1, Vec2::Zero());
+  still.assign(sensors + 1, Vec2::Zero());
   points.assign(sensors + 1 + ObstacleMemory::kCapacity, Vec2::Zero());
 }
 
@@ -303,10 +305,17 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others,
     has_safety_return_ = false;
   }
   scratch.point_count = scratch.sensed_count;
-  if (use_memory_)
+  if (use_memory_) {
+    // The memory keeps the still world: the returns on robots that avoid each other by their
+    // velocities (those told, still running) would be old positions of moving bodies.
+    std::span<const Vec2> still(scratch.sensed.data(), scratch.sensed_count);
+    if (scratch.robot_count > 0)
+      still = {scratch.still.data(),
+               drop_robot_points(still, {scratch.robots.data(), scratch.robot_count},
+                                 robot_return_tolerance(robot), scratch.still)};
     scratch.point_count =
-        memory_.update(std::span<const Vec2>(scratch.sensed.data(), scratch.sensed_count), t_,
-                       nav_->obstacle_memory, 0.25 * robot.body_radius, scratch.points);
+        memory_.update(still, t_, nav_->obstacle_memory, 0.25 * robot.body_radius, scratch.points);
+  }
 }
 
 Observation RobotAgent::observe(const SensingScratch& scratch) const {

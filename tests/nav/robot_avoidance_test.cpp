@@ -97,23 +97,20 @@ TEST(Orca, WithNoRoomTheWorstViolationIsSmallestAndHardLinesHold) {
   EXPECT_NEAR(solve_orca(hard, 1, Vec2::Zero(), 1.0, projected).x(), 0.2, 1e-12);
 }
 
-// Which sensed points are a moving robot's: this step's returns on its body; remembered returns
-// along the way it came (widened by the slack); never those of a robot that stands still, nor a
-// wall's.
+// Which sensed points are a moving robot's: those on its body (within the tolerance); never
+// those of a robot that stands still, nor a wall's.
 TEST(Orca, DropsTheReturnsOfMovingRobotsOnly) {
   const std::vector<NearbyRobot> robots{{Vec2(1, 0), Vec2(0.5, 0), 0.1, true}};
-  const std::vector<Vec2> current{Vec2(0.9, 0), Vec2(0.5, 0.5)};
-  const std::vector<Vec2> points{Vec2(0.9, 0), Vec2(0.5, 0.5), Vec2(0.6, 0.15)};
+  const std::vector<Vec2> points{Vec2(0.9, 0), Vec2(0.5, 0.5), Vec2(1.0, 0.1 + 2e-6)};
   std::vector<Vec2> out(points.size());
-  // (0.6, 0.15) is 0.15 from the segment (0.5, 0)-(1, 0): within 0.1 + slack 0.1.
-  ASSERT_EQ(drop_robot_points(points, robots, 1e-6, current, 1.0, 0.1, out), 1u);
+  // (1, 0.100002) is 2e-6 beyond the body: farther than the tolerance 1e-6.
+  ASSERT_EQ(drop_robot_points(points, robots, 1e-6, out), 2u);
   EXPECT_EQ(out[0], Vec2(0.5, 0.5));
-  // As a current return it would be 0.41 m from the centre: kept.
-  const std::vector<Vec2> now{Vec2(0.6, 0.15)};
-  EXPECT_EQ(drop_robot_points(now, robots, 1e-6, now, 1.0, 0.1, out), 1u);
+  EXPECT_EQ(out[1], Vec2(1.0, 0.1 + 2e-6));
+  EXPECT_EQ(drop_robot_points(points, robots, 3e-6, out), 1u);
   // A robot that stands still is an obstacle like any other.
   const std::vector<NearbyRobot> parked{{Vec2(1, 0), Vec2::Zero(), 0.1, false}};
-  EXPECT_EQ(drop_robot_points(points, parked, 1e-6, current, 1.0, 0.1, out), 3u);
+  EXPECT_EQ(drop_robot_points(points, parked, 1e-6, out), 3u);
 }
 
 namespace {
@@ -164,4 +161,26 @@ TEST(Orca, TheLayerActsOnlyWhenAMovingRobotIsNear) {
   EXPECT_EQ(straight->seen, 1u);  // the robot's return is gone, the wall's is not
   EXPECT_LT(d.command.u().y(), 0.0);
   EXPECT_LT(d.command.u().x(), 0.15);
+}
+
+// ORCA avoids the `neighbours` nearest moving robots: ten robots just behind, driving away, leave
+// no room for an eleventh coming head on from farther ahead, which holds the robot back only when
+// it is among those avoided.
+TEST(Orca, AvoidsTheNearestNeighboursOnly) {
+  const RobotSpec robot = find_robot_preset("quickbot")->robot;
+  NavigationParams params;
+  std::vector<NearbyRobot> robots;
+  for (int k = 0; k < 10; ++k)
+    robots.push_back({Vec2(-0.3, 0.05 * (k - 4.5)), Vec2(-0.15, 0), 0.075, true});
+  robots.push_back({Vec2(0.7, 0), Vec2(-0.15, 0), 0.075, true});
+  const std::vector<Vec2> nothing;
+  RobotAvoidanceParams ten;
+  EXPECT_EQ(ten.neighbours, 10);
+  auto layer = make_orca_layer(std::make_unique<Straight>(), robot, ten);
+  EXPECT_EQ(layer->decide(observation(robot, params, nothing, robots)).command.u(),
+            Vec2(0.15, 0.0));
+  RobotAvoidanceParams eleven;
+  eleven.neighbours = 11;
+  layer = make_orca_layer(std::make_unique<Straight>(), robot, eleven);
+  EXPECT_LT(layer->decide(observation(robot, params, nothing, robots)).command.u().x(), 0.15);
 }

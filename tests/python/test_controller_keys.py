@@ -70,7 +70,8 @@ def test_the_sections_are_their_own_types_and_the_chapter_keys_stand_alone():
     # What the chapter's supervisor does not read is not handed to every user controller.
     assert chapter.isdisjoint({"planner", "dwa", "safety", "robot_avoidance", "avoidance_range"})
     assert set(floornav.RobotAvoidanceParams.fields) == {
-        "robot_avoidance", "avoidance_range", "avoidance_horizon", "avoidance_margin"}
+        "robot_avoidance", "avoidance_range", "avoidance_horizon", "avoidance_margin",
+        "avoidance_neighbours"}
 
 
 def test_a_section_is_reached_by_reference_and_an_enum_by_name():

@@ -66,14 +66,14 @@ struct OrcaScratch {
 Vec2 solve_orca(std::span<const OrcaLine> lines, std::size_t hard, const Vec2& preferred,
                 double max_speed, std::vector<OrcaLine>& projected);
 
-/// Writes to `out` the points of `points` that belong to no moving robot of `robots`; returns how
-/// many. A point among `current` (this step's returns) belongs to a robot within its radius +
-/// `tolerance` of its centre. Any other point was remembered (up to `memory` seconds old): it
-/// belongs to a robot within its radius + `tolerance` + `slack` of the segment the robot drove
-/// over the last `memory` seconds at its told velocity. With `memory` 0 every point is current.
+/// How far from a moving robot's body disc a return may lie and still be taken for the robot's
+/// (rounding, and four standard deviations of the robot's sensor noise), m.
+double robot_return_tolerance(const RobotSpec& robot);
+
+/// Writes to `out` the points of `points` that belong to no moving robot of `robots` (lie
+/// farther than its radius + `tolerance` from its centre); returns how many.
 std::size_t drop_robot_points(std::span<const Vec2> points, std::span<const NearbyRobot> robots,
-                              double tolerance, std::span<const Vec2> current, double memory,
-                              double slack, std::span<Vec2> out);
+                              double tolerance, std::span<Vec2> out);
 
 /// Wraps a controller with the ORCA layer above (`params.kind` is not looked at: the caller
 /// chose the layer). `robot` sizes the buffers once (no allocation per step). The wrapped

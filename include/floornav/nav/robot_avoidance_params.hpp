@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// Robot-robot avoidance's parameters (nav/robot_avoidance.hpp): the keys `robot_avoidance`,
-/// `avoidance_range`, `avoidance_horizon` and `avoidance_margin` of a `controller:` section.
+/// `avoidance_range`, `avoidance_horizon`, `avoidance_margin` and `avoidance_neighbours` of a
+/// `controller:` section.
 
 #include <span>
 
@@ -26,6 +27,9 @@ struct RobotAvoidanceParams {
   double range{1.0};    ///< m between centres: robots told to this one (NearbyRobot)
   double horizon{2.0};  ///< s: ORCA's time horizon tau for other robots
   double margin{0.02};  ///< m added to the sum of two robots' radii
+  /// ORCA takes this many of the moving robots told, the nearest (RVO2's maxNeighbors: its
+  /// examples use 10); the safety layer still keeps clear of every one.
+  int neighbours{10};
 
   bool operator==(const RobotAvoidanceParams&) const = default;
 
@@ -40,6 +44,8 @@ struct RobotAvoidanceParams {
     f("avoidance_horizon", &P::horizon, "robot_avoidance orca: time horizon tau, s");
     f("avoidance_margin", &P::margin,
       "robot_avoidance orca: added to the sum of two robots' radii, m");
+    f("avoidance_neighbours", &P::neighbours,
+      "robot_avoidance orca: the nearest moving robots avoided by velocity (at most)");
   }
 };
 

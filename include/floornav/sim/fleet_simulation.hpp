@@ -129,10 +129,10 @@ class FleetSimulation {
   void apply_gaps();
   void after_step();
   void update_snapshot();
-  /// Robots that use robot avoidance are told of the robots near them (Observation::robots).
-  void tell_nearby(std::size_t i, SensingScratch& scratch) const;
-  /// The bodies robot i's safety layer keeps clear of: robots, people and forklifts near it.
-  void gather_safety_bodies(std::size_t i, SensingScratch& scratch) const;
+  /// The other robots near robot i: the bodies its sensors could reach (`others`), those it is
+  /// told of when it uses robot avoidance (Observation::robots), and those its safety layer
+  /// keeps clear of.
+  void gather_robots(std::size_t i, SensingScratch& scratch, std::vector<Circle>& others) const;
   /// The name of a body of the floor (a robot's, a person's, a forklift's).
   std::string body_name(const BodyRef& who, const CrowdResult& crowd) const;
   /// The fleet's result from each robot's run (in robot order), names filled in.

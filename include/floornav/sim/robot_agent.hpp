@@ -37,6 +37,7 @@ struct SensingScratch {
   std::vector<SensorBeam> beams;
   std::vector<double> ranges;
   std::vector<Vec2> sensed;
+  std::vector<Vec2> still;  ///< the returns that go to the obstacle memory
   std::vector<Vec2> points;
   FanScratch fan;               ///< the lidar fans' working memory
   std::size_t sensed_count{0};  ///< returns of the last sense(), in `sensed`
