@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bindings.hpp"
-#include "floornav/world/shortest_path.hpp"
+#include "floornav/runner/scenario_optimum.hpp"
 
 // std::optional as null or the value (nlohmann 3.11 has no serializer of its own for it).
 namespace nlohmann {
