@@ -26,7 +26,7 @@ namespace floornav {
 namespace {
 
 constexpr double kCrowdMarkerPeriod = 0.1;  ///< s between two /crowd messages
-constexpr int kRingBins = 720;              ///< /ring_scan: half-degree bins round the robot
+constexpr int kRingBins = 360;              ///< /ring_scan: one-degree bins round the robot
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr auto kSensorPeriodNs = static_cast<std::uint64_t>(kMcapSensorPeriod * 1e9);
 constexpr std::uint64_t kPeriodSlack = 1000;  ///< ns: steps of dt add up to the period within this
@@ -422,7 +422,7 @@ class BagWriter {
   }
 
   /// A ring's readings as seen from the robot's centre: each sensor's reading point (on its
-  /// axis, from its mount) in the half-degree bin of its bearing, at its distance from the
+  /// axis, from its mount) in the one-degree bin of its bearing, at its distance from the
   /// centre; a sensor that saw nothing marks its bin +inf (REP 117's "no return"), the other
   /// bins are NaN.
   void ring(const SensorGroup& g, const std::vector<RangeSensorSpec>& sensors,

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <future>
-#include <numeric>
 
 #include "floornav/core/input_error.hpp"
 #include "floornav/io/atomic_file.hpp"
@@ -114,16 +113,14 @@ void prepare_outputs(Scenario& scenario, const OutputSelection& which) {
   if (!scenario.sim.record_trajectory || scenario.sim.record_ranges_every != 0) return;
   const int replay = which.html ? replay_ranges_interval(scenario) : 0;
   const int bag = which.mcap ? mcap_ranges_interval(scenario) : 0;
-  int every = replay > 0 ? replay : bag;
-  if (replay > 0 && bag > 0) {
-    // Steps that are multiples of both intervals' divisor hold the replay's frames and the
-    // bag's, so the replay is the one a run without the bag draws; unless that records more
-    // than the bag's budget, then the shorter interval.
-    const int both = std::gcd(replay, bag);
-    every = both >= ranges_interval_within(scenario, kMaxMcapRangeValues) ? both
-                                                                          : std::min(replay, bag);
-  }
-  scenario.sim.record_ranges_every = every;
+  // Each its own interval: the steps of either are recorded, so the replay finds the frames a run
+  // without the bag records (and draws the same), and the bag its own, without the frames at
+  // their common divisor's steps that neither takes.
+  scenario.sim.record_ranges_every = replay > 0 ? replay : bag;
+  if (replay > 0 && bag > 0 && replay % bag != 0 && bag % replay != 0)
+    scenario.sim.record_ranges_also_every = bag;
+  else if (replay > 0 && bag > 0)
+    scenario.sim.record_ranges_every = std::min(replay, bag);
 }
 
 std::string describe_run(const RunResult& r) {

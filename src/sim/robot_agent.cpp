@@ -91,10 +91,13 @@ RobotAgent::RobotAgent(AgentSetup setup)
   r.final_x = pose_.position.x();
   r.final_y = pose_.position.y();
   r.final_theta = pose_.theta;
-  if (setup.reserve_trajectory && sim_->record_ranges_every > 0 && n_sensors > 0) {
+  if (setup.reserve_trajectory && records_ranges() && n_sensors > 0) {
     // The frames of the whole run at once: no copy of megabytes of ranges as they grow (pages
     // never written are never touched).
-    const double frames = std::ceil(sim_->t_max / sim_->dt) / sim_->record_ranges_every + 2.0;
+    const double steps = std::ceil(sim_->t_max / sim_->dt);
+    const auto per = [&](int every) { return every > 0 ? steps / every : 0.0; };
+    const double frames =
+        per(sim_->record_ranges_every) + per(sim_->record_ranges_also_every) + 2.0;
     const double values = std::min(frames * static_cast<double>(n_sensors), 2.0e7);
     r.range_steps.reserve(static_cast<std::size_t>(values) / n_sensors);
     r.ranges.reserve(static_cast<std::size_t>(values));
@@ -290,7 +293,7 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others,
   const FreeDisc free{pose_.position, disc_body_ ? clearance_bound_ + robot.body_radius : 0.0};
   sense_ranges(*world_, beams, robot.sensors, *sensor_layout_, robot.sensor_noise, rng_, ranges,
                scratch.fan, free, others, boxes);
-  if (sim_->record_ranges_every > 0 && result_.steps % sim_->record_ranges_every == 0) {
+  if (records_ranges_at(result_.steps)) {
     // A step that only switched goals senses again at the same pose: that frame is replaced.
     if (!result_.range_steps.empty() && result_.range_steps.back() == result_.steps) {
       result_.range_steps.pop_back();

@@ -232,7 +232,7 @@ test('a lone robot with an IR ring: odometry, tf, modes, transitions, goals, rin
   });
   // The ring: 5 IR sensors, each in its bin, the rest NaN.
   const scan = bag.messages.find((m) => m.topic === '/ring_scan').value;
-  assert.equal(scan.ranges.length, 720);
+  assert.equal(scan.ranges.length, 360);
   const used = scan.ranges.filter((r) => !Number.isNaN(r));
   assert.ok(used.length >= 1 && used.length <= 5);
   assert.equal(scan.header.frame_id, 'base_link');

@@ -409,30 +409,35 @@ TEST(CrowdCsv, NamesNeverForgeRowsOrColumns) {
 
 // ---- atomic files ----------------------------------------------------------------------------
 
-// What a run records for its files: the replay's interval, the bag's, and with both a step that
-// holds each one's frames (their greatest common divisor), unless that would pass the bag's
-// budget of values; a scenario's own record_ranges_every is kept.
+// What a run records for its files: the replay's interval, the bag's, and with both the steps of
+// each (not their greatest common divisor, which records frames neither takes); the shorter
+// alone when it divides the other; a scenario's own record_ranges_every is kept.
 TEST(PrepareOutputs, RecordsRangesForTheReplayAndTheBagTogether) {
   const Scenario depot =
       load_scenario_file(std::string(FLOORNAV_SCENARIO_DIR) + "/ros/depot_1.yaml");
   const auto every = [&](Scenario s, OutputSelection which) {
     prepare_outputs(s, which);
-    return s.sim.record_ranges_every;
+    return std::pair{s.sim.record_ranges_every, s.sim.record_ranges_also_every};
   };
   // A 360-beam lidar for 12,001 steps: the replay every 15th step, the bag 10 times a second.
   ASSERT_EQ(replay_ranges_interval(depot), 15);
-  EXPECT_EQ(every(depot, {.html = true, .mcap = false}), 15);
-  EXPECT_EQ(every(depot, {.html = false, .mcap = true}), 2);
-  EXPECT_EQ(every(depot, {.html = true, .mcap = true}), 1);
-  // 60,001 steps: every step would pass the bag's 2e7 values; the bag's 10 steps then.
+  EXPECT_EQ(every(depot, {.html = true, .mcap = false}), std::pair(15, 0));
+  EXPECT_EQ(every(depot, {.html = false, .mcap = true}), std::pair(2, 0));
+  EXPECT_EQ(every(depot, {.html = true, .mcap = true}), std::pair(15, 2));
+  // 60,001 steps at dt 0.01: the replay's 73 steps and the bag's 10.
   Scenario longer = depot;
   longer.sim.dt = 0.01;
   ASSERT_EQ(replay_ranges_interval(longer), 73);
-  EXPECT_EQ(every(longer, {.html = true, .mcap = true}), 10);
+  EXPECT_EQ(every(longer, {.html = true, .mcap = true}), std::pair(73, 10));
+  // The bag's interval divides the replay's: its steps hold the replay's too.
+  Scenario divides = depot;
+  divides.sim.t_max = 2400.0;  // 48,001 steps: the replay every 58th
+  ASSERT_EQ(replay_ranges_interval(divides), 58);
+  EXPECT_EQ(every(divides, {.html = true, .mcap = true}), std::pair(2, 0));
   Scenario own = depot;
   own.sim.record_ranges_every = 7;
-  EXPECT_EQ(every(own, {.html = true, .mcap = true}), 7);
-  EXPECT_EQ(every(depot, {.html = false, .mcap = false}), 0);
+  EXPECT_EQ(every(own, {.html = true, .mcap = true}), std::pair(7, 0));
+  EXPECT_EQ(every(depot, {.html = false, .mcap = false}), std::pair(0, 0));
 }
 
 TEST(AtomicFile, WritesAndReplaces) {

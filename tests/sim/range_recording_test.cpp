@@ -43,6 +43,20 @@ TEST(RangeRecording, OffByDefaultAndEveryNthStepWhenOn) {
   }
 }
 
+// Two intervals (the replay's and the bag's): the steps of either, each once, and no other.
+TEST(RangeRecording, ASecondIntervalAddsItsStepsOnly) {
+  Scenario s = rectangle({"sim.record_ranges_every=7"});
+  s.sim.record_ranges_also_every = 3;
+  const RunResult on = simulate(s);
+  ASSERT_GT(on.steps, 21);
+  std::vector<int> expected;
+  for (int k = 0; k <= on.range_steps.back(); ++k)
+    if (k % 7 == 0 || k % 3 == 0) expected.push_back(k);
+  EXPECT_EQ(on.range_steps, expected);
+  EXPECT_EQ(on.ranges.size(), on.range_steps.size() * s.robot().robot.sensors.size());
+  EXPECT_GT(on.range_steps.back() + 3, on.steps - 1);
+}
+
 TEST(RangeRecording, AFrameIsWhatTheSensorsReadAtThatRowsPose) {
   const Scenario s = rectangle({"sim.record_ranges_every=5"});
   const RunResult r = simulate(s);

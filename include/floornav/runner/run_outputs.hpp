@@ -44,10 +44,10 @@ struct OutputSelection {
 
 /// Makes `scenario` record what the selected files need: with html, the sensor ranges for the
 /// replay's beams (replay_ranges_interval); with mcap, the trajectory and the ranges for the
-/// bag's sensor topics (mcap_ranges_interval). With both, their greatest common divisor (each
-/// then takes its own frames: the replay the same as without the bag), or the shorter of the two
-/// when that would pass the bag's budget of values. A record_ranges_every the scenario sets is
-/// kept. Recording changes no result.
+/// bag's sensor topics (mcap_ranges_interval). With both, the steps of either interval
+/// (sim.record_ranges_also_every; the shorter alone when it divides the other): each takes its
+/// own frames, the replay the same as without the bag. A record_ranges_every the scenario sets
+/// is kept. Recording changes no result.
 void prepare_outputs(Scenario& scenario, const OutputSelection& which = {});
 
 /// Writes the selected files into `dir` (created if needed), all together or none

@@ -156,6 +156,14 @@ class RobotAgent {
   void guard(const SensingScratch& scratch, WheelSpeeds& wheels, UnicycleCommand& driven);
   /// Appends the extra columns (SimConfig::record) of the row just recorded.
   void record_extras(const SensingScratch* scratch);
+  /// Whether the run records sensor ranges at all, and at `step` (either interval's multiple).
+  bool records_ranges() const {
+    return sim_->record_ranges_every > 0 || sim_->record_ranges_also_every > 0;
+  }
+  bool records_ranges_at(int step) const {
+    const auto at = [step](int every) { return every > 0 && step % every == 0; };
+    return at(sim_->record_ranges_every) || at(sim_->record_ranges_also_every);
+  }
 
   const World* world_;
   const RobotSpec* robot_;

@@ -38,6 +38,10 @@ struct SimConfig {
   /// Steps between two recordings of every sensor's range (RunResult::ranges, for the HTML
   /// replay); 0 (the default) records none and costs nothing.
   int record_ranges_every{0};
+  /// Steps between two more recordings of the ranges, besides record_ranges_every's (0: none): a
+  /// second consumer's interval (the bag's beside the replay's, runner/run_outputs.hpp). Not a
+  /// scenario key.
+  int record_ranges_also_every{0};
   RecordOptions record{};  ///< extra trajectory columns (not a scenario key; see above)
 
   /// Lists every field once, with its key and doc (core/param_fields.hpp).
