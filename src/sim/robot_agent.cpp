@@ -344,17 +344,34 @@ Observation RobotAgent::observe(const SensingScratch& scratch) const {
 
 bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
   if (finished_) return false;
-  const RobotSpec& robot = *robot_;
-  const NavigationParams& nav = *nav_;
-  const double dt = sim_->dt;
-  RunResult& r = result_;
+  // 2. decide
+  const Command command = decide(scratch, external);
+  if (command.kind() == Command::Kind::Stuck) {  // the controller gave up
+    result_.stuck_cause = "controller";
+    finish(RunStatus::Stuck);
+    return false;
+  }
+  if (command.kind() == Command::Kind::GoalReached) return next_goal();
+  // 3. control (Fig 5.12), 4. saturate
+  WheelSpeeds wheels = control(command);
+  UnicycleCommand driven = wheels_to_unicycle(robot_->drive, wheels);
+  // 4b. guard: the safety layer lets through only what can stop short of everything it knows.
+  if (safety_) guard(scratch, wheels, driven);
+  note_movers(scratch);
+  // 5. integrate, 7. record (before the checks, so the final row is the state the run ended in)
+  const double moved = integrate(wheels, driven);
+  if (record_extras_) record_extras(&scratch);
+  // 6. check
+  return check(moved);
+}
 
-  // 2. decide: the controller's command (a built-in kind steps its automaton here), or the
-  // caller's, for which the goal counts as reached within epsilon.
+Command RobotAgent::decide(SensingScratch& scratch, const Command* external) {
+  // The controller's command (a built-in kind steps its automaton here), or the caller's, for
+  // which the goal counts as reached within epsilon.
   const Observation obs = observe(scratch);
   Command command = Command::goal_reached();
   if (external) {
-    if (!(obs.goal_distance() < nav.epsilon)) command = *external;
+    if (!(obs.goal_distance() < nav_->epsilon)) command = *external;
   } else {
     const Decision d = controller_->decide(obs);
     const auto modes = controller_->mode_names().size();
@@ -363,39 +380,38 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
       throw std::out_of_range(
           fmt_decision_error(d.mode, d.guard, modes, controller_->guard_names().size()));
     if (d.mode != mode_ || d.guard >= 0)
-      log_transition(static_cast<double>(r.steps + 1) * dt, d.mode, d.guard);
+      log_transition(static_cast<double>(result_.steps + 1) * sim_->dt, d.mode, d.guard);
     mode_ = d.mode;
     command = d.command;
   }
   if (!command.is_finite())
     throw std::domain_error("the controller's command is not a finite number (NaN or infinity)");
-  if (command.kind() == Command::Kind::Stuck) {  // the controller gave up
-    r.stuck_cause = "controller";
-    finish(RunStatus::Stuck);
+  return command;
+}
+
+bool RobotAgent::next_goal() {
+  // STOP: this goal is reached; go on to the next one, or end the run.
+  ++result_.goals_reached;
+  if (++goal_index_ >= goals_.size()) {
+    finish(RunStatus::Reached);
     return false;
   }
-  if (command.kind() == Command::Kind::GoalReached) {
-    // STOP: this goal is reached; go on to the next one, or end the run.
-    ++r.goals_reached;
-    if (++goal_index_ >= goals_.size()) {
-      finish(RunStatus::Reached);
-      return false;
-    }
-    goal_ = goals_[goal_index_];
-    progress_best_ = (goal_ - pose_.position).norm();
-    progress_time_ = t_;
-    controller_->reset();
-    mode_ = controller_->mode();
-    pid_ = {};
-    memory_.clear();
-    return true;
-  }
+  goal_ = goals_[goal_index_];
+  progress_best_ = (goal_ - pose_.position).norm();
+  progress_time_ = t_;
+  controller_->reset();
+  mode_ = controller_->mode();
+  pid_ = {};
+  memory_.clear();
+  return true;
+}
 
-  // 3. control (Fig 5.12), 4. saturate
+WheelSpeeds RobotAgent::control(const Command& command) {
+  const NavigationParams& nav = *nav_;
   UnicycleCommand wanted;
   switch (command.kind()) {
     case Command::Kind::Velocity:
-      wanted = track_velocity(command.u(), pose_.theta, nav.v0, nav.heading_pid, pid_, dt,
+      wanted = track_velocity(command.u(), pose_.theta, nav.v0, nav.heading_pid, pid_, sim_->dt,
                               nav.slow_when_turning);
       break;
     case Command::Kind::Unicycle:
@@ -403,7 +419,7 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
       break;
     case Command::Kind::Wheels:
     default:
-      wanted = wheels_to_unicycle(robot.drive, command.wheel_speeds());
+      wanted = wheels_to_unicycle(robot_->drive, command.wheel_speeds());
       break;
   }
   if (record_extras_) {
@@ -412,14 +428,12 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
     last_wanted_ = wanted;
     last_theta_ = pose_.theta;
   }
-  WheelSpeeds wheels = saturate_wheels(robot.drive, wanted);
-  UnicycleCommand driven = wheels_to_unicycle(robot.drive, wheels);
+  return saturate_wheels(robot_->drive, wanted);
+}
 
-  // 4b. guard: the safety layer lets through only what can stop short of everything it knows.
-  if (safety_) guard(scratch, wheels, driven);
-  note_movers(scratch);
-
-  // 5. integrate
+double RobotAgent::integrate(const WheelSpeeds& wheels, const UnicycleCommand& driven) {
+  const double dt = sim_->dt;
+  RunResult& r = result_;
   // The sensors' cosine and sine of the heading, if they were taken at this heading.
   const bool sensed_here =
       std::bit_cast<std::uint64_t>(heading_theta_) == std::bit_cast<std::uint64_t>(pose_.theta);
@@ -445,19 +459,20 @@ bool RobotAgent::act(SensingScratch& scratch, const Command* external) {
   // Counted in steps, like the clock: a sum of dt's drifts (15.149999999999721).
   const auto m = static_cast<std::size_t>(mode_);
   r.mode_time[m] = static_cast<double>(++mode_steps_[m]) * dt;
-
-  // 7. record (before the checks, so the final row is the state the run ended in)
   if (sim_->record_trajectory)
     r.trajectory.push_back({recorded_time(r.steps), pose_.position.x(), pose_.position.y(),
                             pose_.theta, driven.v, driven.omega, wheels.left, wheels.right, mode_});
-  if (record_extras_) record_extras(&scratch);
+  return moved;
+}
 
-  // 6. check. A disc body's clearance changes by at most the distance moved, so while that
-  // lower bound stays above min_clearance the exact value could change neither min_clearance
-  // nor the collision test (min_clearance >= 0 while running): it is computed only when it might.
+bool RobotAgent::check(double moved) {
+  RunResult& r = result_;
+  // A disc body's clearance changes by at most the distance moved, so while that lower bound
+  // stays above min_clearance the exact value could change neither min_clearance nor the
+  // collision test (min_clearance >= 0 while running): it is computed only when it might.
   clearance_bound_ -= moved + kClearanceBoundSlack;
   if (!disc_body_ || clearance_bound_ <= r.min_clearance) {
-    const double clearance = body_clearance(*world_, robot, pose_, clearance_hint_);
+    const double clearance = body_clearance(*world_, *robot_, pose_, clearance_hint_);
     clearance_bound_ = clearance;
     r.min_clearance = std::min(r.min_clearance, clearance);
     if (clearance <= 0.0) {

@@ -145,6 +145,17 @@ class RobotAgent {
   RunResult& result() { return result_; }
 
  private:
+  // The steps of act(), in order.
+  /// Step 2: the controller's command (or the caller's), checked and logged.
+  Command decide(SensingScratch& scratch, const Command* external);
+  /// A goal reached: the next one, or the end of the run (false then).
+  bool next_goal();
+  /// Steps 3 and 4: the command as the wheel speeds the drive can turn (Fig 5.12).
+  WheelSpeeds control(const Command& command);
+  /// Step 5 (and 7, the trajectory's row): the pose after one period; returns the distance moved.
+  double integrate(const WheelSpeeds& wheels, const UnicycleCommand& driven);
+  /// Step 6: collision, liveness and the time limit; false when the run ended.
+  bool check(double moved);
   void finish(RunStatus status);
   /// Logs a transition of the controller at time t (mode change or a named guard).
   void log_transition(double t, int to, int guard);
