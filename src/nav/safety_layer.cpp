@@ -146,6 +146,159 @@ double projection_slack(const PathSamples& s, const Vec2& n, double need, double
   return worst;
 }
 
+// The stopping path's samples, taken on first use: most measures clear every obstacle by a
+// bound and never need them.
+class LazySamples {
+ public:
+  LazySamples(const Pose2& pose, const UnicycleCommand& path, double reach, double speed,
+              double drive, double decel)
+      : pose_(pose), path_(path), reach_(reach), speed_(speed), drive_(drive), decel_(decel) {}
+
+  const PathSamples& operator()() {
+    if (!sampled_) samples_ = sample_path(pose_, path_, reach_, speed_, drive_, decel_);
+    sampled_ = true;
+    return samples_;
+  }
+
+ private:
+  const Pose2& pose_;
+  const UnicycleCommand& path_;
+  double reach_, speed_, drive_, decel_;
+  PathSamples samples_;
+  bool sampled_{false};
+};
+
+// The least slack found so far and, when asked for, the point that set it.
+struct LeastSlack {
+  double worst{kInf};
+  Vec2* blocker{nullptr};
+
+  void take(double slack, const Vec2& at) {
+    if (blocker && slack < worst) *blocker = at;
+    worst = std::min(worst, slack);
+  }
+};
+
+// What one measure() compares against everything: the body, where it is, how far its stopping
+// path sweeps, and the margin to keep.
+struct MeasuredBody {
+  const RobotSpec& robot;
+  const Pose2& pose;
+  double reach;   ///< m: the farthest any body point moves along the stopping path
+  double margin;  ///< m
+  double bound;   ///< m: the radius of the disc round the body (its own disc, or the footprint's)
+  double travel;  ///< m: the length of the centre's stopping path
+  double dt;      ///< s
+  LazySamples& samples;
+};
+
+// The least of a gap's interval bounds along the sampled path minus `need`, the gaps measured by
+// `gap(k)` and `before` the gap at the pose itself.
+template <typename Gap>
+double path_slack(const PathSamples& s, Gap gap, double need, double before) {
+  double least = s.count == 1 ? before - need : kInf;
+  for (int k = 1; k < s.count; ++k) {
+    const double now = gap(static_cast<std::size_t>(k));
+    least = std::min(least, between(before, now, s.spacing) - need);
+    before = now;
+  }
+  return least;
+}
+
+// The world: by the lower bound when it clears the whole sweep, else measured along the path.
+void world_slack(const MeasuredBody& body, const World& world, double world_clearance,
+                 ClearanceHint& hint, LeastSlack& least) {
+  const double bound = world_clearance - body.reach - body.margin;
+  if (bound >= 0.0) {
+    least.worst = std::min(least.worst, bound);
+    return;
+  }
+  const PathSamples& s = body.samples();
+  const double before = body_clearance(world, body.robot, body.pose, hint);
+  const double need = std::min(body.margin, before);
+  const double slack = path_slack(
+      s, [&](std::size_t k) { return body_clearance(world, body.robot, s.pose[k], hint); }, need,
+      before);
+  // The nearest world point is a search: found only when the path's samples set the least slack.
+  if (least.blocker && s.count > 1 && slack < least.worst)
+    *least.blocker = nearest_world_point(world, body.pose.position, hint);
+  least.worst = std::min(least.worst, slack);
+}
+
+// This step's range returns, each like a piece of the world.
+void points_slack(const MeasuredBody& body, std::span<const Vec2> points, LeastSlack& least) {
+  const Vec2 p = body.pose.position;
+  const bool disc = body.robot.footprint.empty();
+  const double reach = body.reach, margin = body.margin;
+  // Points clearly beyond the sweep are compared by squared distance, the nearest one's root
+  // taken once (the same value: the root is monotonic and correctly rounded).
+  const double clear = (body.bound + reach + margin) * (1.0 + 1e-9);
+  double nearest_clear = kInf;
+  for (const Vec2& q : points) {
+    const double d2 = (q - p).squaredNorm();
+    if (d2 >= clear * clear) {
+      nearest_clear = std::min(nearest_clear, d2);
+      continue;
+    }
+    const double lower = std::sqrt(d2) - body.bound;  // a lower bound on the gap now
+    if (lower - reach - margin >= 0.0) {
+      least.worst = std::min(least.worst, lower - reach - margin);
+      continue;
+    }
+    const PathSamples& s = body.samples();
+    // The disc round the body first: its gaps are lower bounds, and the need is at most the
+    // margin, so a pass here is a pass (for a disc body it is the exact test).
+    auto disc_gap = [&](std::size_t k) { return (q - s.pose[k].position).norm() - body.bound; };
+    const double disc_before = disc_gap(0);
+    double point_worst =
+        path_slack(s, disc_gap, disc ? std::min(margin, disc_before) : margin, disc_before);
+    if (!disc && point_worst < 0.0) {
+      auto gap = [&](std::size_t k) {
+        return footprint_gap(body.robot.footprint, s.pose[k], s.axis[k], q);
+      };
+      const double before = gap(0);
+      point_worst = path_slack(s, gap, std::min(margin, before), before);
+    }
+    least.take(point_worst, q);
+  }
+  if (nearest_clear < kInf)
+    least.worst = std::min(least.worst, std::sqrt(nearest_clear) - body.bound - reach - margin);
+}
+
+// Bodies that move: half-planes across the line between the centres. The robot's own body
+// counts as its disc here, as the simulator measures contacts between bodies.
+void movers_slack(const MeasuredBody& body, const SafetyScene& scene, LeastSlack& least) {
+  const Vec2 p = body.pose.position;
+  const double radius = body.robot.body_radius;
+  for (const SafetyDisc& b : scene.discs) {
+    const Vec2 d = p - b.position;
+    const double distance = d.norm();
+    const double room = distance - radius - b.radius - body.margin - b.extra_margin;
+    // Reciprocal: half the room beyond the margin (none once inside it). Otherwise the room
+    // less what the other body may close in one step (which may ask the robot to back off).
+    const double need = b.reciprocal ? 0.5 * std::min(0.0, -room) : std::min(0.0, -room);
+    const double approach = b.reciprocal ? 0.0 : b.approach;
+    if (-body.travel - need - approach >= 0.0) {
+      least.worst = std::min(least.worst, -body.travel - need - approach);
+      continue;
+    }
+    const Vec2 n = distance > 0.0 ? Vec2(d / distance) : Vec2(body.pose.heading());
+    least.take(projection_slack(body.samples(), n, need, approach, body.dt),
+               b.position + b.radius * n);
+  }
+  for (const SafetyBox& b : scene.boxes) {
+    const double gap = signed_distance(b.box, p) - radius;
+    const double need = std::min(0.0, body.margin - gap);
+    if (-body.travel - need - b.approach >= 0.0) {
+      least.worst = std::min(least.worst, -body.travel - need - b.approach);
+      continue;
+    }
+    const Vec2 n = away_from_box(b.box, p);
+    least.take(projection_slack(body.samples(), n, need, b.approach, body.dt),
+               p - (gap + radius) * n);
+  }
+}
+
 }  // namespace
 
 SafetyLayer::SafetyLayer(const RobotSpec& robot, const SafetyParams& params, double dt)
@@ -180,123 +333,22 @@ double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
                             const SafetyScene& scene, Vec2* blocker, ClearanceHint& hint) const {
   const UnicycleCommand path = stopping_path(command);
   const double reach = sweep_reach(path);
-  const double margin = params_.margin;
-  const double radius = robot_->body_radius;
-  const bool disc = robot_->footprint.empty();
-  const Vec2 p = pose.position;
-  double worst = kInf;
-  PathSamples samples;
-  bool sampled = false;
-  auto path_samples = [&]() -> const PathSamples& {
-    if (!sampled)
-      samples = sample_path(pose, path, reach, std::abs(command.v), dt_ + params_.reaction_time,
-                            robot_->max_acceleration);
-    sampled = true;
-    return samples;
-  };
-
-  // The world: by the lower bound when it clears the whole sweep, else measured along the path.
-  if (scene.world) {
-    const double bound = scene.world_clearance - reach - margin;
-    if (bound >= 0.0) {
-      worst = std::min(worst, bound);
-    } else {
-      const PathSamples& s = path_samples();
-      double before = body_clearance(*scene.world, *robot_, pose, hint);
-      const double need = std::min(margin, before);
-      if (s.count == 1) worst = std::min(worst, before - need);
-      const double world_worst = worst;
-      for (int k = 1; k < s.count; ++k) {
-        const double now =
-            body_clearance(*scene.world, *robot_, s.pose[static_cast<std::size_t>(k)], hint);
-        worst = std::min(worst, between(before, now, s.spacing) - need);
-        before = now;
-      }
-      if (blocker && worst < world_worst) *blocker = nearest_world_point(*scene.world, p, hint);
-    }
-  }
-
-  // This step's range returns, each like a piece of the world.
-  const double body_bound = disc ? radius : body_reach_;
-  // Points clearly beyond the sweep are compared by squared distance, the nearest one's root
-  // taken once (the same value: the root is monotonic and correctly rounded).
-  const double clear = (body_bound + reach + margin) * (1.0 + 1e-9);
-  double nearest_clear = kInf;
-  for (const Vec2& q : scene.points) {
-    const double d2 = (q - p).squaredNorm();
-    if (d2 >= clear * clear) {
-      nearest_clear = std::min(nearest_clear, d2);
-      continue;
-    }
-    const double lower = std::sqrt(d2) - body_bound;  // a lower bound on the gap now
-    if (lower - reach - margin >= 0.0) {
-      worst = std::min(worst, lower - reach - margin);
-      continue;
-    }
-    const PathSamples& s = path_samples();
-    // The least of the gaps' interval bounds minus `need`, the gaps measured by `gap(k)`.
-    auto path_slack = [&](auto gap, double need, double before) {
-      double least = s.count == 1 ? before - need : kInf;
-      for (int k = 1; k < s.count; ++k) {
-        const double now = gap(static_cast<std::size_t>(k));
-        least = std::min(least, between(before, now, s.spacing) - need);
-        before = now;
-      }
-      return least;
-    };
-    // The disc round the body first: its gaps are lower bounds, and the need is at most the
-    // margin, so a pass here is a pass (for a disc body it is the exact test).
-    auto disc_gap = [&](std::size_t k) { return (q - s.pose[k].position).norm() - body_bound; };
-    const double disc_before = disc_gap(0);
-    double point_worst =
-        path_slack(disc_gap, disc ? std::min(margin, disc_before) : margin, disc_before);
-    if (!disc && point_worst < 0.0) {
-      auto gap = [&](std::size_t k) {
-        return footprint_gap(robot_->footprint, s.pose[k], s.axis[k], q);
-      };
-      const double before = gap(0);
-      point_worst = path_slack(gap, std::min(margin, before), before);
-    }
-    if (blocker && point_worst < worst) *blocker = q;
-    worst = std::min(worst, point_worst);
-  }
-  if (nearest_clear < kInf)
-    worst = std::min(worst, std::sqrt(nearest_clear) - body_bound - reach - margin);
-
-  // Bodies that move: half-planes across the line between the centres. The robot's own body
-  // counts as its disc here, as the simulator measures contacts between bodies.
-  const double travel = std::abs(path.v);
-  for (const SafetyDisc& b : scene.discs) {
-    const Vec2 d = p - b.position;
-    const double distance = d.norm();
-    const double gap = distance - radius - b.radius;
-    const double room = gap - margin - b.extra_margin;
-    // Reciprocal: half the room beyond the margin (none once inside it). Otherwise the room
-    // less what the other body may close in one step (which may ask the robot to back off).
-    const double need = b.reciprocal ? 0.5 * std::min(0.0, -room) : std::min(0.0, -room);
-    const double approach = b.reciprocal ? 0.0 : b.approach;
-    if (-travel - need - approach >= 0.0) {
-      worst = std::min(worst, -travel - need - approach);
-      continue;
-    }
-    const Vec2 n = distance > 0.0 ? Vec2(d / distance) : Vec2(pose.heading());
-    const double disc_worst = projection_slack(path_samples(), n, need, approach, dt_);
-    if (blocker && disc_worst < worst) *blocker = b.position + b.radius * n;
-    worst = std::min(worst, disc_worst);
-  }
-  for (const SafetyBox& b : scene.boxes) {
-    const double gap = signed_distance(b.box, p) - radius;
-    const double need = std::min(0.0, margin - gap);
-    if (-travel - need - b.approach >= 0.0) {
-      worst = std::min(worst, -travel - need - b.approach);
-      continue;
-    }
-    const Vec2 n = away_from_box(b.box, p);
-    const double box_worst = projection_slack(path_samples(), n, need, b.approach, dt_);
-    if (blocker && box_worst < worst) *blocker = p - (gap + radius) * n;
-    worst = std::min(worst, box_worst);
-  }
-  return worst;
+  LazySamples samples(pose, path, reach, std::abs(command.v), dt_ + params_.reaction_time,
+                      robot_->max_acceleration);
+  const double bound = robot_->footprint.empty() ? robot_->body_radius : body_reach_;
+  const MeasuredBody body{.robot = *robot_,
+                          .pose = pose,
+                          .reach = reach,
+                          .margin = params_.margin,
+                          .bound = bound,
+                          .travel = std::abs(path.v),
+                          .dt = dt_,
+                          .samples = samples};
+  LeastSlack least{kInf, blocker};
+  if (scene.world) world_slack(body, *scene.world, scene.world_clearance, hint, least);
+  points_slack(body, scene.points, least);
+  movers_slack(body, scene, least);
+  return least.worst;
 }
 
 double SafetyLayer::slowdown_cap(const Pose2& pose, const SafetyScene& scene,
