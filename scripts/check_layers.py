@@ -9,7 +9,9 @@ and ompl (the library floornav::ompl) on top of them, so that no other library i
 A file of a module may include its own module's headers and those of modules below it, never a
 module above it or beside it (kinematics/sensing/planning, io/render, core/automaton are
 siblings). A source file's private headers ("name.hpp" without floornav/) must be its own
-module's: no private header is reached across modules. Exit status 1 lists every violation.
+module's: no private header is reached across modules. Headers that modules share but users do
+not get (internal/floornav/, never installed) follow the same layers, and no installed header
+(include/) includes one. Exit status 1 lists every violation.
 """
 import pathlib
 import re
@@ -26,7 +28,7 @@ GENERATED = {"floornav_version.hpp": "io"}
 
 def module_of(path: pathlib.Path, root: pathlib.Path):
     rel = path.relative_to(root).parts
-    if rel[0] == "include" and len(rel) > 3:
+    if rel[0] in ("include", "internal") and len(rel) > 3:
         return rel[2]
     if rel[0] == "src" and len(rel) > 2:
         return rel[1]
@@ -36,7 +38,7 @@ def module_of(path: pathlib.Path, root: pathlib.Path):
 def main() -> int:
     root = pathlib.Path(__file__).resolve().parent.parent
     errors = []
-    files = [p for d in ("include", "src") for p in (root / d).rglob("*")
+    files = [p for d in ("include", "internal", "src") for p in (root / d).rglob("*")
              if p.suffix in (".hpp", ".cpp", ".h")]
     for path in sorted(files):
         mod = module_of(path, root)
@@ -49,6 +51,9 @@ def main() -> int:
             if inc.startswith("floornav/"):
                 parts = inc.split("/")
                 other = parts[1] if len(parts) > 2 else None
+                if path.parts[len(root.parts)] == "include" and (root / "internal" / inc).exists():
+                    errors.append(f"{path.relative_to(root)}: an installed header includes the "
+                                  f"internal {inc}")
                 if other is None or other == mod:
                     continue
                 if other not in RANK:

@@ -11,6 +11,7 @@
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/fan_cone.hpp"
 #include "floornav/geometry/ray.hpp"
+#include "floornav/sensing/sensor_fans.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 
 namespace floornav {

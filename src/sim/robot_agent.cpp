@@ -13,6 +13,7 @@
 #include "floornav/nav/heading_tracker.hpp"
 #include "floornav/nav/robot_avoidance.hpp"
 #include "floornav/robot/body_clearance.hpp"
+#include "floornav/sensing/sensor_fans.hpp"
 
 namespace floornav {
 

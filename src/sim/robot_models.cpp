@@ -2,6 +2,8 @@
 
 #include <memory>
 
+#include "floornav/sensing/sensor_fans.hpp"
+
 namespace floornav {
 
 RobotModel RobotModels::find(const RobotTask& task) {

@@ -13,6 +13,7 @@
 #include "floornav/geometry/fan_cone.hpp"
 #include "floornav/geometry/fan_layout.hpp"
 #include "floornav/geometry/ray.hpp"
+#include "floornav/world/fan_index.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "grid_walk.hpp"
 
@@ -27,7 +28,7 @@ using grid_detail::kInf;
 // The side of the square tiles (cells) the runs are kept by: smaller tiles cut more runs at
 // their borders and cost more to pass over, larger ones cull less. BM_CaveGridCastFanHalfTurn180
 // and BM_GridCastFan360 (bench/grid_bench.cpp) and the peer harness's cave (bench/peers) decide it.
-constexpr int kTile = OccupancyGrid::kFanTile;
+constexpr int kTile = OccupancyGrid::FanIndex::kTile;
 
 namespace {
 
@@ -93,6 +94,8 @@ std::vector<std::int32_t> free_components(const std::vector<std::uint8_t>& occup
 // The stages of compute_boundary: each side's runs, the one-cell runs that another covers, and
 // the runs bucketed by tile.
 struct OccupancyGrid::BoundaryBuild {
+  using Run = FanIndex::Run;
+  using CellBox = FanIndex::CellBox;
   using Runs = std::array<std::vector<Run>, 4>;
 
   // The tile (row-major) that holds the first cell of run `r` of side `s`.
@@ -103,13 +106,14 @@ struct OccupancyGrid::BoundaryBuild {
   }
 
   // The component of a cell, outside the grid included; -1 for an occupied cell.
-  static std::int32_t component(const OccupancyGrid& g, int x, int y) {
+  static std::int32_t component(const OccupancyGrid& g, const FanIndex& f, int x, int y) {
     if (x < 0 || y < 0 || x >= g.width_ || y >= g.height_) return 0;
-    return g.free_component_[static_cast<std::size_t>(y) * g.width_ + x];
+    return f.free_component[static_cast<std::size_t>(y) * g.width_ + x];
   }
 
-  // The runs of side `s` (see OccupancyGrid::Run), line by line, each cut at tile borders.
-  static void collect_side(const OccupancyGrid& g, int s, std::vector<Run>& runs) {
+  // The runs of side `s` (see FanIndex::Run), line by line, each cut at tile borders.
+  static void collect_side(const OccupancyGrid& g, const FanIndex& f, int s,
+                           std::vector<Run>& runs) {
     const bool rows = s >= 2;  // runs along rows (of columns)
     const int lines = rows ? g.height_ : g.width_;
     const int along = rows ? g.width_ : g.height_;
@@ -123,7 +127,7 @@ struct OccupancyGrid::BoundaryBuild {
         const bool occupied =
             i < along && g.occupied_[static_cast<std::size_t>(y) * g.width_ + x] != 0;
         // The component this cell's run faces, -1 for a cell in no run.
-        const std::int32_t c = occupied ? component(g, x + dx, y + dy) : -1;
+        const std::int32_t c = occupied ? component(g, f, x + dx, y + dy) : -1;
         if (open >= 0 && c != open_component) {
           runs.push_back({l, open, i - 1, open_component, 0});
           open = -1;
@@ -177,40 +181,40 @@ struct OccupancyGrid::BoundaryBuild {
     return after == runs.begin() ? nullptr : &*std::prev(after);
   }
 
-  // The runs into g's tiles (tile_runs_, tile_start_: a counting sort by tile and side), each
-  // tile's box (tile_box_), and each tile's side in component order (then line and place, as
+  // The runs into the tiles (runs, start: a counting sort by tile and side), each
+  // tile's box (box), and each tile's side in component order (then line and place, as
   // built): a fan takes one component.
-  static void bucket_by_tile(OccupancyGrid& g, const Runs& runs) {
-    const std::size_t tiles = static_cast<std::size_t>(g.tile_cols_) * g.tile_rows_;
-    g.tile_start_.assign(4 * tiles + 1, 0);
+  static void bucket_by_tile(const OccupancyGrid& g, FanIndex& f, const Runs& runs) {
+    const std::size_t tiles = static_cast<std::size_t>(f.tile_cols) * f.tile_rows;
+    f.start.assign(4 * tiles + 1, 0);
     for (int s = 0; s < 4; ++s)
-      for (const Run& r : runs[s]) ++g.tile_start_[4 * tile_of(s, r, g.tile_cols_) + s + 1];
-    for (std::size_t i = 1; i < g.tile_start_.size(); ++i) g.tile_start_[i] += g.tile_start_[i - 1];
-    g.tile_runs_.resize(static_cast<std::size_t>(g.tile_start_.back()));
-    std::vector<std::int32_t> fill(g.tile_start_.begin(), g.tile_start_.end() - 1);
-    g.tile_box_.assign(tiles, CellBox{g.width_, 0, g.height_, 0});
+      for (const Run& r : runs[s]) ++f.start[4 * tile_of(s, r, f.tile_cols) + s + 1];
+    for (std::size_t i = 1; i < f.start.size(); ++i) f.start[i] += f.start[i - 1];
+    f.runs.resize(static_cast<std::size_t>(f.start.back()));
+    std::vector<std::int32_t> fill(f.start.begin(), f.start.end() - 1);
+    f.box.assign(tiles, CellBox{g.width_, 0, g.height_, 0});
     for (int s = 0; s < 4; ++s) {
       const bool rows = s >= 2;
       for (const Run& r : runs[s]) {
-        const std::size_t t = tile_of(s, r, g.tile_cols_);
-        g.tile_runs_[fill[4 * t + s]++] = r;
-        CellBox& b = g.tile_box_[t];
+        const std::size_t t = tile_of(s, r, f.tile_cols);
+        f.runs[fill[4 * t + s]++] = r;
+        CellBox& b = f.box[t];
         const int x0 = rows ? r.first : r.line, x1 = rows ? r.last + 1 : r.line + 1;
         const int y0 = rows ? r.line : r.first, y1 = rows ? r.line + 1 : r.last + 1;
         b = {std::min(b.x0, x0), std::max(b.x1, x1), std::min(b.y0, y0), std::max(b.y1, y1)};
       }
     }
-    for (std::size_t i = 0; i + 1 < g.tile_start_.size(); ++i)
-      std::stable_sort(g.tile_runs_.begin() + g.tile_start_[i],
-                       g.tile_runs_.begin() + g.tile_start_[i + 1],
+    for (std::size_t i = 0; i + 1 < f.start.size(); ++i)
+      std::stable_sort(f.runs.begin() + f.start[i], f.runs.begin() + f.start[i + 1],
                        [](const Run& a, const Run& b) { return a.component < b.component; });
   }
 };
 
 void OccupancyGrid::compute_boundary() {
-  free_component_ = free_components(occupied_, width_, height_);
-  tile_cols_ = (width_ + kTile - 1) / kTile;
-  tile_rows_ = (height_ + kTile - 1) / kTile;
+  auto index = std::make_shared<FanIndex>();
+  index->free_component = free_components(occupied_, width_, height_);
+  index->tile_cols = (width_ + kTile - 1) / kTile;
+  index->tile_rows = (height_ + kTile - 1) / kTile;
   // A run is taken by the fans from origins in the component of free cells its cells face (the
   // side's neighbours: one component per run). The least distance of a fan's beam is that of
   // such a run. The walk is in a free cell W of the origin's component until that distance; then
@@ -219,9 +223,10 @@ void OccupancyGrid::compute_boundary() {
   // W's component) the diagonal cell faces one of them. Either cell is on a side the walk comes
   // from. So the far side of a hollow outline (facing its inside) is left out from outside.
   BoundaryBuild::Runs runs;
-  for (int s = 0; s < 4; ++s) BoundaryBuild::collect_side(*this, s, runs[s]);
+  for (int s = 0; s < 4; ++s) BoundaryBuild::collect_side(*this, *index, s, runs[s]);
   BoundaryBuild::mark_covered(runs);
-  BoundaryBuild::bucket_by_tile(*this, runs);
+  BoundaryBuild::bucket_by_tile(*this, *index, runs);
+  fan_index_ = std::move(index);
 }
 
 namespace {
@@ -384,6 +389,9 @@ int tile_floor(int c) {
 // directions and hits so far (in the caller's FanScratch), and the stages that lower the hits,
 // tile ring by tile ring about the origin.
 class OccupancyGrid::FanCast {
+  using Run = FanIndex::Run;
+  using CellBox = FanIndex::CellBox;
+
  public:
   // Where a fan starts: the origin's cell (of the grid extended by free cells) and whether it
   // lies inside the grid.
@@ -423,13 +431,14 @@ class OccupancyGrid::FanCast {
   FanCast(const OccupancyGrid& grid, const Vec2& o, const Start& start,
           const fan_detail::FanLayout& fan, double t_max, std::size_t n, FanScratch& scratch)
       : grid_(grid),
+        index_(*grid.fan_index_),
         o_(o),
         ix0_(start.ix0),
         iy0_(start.iy0),
         // Only runs that walks from the origin's component of free cells can touch first.
         component_(start.inside
-                       ? grid.free_component_[static_cast<std::size_t>(start.iy0) * grid.width_ +
-                                              start.ix0]
+                       ? index_.free_component[static_cast<std::size_t>(start.iy0) * grid.width_ +
+                                               start.ix0]
                        : 0),
         fan_(fan),
         n_(n),
@@ -507,7 +516,7 @@ class OccupancyGrid::FanCast {
       if (ring >= 2 && ring % 4 == 0) farthest = farthest_hit();
       if (ring >= 2 && (ring - 1.0) * kTile * (1.0 - 1e-5) > farthest) break;
       const int xa = tx0 - ring, xb = tx0 + ring, ya = ty0 - ring, yb = ty0 + ring;
-      if (xa < 0 && ya < 0 && xb >= grid_.tile_cols_ && yb >= grid_.tile_rows_) break;
+      if (xa < 0 && ya < 0 && xb >= index_.tile_cols && yb >= index_.tile_rows) break;
       // (One call site, so that the ring's work is one piece of code.)
       for (int e = 0; e < 4; ++e) ring_side(e, xa, xb, ya, yb);
     }
@@ -562,8 +571,8 @@ class OccupancyGrid::FanCast {
     if ((e == 1 && yb == ya) || (e == 3 && xb == xa)) return;
     int x0 = e == 3 ? xb : xa, x1 = e == 2 ? xa : xb;
     int y0 = e == 0 ? ya : (e == 1 ? yb : ya + 1), y1 = e == 0 ? ya : (e == 1 ? yb : yb - 1);
-    x0 = std::max(x0, 0), x1 = std::min(x1, grid_.tile_cols_ - 1);
-    y0 = std::max(y0, 0), y1 = std::min(y1, grid_.tile_rows_ - 1);
+    x0 = std::max(x0, 0), x1 = std::min(x1, index_.tile_cols - 1);
+    y0 = std::max(y0, 0), y1 = std::min(y1, index_.tile_rows - 1);
     if (x0 > x1 || y0 > y1) return;
     const double bx0 = x0 * kTile, bx1 = std::min(x1 * kTile + kTile, grid_.width_);
     const double by0 = y0 * kTile, by1 = std::min(y1 * kTile + kTile, grid_.height_);
@@ -576,10 +585,10 @@ class OccupancyGrid::FanCast {
 
   // Tile (tx, ty): its runs of each side, unless no beam may still take a hit from its box.
   void tile(int tx, int ty) const {
-    const std::size_t t = static_cast<std::size_t>(ty) * grid_.tile_cols_ + tx;
-    if (grid_.tile_start_[4 * t] == grid_.tile_start_[4 * t + 4]) return;
+    const std::size_t t = static_cast<std::size_t>(ty) * index_.tile_cols + tx;
+    if (index_.start[4 * t] == index_.start[4 * t + 4]) return;
     // The box of the tile's runs: every cell a run of it holds is in there.
-    const CellBox& b = grid_.tile_box_[t];
+    const CellBox& b = index_.box[t];
     if (!wanted(b.x0, b.x1, b.y0, b.y1)) return;
     tile_side<0>(t, tx, ty);
     tile_side<1>(t, tx, ty);
@@ -634,8 +643,8 @@ class OccupancyGrid::FanCast {
     if ((s == 0 && tx * kTile + kTile - 1 <= ix0_) || (s == 1 && tx * kTile >= ix0_) ||
         (s == 2 && ty * kTile + kTile - 1 <= iy0_) || (s == 3 && ty * kTile >= iy0_))
       return;
-    const Run* r = grid_.tile_runs_.data() + grid_.tile_start_[4 * t + s];
-    const Run* end = grid_.tile_runs_.data() + grid_.tile_start_[4 * t + s + 1];
+    const Run* r = index_.runs.data() + index_.start[4 * t + s];
+    const Run* end = index_.runs.data() + index_.start[4 * t + s + 1];
     while (r != end && r->component < component_) ++r;
     for (; r != end && r->component == component_; ++r) {
       const bool faces = s == 0   ? r->line > ix0_
@@ -698,6 +707,7 @@ class OccupancyGrid::FanCast {
   }
 
   const OccupancyGrid& grid_;
+  const FanIndex& index_;
   const Vec2 o_;  // the origin, cells of the grid frame
   const int ix0_, iy0_;
   const std::int32_t component_;

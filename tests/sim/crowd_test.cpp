@@ -15,6 +15,7 @@
 #include "floornav/io/summary_json.hpp"
 #include "floornav/scenario/simulate.hpp"
 #include "floornav/sensing/range_sensor.hpp"
+#include "floornav/sensing/sensor_fans.hpp"
 #include "floornav/sim/crowd.hpp"
 #include "floornav/sim/social_force.hpp"
 

@@ -18,6 +18,7 @@
 #include "floornav/robot/robot_spec.hpp"
 #include "floornav/scenario/simulate.hpp"
 #include "floornav/sensing/range_sensor.hpp"
+#include "floornav/sensing/sensor_fans.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/robot_neighbour_grid.hpp"
 #include "floornav/sim/simulation.hpp"

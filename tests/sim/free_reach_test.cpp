@@ -12,6 +12,7 @@
 #include "floornav/core/rng.hpp"
 #include "floornav/scenario/presets.hpp"
 #include "floornav/sensing/range_sensor.hpp"
+#include "floornav/sensing/sensor_fans.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
 

@@ -14,6 +14,7 @@
 #include "floornav/geometry/angle.hpp"
 #include "floornav/robot/robot_spec.hpp"
 #include "floornav/sensing/range_sensor.hpp"
+#include "floornav/sensing/sensor_fans.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
 

@@ -15,6 +15,7 @@
 #include "floornav/core/rng.hpp"
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/ros_map.hpp"
+#include "floornav/world/fan_index.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 
 namespace floornav {
@@ -60,7 +61,7 @@ long expect_fans_match_oracle(const OccupancyGrid& g, Rng& rng, int fans,
     }
     if (g.origin().theta == 0.0 && f % 4 == 2) {
       const Vec2 cell = (p - g.origin().position) / res;
-      constexpr double tile = OccupancyGrid::kFanTile;
+      constexpr double tile = OccupancyGrid::FanIndex::kTile;
       p = g.origin().position + Vec2(tile * std::round(cell.x() / tile), cell.y()) * res;
     }
     if (!(g.clearance(p) > 0.0)) {
@@ -141,7 +142,7 @@ TEST(GridFanLongRange, ANearWallHidesTheOneBehindIt) {
     cells[static_cast<std::size_t>(y) * n + 60] = 1;
   }
   const OccupancyGrid g(n, n, 0.5, Pose2{Vec2(0.0, 0.0), 0.0}, cells);
-  static_assert(OccupancyGrid::kFanTile == 64, "the origin below is on a tile border");
+  static_assert(OccupancyGrid::FanIndex::kTile == 64, "the origin below is on a tile border");
   const Vec2 o(5.5 * 0.5, 64.0 * 0.5);  // cell units (5.5, 64)
   std::vector<Vec2> dirs;
   std::vector<double> angles;

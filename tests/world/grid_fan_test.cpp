@@ -15,6 +15,7 @@
 #include "floornav/geometry/fan_cone.hpp"
 #include "floornav/geometry/fan_layout.hpp"
 #include "floornav/io/ros_map.hpp"
+#include "floornav/world/fan_index.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
 
@@ -338,7 +339,7 @@ TEST(GridFan, KeepsWhichOneCellRunsAnotherRunCovers) {
   const auto counts = [](int w, int h, std::initializer_list<std::pair<int, int>> occupied) {
     std::vector<std::uint8_t> cells(static_cast<std::size_t>(w) * h, 0);
     for (const auto& [x, y] : occupied) cells[static_cast<std::size_t>(y) * w + x] = 1;
-    return OccupancyGrid(w, h, 0.1, Pose2{}, cells).fan_run_counts();
+    return OccupancyGrid(w, h, 0.1, Pose2{}, cells).fan_index().run_counts();
   };
   // One cell: four runs of one cell; its left and right faces covered, its bottom and top not.
   auto c = counts(5, 5, {{2, 2}});

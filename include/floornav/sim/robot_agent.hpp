@@ -32,6 +32,8 @@
 
 namespace floornav {
 
+class SensorLayout;  // a sensor list's lidars and fans, found once (internal to the simulator)
+
 /// Per-step working memory of the sensing stage, sized once for the most sensors any robot has.
 struct SensingScratch {
   std::vector<SensorBeam> beams;

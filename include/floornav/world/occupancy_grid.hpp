@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <stdexcept>
 #include <utility>
@@ -95,24 +96,10 @@ class OccupancyGrid {
   /// cell is occupied or (ix, iy) is outside the grid.
   std::int32_t nearest_occupied_index(int ix, int iy) const;
 
-  /// The side (cells) of the square tiles by which cast_fan keeps the runs of occupied cells it
-  /// tests: tiles wholly beyond every beam's hit so far are passed over. Public for the tests,
-  /// which put origins on tile borders.
-  static constexpr int kFanTile = 64;
-
-  /// The runs of occupied cells cast_fan keeps (a maximal stretch of cells along a row or column
-  /// whose neighbour on one side is free, cut at tile borders), and how many of them are one cell
-  /// long and left out of a fan wherever a perpendicular run ending at that cell faces its origin
-  /// too. For the tests and for reports.
-  struct FanRunCounts {
-    std::size_t runs{0};
-    std::size_t covered{0};
-  };
-  FanRunCounts fan_run_counts() const {
-    FanRunCounts c{tile_runs_.size(), 0};
-    for (const Run& r : tile_runs_) c.covered += r.cover != 0 ? 1 : 0;
-    return c;
-  }
+  /// What cast_fan tests, built with the grid: the runs of occupied cells by tile. Opaque (it is
+  /// floornav's own, for its fans and their tests); copies of the grid share it.
+  struct FanIndex;
+  const FanIndex& fan_index() const { return *fan_index_; }
 
  private:
   Vec2 to_grid(const Vec2& world) const;  // metres, grid frame
@@ -120,7 +107,7 @@ class OccupancyGrid {
   /// The distance transform (nearest_, column_nearest_) and the free runs it gives.
   void compute_distance_transform();
   void compute_free_run();
-  /// The runs of occupied cells that the fan tests (tile_runs_, tile_start_).
+  /// The runs of occupied cells that the fan tests (fan_index_).
   void compute_boundary();
   /// The stages of compute_boundary and of one cast_fan call (grid_fan.cpp).
   struct BoundaryBuild;
@@ -151,40 +138,7 @@ class OccupancyGrid {
   /// before it can touch an occupied square: the centre distance to the nearest occupied centre
   /// minus 1.5. `cast_ray` jumps that far at once.
   std::vector<std::uint16_t> free_run_;
-  /// Runs of occupied cells whose neighbour on one side is free (a free cell of the grid or
-  /// outside it): side 0
-  /// (x - 1) and 1 (x + 1) as runs of rows in a column, side 2 (y - 1) and 3 (y + 1) as runs of
-  /// columns in a row. A walk enters or touches an occupied cell first only from a free
-  /// neighbour on a side facing its origin. The runs are cut at the borders of square tiles
-  /// (grid_fan.cpp's kTile cells) and kept tile by tile, so that a fan can pass over a whole tile
-  /// at once (when none of its beams can still reach it nearer than its hit so far): tile t
-  /// (row-major, tile_cols_ per row) has the runs
-  /// tile_runs_[tile_start_[4 t + s] .. tile_start_[4 t + s + 1]) of side s.
-  struct Run {
-    std::int32_t line;   ///< the column (sides 0, 1) or row (sides 2, 3)
-    std::int32_t first;  ///< along the line
-    std::int32_t last;   ///< inclusive
-    /// The free component (free_component_) whose walks can touch the run's cells first.
-    std::int32_t component;
-    /// For a run of one cell: bit s set when a run of side s (perpendicular, same component)
-    /// has this cell at its end on this run's face, and tests the cell for it: a fan from an
-    /// origin that run faces leaves this one out (grid_fan.cpp).
-    std::int32_t cover{0};
-  };
-  /// For each free cell, its 4-connected component of free cells (0: the one outside the grid,
-  /// which counts as free, and those touching it); -1 for an occupied cell. A fan from a
-  /// component takes only the runs its walks can touch first.
-  std::vector<std::int32_t> free_component_;
-  int tile_cols_{0};
-  int tile_rows_{0};
-  std::vector<Run> tile_runs_;
-  std::vector<std::int32_t> tile_start_;
-  /// For each tile, the cells its runs cover: [x0, x1) x [y0, y1) (empty for a tile without
-  /// runs). A fan asks whether a beam may still reach this box rather than the whole tile.
-  struct CellBox {
-    std::int32_t x0, x1, y0, y1;
-  };
-  std::vector<CellBox> tile_box_;
+  std::shared_ptr<const FanIndex> fan_index_;  ///< built by compute_boundary
   std::size_t occupied_count_{0};
   double cos_yaw_{1.0};
   double sin_yaw_{0.0};
