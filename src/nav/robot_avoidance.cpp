@@ -330,14 +330,20 @@ class OrcaLayer final : public Controller {
       if (robots[j].moving) order.push_back(static_cast<std::uint32_t>(j));
     const auto k = static_cast<std::size_t>(params_.neighbours);
     if (order.size() <= k) return order;
-    std::vector<std::pair<double, std::uint32_t>>& by_distance = work.by_distance;
-    by_distance.clear();
-    for (const std::uint32_t j : order)
-      by_distance.emplace_back((robots[j].position - x).squaredNorm(), j);
-    std::nth_element(by_distance.begin(), by_distance.begin() + static_cast<std::ptrdiff_t>(k),
-                     by_distance.end());
+    // The k nearest, kept sorted by (distance, index) as the robots come in index order: one that
+    // ties the farthest kept comes later and stays out, as it would from a sort by the pair.
+    std::vector<std::pair<double, std::uint32_t>>& kept = work.by_distance;
+    kept.clear();
+    for (const std::uint32_t j : order) {
+      const double d2 = (robots[j].position - x).squaredNorm();
+      if (kept.size() == k && !(d2 < kept.back().first)) continue;
+      if (kept.size() == k) kept.pop_back();
+      const auto at = std::upper_bound(kept.begin(), kept.end(), d2,
+                                       [](double d, const auto& e) { return d < e.first; });
+      kept.insert(at, {d2, j});
+    }
     order.clear();
-    for (std::size_t n = 0; n < k; ++n) order.push_back(by_distance[n].second);
+    for (const auto& e : kept) order.push_back(e.second);
     std::sort(order.begin(), order.end());
     return order;
   }
