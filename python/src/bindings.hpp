@@ -5,6 +5,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <span>
@@ -93,6 +94,35 @@ Command to_command(py::handle h);
 /// Points (k, 2) as floornav's Vec2 span: a view of a C-contiguous float64 array when it is
 /// aligned for Vec2, else a copy into `storage`.
 std::span<const Vec2> to_points(py::handle h, std::vector<Vec2>& storage, const char* what);
+
+/// The keys of the observation and info dicts (Simulation, Python controllers, ParallelEnv),
+/// interned once for the process's life.
+struct DictKeys {
+  PyObject* t = PyUnicode_InternFromString("t");
+  PyObject* dt = PyUnicode_InternFromString("dt");
+  PyObject* pose = PyUnicode_InternFromString("pose");
+  PyObject* goal = PyUnicode_InternFromString("goal");
+  PyObject* goal_index = PyUnicode_InternFromString("goal_index");
+  PyObject* goal_count = PyUnicode_InternFromString("goal_count");
+  PyObject* ranges = PyUnicode_InternFromString("ranges");
+  PyObject* points = PyUnicode_InternFromString("points");
+  PyObject* obstacles = PyUnicode_InternFromString("obstacles");
+  PyObject* sensed = PyUnicode_InternFromString("sensed");
+  PyObject* status = PyUnicode_InternFromString("status");
+  PyObject* robot = PyUnicode_InternFromString("robot");
+  PyObject* params = PyUnicode_InternFromString("params");
+  PyObject* goals_reached = PyUnicode_InternFromString("goals_reached");
+  PyObject* progress = PyUnicode_InternFromString("progress");
+  /// RunStatus's names after "running", in status_code.hpp's order.
+  std::array<PyObject*, 5> status_names{
+      PyUnicode_InternFromString("running"), PyUnicode_InternFromString("reached"),
+      PyUnicode_InternFromString("collision"), PyUnicode_InternFromString("timeout"),
+      PyUnicode_InternFromString("stuck")};
+};
+const DictKeys& dict_keys();
+
+/// dict[key] = value, stealing `value`; a null `value` (a failed Python call) raises its error.
+void set_item(PyObject* dict, PyObject* key, PyObject* value);
 
 /// A new uninitialised float64 array of `shape` (at most 3 dimensions).
 py::array new_float_array(std::initializer_list<py::ssize_t> shape);

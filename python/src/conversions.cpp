@@ -217,35 +217,17 @@ py::array_t<double> make_points(std::span<const Vec2> points) {
   return py::reinterpret_steal<py::array_t<double>>(a.release());
 }
 
-namespace {
-// Dict keys made once (interned), leaked on purpose: they live as long as the process.
-struct Keys {
-  PyObject* t = PyUnicode_InternFromString("t");
-  PyObject* dt = PyUnicode_InternFromString("dt");
-  PyObject* pose = PyUnicode_InternFromString("pose");
-  PyObject* goal = PyUnicode_InternFromString("goal");
-  PyObject* goal_index = PyUnicode_InternFromString("goal_index");
-  PyObject* goal_count = PyUnicode_InternFromString("goal_count");
-  PyObject* ranges = PyUnicode_InternFromString("ranges");
-  PyObject* points = PyUnicode_InternFromString("points");
-  PyObject* obstacles = PyUnicode_InternFromString("obstacles");
-  PyObject* sensed = PyUnicode_InternFromString("sensed");
-  PyObject* status = PyUnicode_InternFromString("status");
-  PyObject* robot = PyUnicode_InternFromString("robot");
-  PyObject* params = PyUnicode_InternFromString("params");
-};
-const Keys& keys() {
-  static const Keys* k = new Keys();
+const DictKeys& dict_keys() {
+  static const DictKeys* k = new DictKeys();  // leaked on purpose: interned for the process's life
   return *k;
 }
 
-void set(PyObject* dict, PyObject* key, PyObject* value) {  // steals `value`
+void set_item(PyObject* dict, PyObject* key, PyObject* value) {
   if (!value) throw py::error_already_set();
   const int rc = PyDict_SetItem(dict, key, value);
   Py_DECREF(value);
   if (rc != 0) throw py::error_already_set();
 }
-}  // namespace
 
 void beam_points(const Observation& obs, double* out) {
   for (std::size_t j = 0; j < obs.beams.size(); ++j) {
@@ -257,34 +239,34 @@ void beam_points(const Observation& obs, double* out) {
 
 py::dict observation_dict(const Observation& obs, std::string_view status, py::handle robot,
                           py::handle params) {
-  const Keys& k = keys();
+  const DictKeys& k = dict_keys();
   py::dict d;
   PyObject* p = d.ptr();
-  set(p, k.t, PyFloat_FromDouble(obs.t));
-  set(p, k.dt, PyFloat_FromDouble(obs.dt));
+  set_item(p, k.t, PyFloat_FromDouble(obs.t));
+  set_item(p, k.dt, PyFloat_FromDouble(obs.dt));
   py::array pose = new_float_array({3});
   auto* x = static_cast<double*>(pose.mutable_data());
   x[0] = obs.pose.position.x();
   x[1] = obs.pose.position.y();
   x[2] = obs.pose.theta;
-  set(p, k.pose, pose.release().ptr());
+  set_item(p, k.pose, pose.release().ptr());
   py::array goal = new_float_array({2});
   auto* g = static_cast<double*>(goal.mutable_data());
   g[0] = obs.goal.x();
   g[1] = obs.goal.y();
-  set(p, k.goal, goal.release().ptr());
-  set(p, k.goal_index, PyLong_FromLong(obs.goal_index));
-  set(p, k.goal_count, PyLong_FromLong(obs.goal_count));
-  set(p, k.ranges, make_array(obs.ranges).release().ptr());
+  set_item(p, k.goal, goal.release().ptr());
+  set_item(p, k.goal_index, PyLong_FromLong(obs.goal_index));
+  set_item(p, k.goal_count, PyLong_FromLong(obs.goal_count));
+  set_item(p, k.ranges, make_array(obs.ranges).release().ptr());
   py::array points = new_float_array({static_cast<py::ssize_t>(obs.beams.size()), 2});
   beam_points(obs, static_cast<double*>(points.mutable_data()));
-  set(p, k.points, points.release().ptr());
-  set(p, k.obstacles, make_points(obs.points).release().ptr());
-  set(p, k.sensed, make_points(obs.sensed).release().ptr());
-  set(p, k.status,
-      PyUnicode_FromStringAndSize(status.data(), static_cast<Py_ssize_t>(status.size())));
-  if (robot) set(p, k.robot, py::reinterpret_borrow<py::object>(robot).release().ptr());
-  if (params) set(p, k.params, py::reinterpret_borrow<py::object>(params).release().ptr());
+  set_item(p, k.points, points.release().ptr());
+  set_item(p, k.obstacles, make_points(obs.points).release().ptr());
+  set_item(p, k.sensed, make_points(obs.sensed).release().ptr());
+  set_item(p, k.status,
+           PyUnicode_FromStringAndSize(status.data(), static_cast<Py_ssize_t>(status.size())));
+  if (robot) set_item(p, k.robot, py::reinterpret_borrow<py::object>(robot).release().ptr());
+  if (params) set_item(p, k.params, py::reinterpret_borrow<py::object>(params).release().ptr());
   return d;
 }
 

@@ -21,36 +21,6 @@ namespace floornav::python {
 
 namespace {
 
-// Steals `value` into `dict[key]`.
-void put(PyObject* dict, PyObject* key, PyObject* value) {
-  if (!value) throw py::error_already_set();
-  const int rc = PyDict_SetItem(dict, key, value);
-  Py_DECREF(value);
-  if (rc != 0) throw py::error_already_set();
-}
-
-PyObject* intern(const char* s) {
-  return PyUnicode_InternFromString(s);
-}
-
-struct Keys {
-  PyObject* t = intern("t");
-  PyObject* pose = intern("pose");
-  PyObject* goal = intern("goal");
-  PyObject* goal_index = intern("goal_index");
-  PyObject* ranges = intern("ranges");
-  PyObject* points = intern("points");
-  PyObject* status = intern("status");
-  PyObject* goals_reached = intern("goals_reached");
-  PyObject* progress = intern("progress");
-  std::array<PyObject*, 5> status_names{intern("running"), intern("reached"), intern("collision"),
-                                        intern("timeout"), intern("stuck")};
-};
-const Keys& keys() {
-  static const Keys* k = new Keys();  // leaked on purpose: interned for the process's life
-  return *k;
-}
-
 double* doubles(py::array& a) {
   return static_cast<double*>(a.mutable_data());
 }
@@ -118,8 +88,8 @@ class ParallelCore {
     for (std::size_t i = 0; i < tasks_.size(); ++i) {
       live_[i] = 1;
       note(i);
-      put(obs.ptr(), names_[i].ptr(), observation(i).release().ptr());
-      put(infos.ptr(), names_[i].ptr(), info(i, 0.0).release().ptr());
+      set_item(obs.ptr(), names_[i].ptr(), observation(i).release().ptr());
+      set_item(infos.ptr(), names_[i].ptr(), info(i, 0.0).release().ptr());
     }
     return py::make_tuple(obs, infos);
   }
@@ -144,11 +114,11 @@ class ParallelCore {
       const double reward = weights_.progress * progress + weights_.goal * reached -
                             (code == 2 ? weights_.collision : 0.0) - weights_.time * sim_.dt;
       PyObject* name = names_[i].ptr();
-      put(obs.ptr(), name, observation(i).release().ptr());
-      put(rewards.ptr(), name, PyFloat_FromDouble(reward));
-      put(terminations.ptr(), name, PyBool_FromLong(code == 1 || code == 2));
-      put(truncations.ptr(), name, PyBool_FromLong(code == 3 || code == 4));
-      put(infos.ptr(), name, info(i, progress).release().ptr());
+      set_item(obs.ptr(), name, observation(i).release().ptr());
+      set_item(rewards.ptr(), name, PyFloat_FromDouble(reward));
+      set_item(terminations.ptr(), name, PyBool_FromLong(code == 1 || code == 2));
+      set_item(truncations.ptr(), name, PyBool_FromLong(code == 3 || code == 4));
+      set_item(infos.ptr(), name, info(i, progress).release().ptr());
       note(i);
       if (code != kRunning) live_[i] = 0;
     }
@@ -217,38 +187,38 @@ class ParallelCore {
   }
 
   py::dict observation(std::size_t i) const {
-    const Keys& k = keys();
+    const DictKeys& k = dict_keys();
     const Observation o = fleet_->observe(i);
     py::dict d;
     PyObject* p = d.ptr();
-    put(p, k.t, PyFloat_FromDouble(o.t));
+    set_item(p, k.t, PyFloat_FromDouble(o.t));
     py::array pose = new_float_array({3});
     double* x = doubles(pose);
     x[0] = o.pose.position.x();
     x[1] = o.pose.position.y();
     x[2] = o.pose.theta;
-    put(p, k.pose, pose.release().ptr());
+    set_item(p, k.pose, pose.release().ptr());
     py::array goal = new_float_array({2});
     doubles(goal)[0] = o.goal.x();
     doubles(goal)[1] = o.goal.y();
-    put(p, k.goal, goal.release().ptr());
-    put(p, k.goal_index, PyLong_FromLong(o.goal_index));
-    put(p, k.ranges, make_array(o.ranges).release().ptr());
+    set_item(p, k.goal, goal.release().ptr());
+    set_item(p, k.goal_index, PyLong_FromLong(o.goal_index));
+    set_item(p, k.ranges, make_array(o.ranges).release().ptr());
     py::array points = new_float_array({static_cast<py::ssize_t>(o.beams.size()), 2});
     beam_points(o, doubles(points));
-    put(p, k.points, points.release().ptr());
+    set_item(p, k.points, points.release().ptr());
     return d;
   }
 
   py::dict info(std::size_t i, double progress) const {
-    const Keys& k = keys();
+    const DictKeys& k = dict_keys();
     const RobotAgent& a = fleet_->robot(i);
     py::dict d;
     PyObject* s = k.status_names[static_cast<std::size_t>(status_code(a))];
     Py_INCREF(s);
-    put(d.ptr(), k.status, s);
-    put(d.ptr(), k.goals_reached, PyLong_FromLong(a.result().goals_reached));
-    put(d.ptr(), k.progress, PyFloat_FromDouble(progress));
+    set_item(d.ptr(), k.status, s);
+    set_item(d.ptr(), k.goals_reached, PyLong_FromLong(a.result().goals_reached));
+    set_item(d.ptr(), k.progress, PyFloat_FromDouble(progress));
     return d;
   }
 
