@@ -103,6 +103,13 @@ def test_the_kinds_are_the_documented_ones():
         assert len(summary) > 20
 
 
+def test_the_chapter_ports_registered_kinds():
+    """floornav.chapter ports the chapter's kinds, each a registered C++ kind (not dwa)."""
+    from floornav import chapter
+    kinds = floornav.controller_kinds()
+    assert set(chapter.KINDS) == set(kinds) - {"dwa"}
+
+
 def test_the_stub_declares_every_bound_field():
     tree = ast.parse((ROOT / "python" / "floornav" / "_floornav.pyi").read_text())
     declared: dict[str, set[str]] = {}
