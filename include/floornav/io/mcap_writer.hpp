@@ -88,6 +88,8 @@ class McapWriter {
   std::unique_ptr<char[]> compressed_;                ///< scratch for a chunk's compressed records
   std::size_t compressed_capacity_{0};
   std::vector<ChunkIndex> chunk_indexes_;
+  std::string message_head_;   ///< scratch: a message record's fields before its data
+  std::string index_records_;  ///< scratch: a chunk's message index records
 
   std::uint64_t message_count_{0};
   std::uint64_t first_time_{0}, last_time_{0};
