@@ -3,6 +3,11 @@
 #include <libdeflate.h>
 #include <zstd.h>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
+
 #include <bit>
 #include <stdexcept>
 #include <utility>
@@ -65,6 +70,18 @@ std::uint32_t crc_update(std::uint32_t crc, std::string_view bytes) {
   return libdeflate_crc32(crc, bytes.data(), bytes.size());
 }
 
+/// Maps the pages of a buffer that is about to be written whole, in one call (Linux 5.14+), rather
+/// than one page fault per page on first touch: about 10 us each on a virtual machine, a tenth
+/// of a small run's bag. Elsewhere, or when it fails, the pages fault in as they are touched.
+void prefault([[maybe_unused]] const char* data, [[maybe_unused]] std::size_t size) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+  const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+  const auto at = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t begin = (at + page - 1) & ~(page - 1), end = (at + size) & ~(page - 1);
+  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+#endif
+}
+
 }  // namespace
 
 struct McapWriter::ZstdContext {
@@ -85,6 +102,8 @@ McapWriter::McapWriter(Sink sink, McapOptions options)
   // passes chunk_size; a bigger one grows it) and a piece of output.
   chunk_.reserve(options_.chunk_size + (1u << 12));
   out_.reserve(kOutputPiece);
+  prefault(chunk_.data(), chunk_.capacity());
+  prefault(out_.data(), out_.capacity());
   emit(kMagic, true);
   std::string header;
   str(header, options_.profile);
