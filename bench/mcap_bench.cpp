@@ -50,6 +50,20 @@ void write_bag(benchmark::State& state, const std::string& file) {
   for (auto _ : state) write_run_mcap(s, r, [&](std::string_view piece) { bytes += piece.size(); });
   state.SetBytesProcessed(static_cast<std::int64_t>(bytes));
 }
+/// The same for a fleet: six QuickBots' odometry at 100 Hz, 55 MB of records (the most of the four
+/// scenes of docs/PERFORMANCE.md).
+void write_fleet_bag(benchmark::State& state, const std::string& file) {
+  Scenario s = load_scenario_file(std::string(FLOORNAV_SCENARIO_DIR) + "/" + file);
+  prepare_outputs(s, OutputSelection{.html = false, .mcap = true});
+  const FleetResult r = simulate_fleet(s, 1);
+  std::size_t bytes = 0;
+  for (auto _ : state)
+    write_fleet_mcap(s, r, [&](std::string_view piece) { bytes += piece.size(); });
+  state.SetBytesProcessed(static_cast<std::int64_t>(bytes));
+}
+BENCHMARK_CAPTURE(write_fleet_bag, fleet, "fleet_aisles.yaml")
+    ->Name("BM_WriteBag/fleet_aisles")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(write_bag, factory, "factory_delivery.yaml")
     ->Name("BM_WriteBag/factory_delivery")
     ->Unit(benchmark::kMillisecond);

@@ -152,13 +152,19 @@ void OutputFolder::write(const std::string& name, std::string_view content) {
 void OutputFolder::write(
     const std::string& name,
     const std::function<void(const std::function<void(std::string_view)>& sink)>& produce) {
-  stage();
+  std::filesystem::path staged;
+  {
+    const std::lock_guard lock(mutex_);
+    stage();
+    staged = staging_ / name;
+  }
   try {
-    write_file_atomically(staging_ / name, produce);
+    write_file_atomically(staged, produce);
   } catch (const OutputError& e) {
     // Name the file where it was meant to go, not the staging folder.
     throw OutputError((dir_ / name).string(), e.detail);
   }
+  const std::lock_guard lock(mutex_);
   names_.push_back(name);
 }
 

@@ -3,6 +3,11 @@
 #include <libdeflate.h>
 #include <zstd.h>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
+
 #include <bit>
 #include <stdexcept>
 #include <utility>
@@ -26,7 +31,9 @@ enum Opcode : std::uint8_t {
   kSummaryOffset = 0x0E,
   kDataEnd = 0x0F,
 };
-constexpr std::size_t kOutputPiece = 1u << 18;  ///< bytes handed to the sink at once
+/// Bytes collected before they go to the sink: the buffer is touched whole, and a fresh page
+/// costs a page fault (about 10 us on a virtual machine), so it is kept small and never grows.
+constexpr std::size_t kOutputPiece = 1u << 16;
 
 // Little-endian fields appended to a byte string (the spec's integer, string and map forms).
 template <class T>
@@ -63,6 +70,18 @@ std::uint32_t crc_update(std::uint32_t crc, std::string_view bytes) {
   return libdeflate_crc32(crc, bytes.data(), bytes.size());
 }
 
+/// Maps the pages of a buffer that is about to be written whole, in one call (Linux 5.14+), rather
+/// than one page fault per page on first touch: about 10 us each on a virtual machine, a tenth
+/// of a small run's bag. Elsewhere, or when it fails, the pages fault in as they are touched.
+void prefault([[maybe_unused]] const char* data, [[maybe_unused]] std::size_t size) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+  const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+  const auto at = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t begin = (at + page - 1) & ~(page - 1), end = (at + size) & ~(page - 1);
+  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+#endif
+}
+
 }  // namespace
 
 struct McapWriter::ZstdContext {
@@ -79,9 +98,12 @@ McapWriter::McapWriter(Sink sink, McapOptions options)
     if (ZSTD_isError(status))
       throw std::invalid_argument(std::string("zstd: ") + ZSTD_getErrorName(status));
   }
-  // Grown once, not message by message: a chunk's records and a piece of output.
-  chunk_.reserve(options_.chunk_size + (1u << 16));
+  // Grown once, not message by message: a chunk's records (a chunk closes after the message that
+  // passes chunk_size; a bigger one grows it) and a piece of output.
+  chunk_.reserve(options_.chunk_size + (1u << 12));
   out_.reserve(kOutputPiece);
+  prefault(chunk_.data(), chunk_.capacity());
+  prefault(out_.data(), out_.capacity());
   emit(kMagic, true);
   std::string header;
   str(header, options_.profile);
@@ -95,9 +117,15 @@ McapWriter::~McapWriter() = default;
 
 void McapWriter::emit(std::string_view bytes, bool data_section) {
   if (data_section) data_crc_ = crc_update(data_crc_, bytes);
-  out_.append(bytes);
   position_ += bytes.size();
-  if (out_.size() >= kOutputPiece) flush_output();
+  if (out_.size() + bytes.size() > kOutputPiece) {
+    flush_output();
+    if (bytes.size() >= kOutputPiece) {  // too big for the buffer: straight to the sink
+      sink_(bytes);
+      return;
+    }
+  }
+  out_.append(bytes);
 }
 
 void McapWriter::flush_output() {
@@ -153,12 +181,17 @@ void McapWriter::write(std::uint16_t channel_id, std::uint64_t log_time, std::ui
   chunk_end_ = log_time;
   chunk_index_[channel_id].push_back({log_time, chunk_.size()});
   const std::uint32_t sequence = static_cast<std::uint32_t>(channel_counts_[channel_id]++);
-  chunk_.push_back(static_cast<char>(kMessage));
-  u64(chunk_, 2 + 4 + 8 + 8 + data.size());
-  u16(chunk_, channel_id);
-  u32(chunk_, sequence);
-  u64(chunk_, log_time);
-  u64(chunk_, publish_time);
+  // The record's 31 bytes before its data, assembled apart and appended with the data: two
+  // appends a message, not seven.
+  std::string& head = message_head_;
+  head.clear();
+  head.push_back(static_cast<char>(kMessage));
+  u64(head, 2 + 4 + 8 + 8 + data.size());
+  u16(head, channel_id);
+  u32(head, sequence);
+  u64(head, log_time);
+  u64(head, publish_time);
+  chunk_.append(head);
   chunk_.append(data);
   if (message_count_ == 0) first_time_ = log_time;
   last_time_ = log_time;
@@ -198,23 +231,30 @@ void McapWriter::close_chunk() {
   emit(std::string_view(compressed_.get(), n), true);
   index.length = 1 + 8 + content;
 
+  // The message indexes, all assembled in one buffer (kept from chunk to chunk), emitted at once.
   const std::uint64_t indexes_start = position_;
+  std::string& records = index_records_;
+  records.clear();
   for (std::uint16_t channel = 0; channel < channels_; ++channel) {
     std::vector<IndexEntry>& entries = chunk_index_[channel];
     if (entries.empty()) continue;
-    index.message_index_offsets[channel] = position_;
-    std::string c;
-    u16(c, channel);
-    u32(c, static_cast<std::uint32_t>(entries.size() * 16));
-    for (const IndexEntry& e : entries) {
-      u64(c, e.time);
-      u64(c, e.offset);
+    index.message_index_offsets[channel] = indexes_start + records.size();
+    const std::size_t bytes = entries.size() * 16;
+    records.push_back(static_cast<char>(kMessageIndex));
+    u64(records, 2 + 4 + bytes);
+    u16(records, channel);
+    u32(records, static_cast<std::uint32_t>(bytes));
+    if constexpr (std::endian::native == std::endian::little && sizeof(IndexEntry) == 16) {
+      records.append(reinterpret_cast<const char*>(entries.data()), bytes);
+    } else {
+      for (const IndexEntry& e : entries) {
+        u64(records, e.time);
+        u64(records, e.offset);
+      }
     }
-    std::string rec;
-    record(rec, kMessageIndex, c);
-    emit(rec, true);
     entries.clear();
   }
+  emit(records, true);
   index.message_index_length = position_ - indexes_start;
   chunk_indexes_.push_back(std::move(index));
   chunk_.clear();

@@ -1,6 +1,9 @@
 #include "floornav/io/ros2_messages.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 
 namespace floornav {
 
@@ -23,8 +26,9 @@ void point(CdrWriter& w, double x, double y, double z) {
 }
 
 void yaw_quaternion(CdrWriter& w, double yaw) {
-  point(w, 0.0, 0.0, std::sin(0.5 * yaw));
-  w.f64(std::cos(0.5 * yaw));
+  const Ros2Yaw q = ros2_yaw(yaw);
+  point(w, 0.0, 0.0, q.z);
+  w.f64(q.w);
 }
 
 void pose(CdrWriter& w, double x, double y, double z, double yaw) {  // geometry_msgs/msg/Pose
@@ -34,7 +38,75 @@ void pose(CdrWriter& w, double x, double y, double z, double yaw) {  // geometry
 
 constexpr std::array<double, 36> kNoCovariance{};
 
+/// A little-endian field of a template, overwritten in place.
+template <class T>
+void patch(std::string& bytes, std::size_t at, T v) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  if constexpr (std::endian::native == std::endian::big) std::reverse(b, b + sizeof(T));
+  std::memcpy(bytes.data() + at, b, sizeof(T));
+}
+
+void patch_time(std::string& bytes, std::size_t at, std::uint64_t ns) {
+  patch(bytes, at, static_cast<std::int32_t>(ns / 1'000'000'000u));
+  patch(bytes, at + 4, static_cast<std::uint32_t>(ns % 1'000'000'000u));
+}
+
+/// Position x, y (z stays 0) and orientation z, w (x, y stay 0) of a geometry_msgs/msg/Pose (or
+/// Transform: the same seven float64) at `at`.
+void patch_pose(std::string& bytes, std::size_t at, double x, double y, Ros2Yaw q) {
+  patch(bytes, at, x);
+  patch(bytes, at + 8, y);
+  patch(bytes, at + 40, q.z);
+  patch(bytes, at + 48, q.w);
+}
+
 }  // namespace
+
+Ros2Yaw ros2_yaw(double yaw) {
+  return {std::sin(0.5 * yaw), std::cos(0.5 * yaw)};
+}
+
+Ros2PoseMessages::Ros2PoseMessages(std::string_view frame, std::string_view child) {
+  CdrWriter w;  // the layouts of encode_odometry and encode_tf, with where each patch goes
+  w.begin();
+  odometry_.stamp_at = w.next_at(4);
+  header(w, 0, frame);
+  w.string(child);
+  odometry_.pose_at = w.next_at(8);
+  pose(w, 0.0, 0.0, 0.0, 0.0);
+  w.f64_array(kNoCovariance);
+  odometry_.twist_at = w.next_at(8);
+  point(w, 0.0, 0.0, 0.0);
+  point(w, 0.0, 0.0, 0.0);
+  w.f64_array(kNoCovariance);
+  odometry_.bytes = w.data();
+
+  w.begin();
+  w.sequence_size(1);
+  tf_.stamp_at = w.next_at(4);
+  header(w, 0, frame);
+  w.string(child);
+  tf_.pose_at = w.next_at(8);
+  point(w, 0.0, 0.0, 0.0);
+  yaw_quaternion(w, 0.0);
+  tf_.bytes = w.data();
+}
+
+std::string_view Ros2PoseMessages::odometry(std::uint64_t stamp, double x, double y, Ros2Yaw yaw,
+                                            double v, double omega) {
+  patch_time(odometry_.bytes, odometry_.stamp_at, stamp);
+  patch_pose(odometry_.bytes, odometry_.pose_at, x, y, yaw);
+  patch(odometry_.bytes, odometry_.twist_at, v);           // twist.linear.x
+  patch(odometry_.bytes, odometry_.twist_at + 40, omega);  // twist.angular.z
+  return odometry_.bytes;
+}
+
+std::string_view Ros2PoseMessages::tf(std::uint64_t stamp, double x, double y, Ros2Yaw yaw) {
+  patch_time(tf_.bytes, tf_.stamp_at, stamp);
+  patch_pose(tf_.bytes, tf_.pose_at, x, y, yaw);
+  return tf_.bytes;
+}
 
 void encode_odometry(CdrWriter& w, std::uint64_t stamp, std::string_view frame,
                      std::string_view child, double x, double y, double yaw, double v,

@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -209,6 +210,7 @@ struct RobotStream {
   std::uint16_t odom{0}, tf{0}, mode{0}, transition{0}, goal{0};
   std::vector<std::uint16_t> sensor_channels;
   std::string odom_frame, base_frame;
+  std::optional<Ros2PoseMessages> pose;  ///< /odom and /tf, patched row by row
 };
 
 class BagWriter {
@@ -247,7 +249,10 @@ class BagWriter {
   }
 
  private:
-  void put(std::uint16_t channel, std::uint64_t t) { mcap_.write(channel, t, t, w_.data()); }
+  void put(std::uint16_t channel, std::uint64_t t) { put(channel, t, w_.data()); }
+  void put(std::uint16_t channel, std::uint64_t t, std::string_view data) {
+    mcap_.write(channel, t, t, data);
+  }
 
   void setup() {
     for (const BagRobot& b : robots_) {
@@ -259,6 +264,7 @@ class BagWriter {
       r.goal_rows = goal_reached_rows(*b.task, *b.run);
       r.odom_frame = b.frame + "odom";
       r.base_frame = b.frame + "base_link";
+      r.pose.emplace(r.odom_frame, r.base_frame);
       r.odom = channels_(b.topic + "/odom", "nav_msgs/msg/Odometry");
       r.tf = channels_(b.topic + "/tf", "tf2_msgs/msg/TFMessage");
       r.mode = channels_(b.topic + "/mode", "std_msgs/msg/String");
@@ -318,11 +324,9 @@ class BagWriter {
     if (k >= run.trajectory.size()) return;
     const TrajectorySample& s = run.trajectory[k];
     const std::uint64_t t = nanoseconds(s.t);
-    const Ros2Transform pose[] = {{t, r.odom_frame, r.base_frame, s.x, s.y, s.theta}};
-    encode_tf(w_, pose);
-    put(r.tf, t);
-    encode_odometry(w_, t, r.odom_frame, r.base_frame, s.x, s.y, s.theta, s.v, s.omega);
-    put(r.odom, t);
+    const Ros2Yaw yaw = ros2_yaw(s.theta);  // one sine and cosine for both messages
+    put(r.tf, t, r.pose->tf(t, s.x, s.y, yaw));
+    put(r.odom, t, r.pose->odometry(t, s.x, s.y, yaw, s.v, s.omega));
     if (s.mode != r.last_mode) {
       encode_string(w_, name_of(run.mode_names, s.mode, "mode_"));
       put(r.mode, t);

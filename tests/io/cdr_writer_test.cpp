@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "floornav/io/ros2_messages.hpp"
@@ -112,6 +113,21 @@ TEST(Ros2Messages, OdometryHasTwoCovariancesAndTheTwistInTheChildFrame) {
   EXPECT_NEAR(yaw_z, std::sin(M_PI / 4), 1e-15);
   EXPECT_EQ(v, 0.3);
   EXPECT_EQ(omega, -0.2);
+}
+
+TEST(Ros2Messages, PoseTemplatesWriteTheBytesOfTheEncoders) {
+  Ros2PoseMessages pose("robot_2/odom", "robot_2/base_link");
+  CdrWriter w;
+  for (const auto& [stamp, x, y, yaw, v, omega] :
+       {std::tuple{0ull, 0.0, 0.0, 0.0, 0.0, 0.0},
+        std::tuple{1'500'000'001ull, -3.25, 7.5, -2.9, 0.31, -1.2},
+        std::tuple{86'400'000'000'123ull, 1e6, -1e-9, M_PI, -0.5, 2.0}}) {
+    encode_odometry(w, stamp, "robot_2/odom", "robot_2/base_link", x, y, yaw, v, omega);
+    EXPECT_EQ(pose.odometry(stamp, x, y, ros2_yaw(yaw), v, omega), w.data());
+    const Ros2Transform t[] = {{stamp, "robot_2/odom", "robot_2/base_link", x, y, yaw}};
+    encode_tf(w, t);
+    EXPECT_EQ(pose.tf(stamp, x, y, ros2_yaw(yaw)), w.data());
+  }
 }
 
 }  // namespace

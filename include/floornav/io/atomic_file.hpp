@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -45,7 +46,8 @@ class OutputFolder {
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;
 
-  /// Writes the file `name` (a plain file name) into the set.
+  /// Writes the file `name` (a plain file name) into the set. Two threads may write two files
+  /// of the set at once (run.mcap is written beside the others).
   void write(const std::string& name, std::string_view content);
   void write(const std::string& name,
              const std::function<void(const std::function<void(std::string_view)>& sink)>& produce);
@@ -63,6 +65,7 @@ class OutputFolder {
   std::vector<std::filesystem::path> created_;  ///< folders made by stage(), outermost first
   std::vector<std::string> names_;
   bool committed_{false};
+  std::mutex mutex_;  ///< write() from two threads: staging_, created_ and names_
 };
 
 /// `name` as a safe folder or file name: letters, digits, '-', '_' and '.' kept, anything else

@@ -43,6 +43,12 @@ class CdrWriter {
 
   /// The message so far, header included.
   std::string_view data() const { return {buffer_.data(), size_}; }
+  /// Pads to a multiple of `alignment` (1, 2, 4 or 8) and returns where the next field starts:
+  /// where a primitive of that size written next lands (a message template patches it there).
+  std::size_t next_at(std::size_t alignment) {
+    align(alignment);
+    return size_;
+  }
 
  private:
   static constexpr std::size_t kHeaderSize = 4;

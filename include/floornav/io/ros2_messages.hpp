@@ -49,6 +49,33 @@ struct Ros2Marker {
 /// sensor_msgs/msg/Range's radiation types.
 enum class Ros2Radiation : std::uint8_t { Ultrasound = 0, Infrared = 1 };
 
+/// The orientation of a planar yaw as a quaternion: (0, 0, sin(yaw / 2), cos(yaw / 2)).
+struct Ros2Yaw {
+  double z{0.0}, w{1.0};
+};
+Ros2Yaw ros2_yaw(double yaw);
+
+/// A robot's pose at each row as its bag publishes it twice: nav_msgs/msg/Odometry and a
+/// tf2_msgs/msg/TFMessage of one transform, `frame` -> `child`. Each is encoded once with its
+/// frames; a row patches the stamp, the pose and the twist into it (the bytes encode_odometry and
+/// encode_tf write, without encoding 763 bytes field by field, 576 of them zero covariances).
+class Ros2PoseMessages {
+ public:
+  Ros2PoseMessages(std::string_view frame, std::string_view child);
+  /// The Odometry; valid until the next call.
+  std::string_view odometry(std::uint64_t stamp, double x, double y, Ros2Yaw yaw, double v,
+                            double omega);
+  /// The TFMessage; valid until the next call.
+  std::string_view tf(std::uint64_t stamp, double x, double y, Ros2Yaw yaw);
+
+ private:
+  struct Template {
+    std::string bytes;
+    std::size_t stamp_at{0}, pose_at{0}, twist_at{0};
+  };
+  Template odometry_, tf_;
+};
+
 void encode_odometry(CdrWriter& w, std::uint64_t stamp, std::string_view frame,
                      std::string_view child, double x, double y, double yaw, double v,
                      double omega);
