@@ -14,6 +14,7 @@
 
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/cdr_writer.hpp"
+#include "floornav/io/mcap_writer.hpp"
 #include "floornav/io/provenance.hpp"
 #include "floornav/io/ros2_definitions.hpp"
 #include "floornav/io/ros2_messages.hpp"
@@ -510,13 +511,11 @@ int mcap_ranges_interval(const Scenario& s) {
   return std::max(within, static_cast<int>(std::clamp(rate, 1.0, 1e9)));
 }
 
-void write_run_mcap(const Scenario& scenario, const RunResult& result,
-                    const McapWriter::Sink& sink) {
+void write_run_mcap(const Scenario& scenario, const RunResult& result, const McapSink& sink) {
   BagWriter(scenario, {{&scenario.robot(), &result, "", ""}}, nullptr, sink).write();
 }
 
-void write_fleet_mcap(const Scenario& scenario, const FleetResult& result,
-                      const McapWriter::Sink& sink) {
+void write_fleet_mcap(const Scenario& scenario, const FleetResult& result, const McapSink& sink) {
   std::vector<BagRobot> robots;
   for (std::size_t i = 0; i < result.robots.size() && i < scenario.robots.size(); ++i) {
     const std::string& name = scenario.robots[i].name;

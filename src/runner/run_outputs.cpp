@@ -30,8 +30,7 @@ std::string clearance_text(double c) {
 /// of its cost), straight into its file piece by piece as the writer hands them over: no copy of
 /// the bag is held (copying megabytes into fresh memory cost a fifth of the bag's time in page
 /// faults). The future is declared after the folder: it is waited for before the folder goes.
-std::future<void> bag_in_background(OutputFolder& out,
-                                    std::function<void(const McapWriter::Sink&)> write) {
+std::future<void> bag_in_background(OutputFolder& out, std::function<void(const McapSink&)> write) {
   return std::async(std::launch::async, [&out, write = std::move(write)] {
     out.write("run.mcap", [&](const std::function<void(std::string_view)>& sink) { write(sink); });
   });
@@ -83,8 +82,8 @@ void write_run_outputs(const std::filesystem::path& dir, const Scenario& scenari
   OutputFolder out(dir, run_output_files());
   std::future<void> bag;
   if (which.mcap && !result.trajectory.empty())
-    bag = bag_in_background(
-        out, [&](const McapWriter::Sink& sink) { write_run_mcap(scenario, result, sink); });
+    bag = bag_in_background(out,
+                            [&](const McapSink& sink) { write_run_mcap(scenario, result, sink); });
   if (which.summary)
     out.write("summary.json", run_summary(scenario, result, context).dump(2) + "\n");
   if (which.csv)
@@ -164,7 +163,7 @@ void write_fleet_outputs(const std::filesystem::path& dir, const Scenario& scena
   std::future<void> bag;
   if (which.mcap && recorded)
     bag = bag_in_background(
-        out, [&](const McapWriter::Sink& sink) { write_fleet_mcap(scenario, result, sink); });
+        out, [&](const McapSink& sink) { write_fleet_mcap(scenario, result, sink); });
   if (which.summary)
     out.write("summary.json", fleet_run_summary(scenario, result, context).dump(2) + "\n");
   if (which.csv)

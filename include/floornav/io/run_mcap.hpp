@@ -16,7 +16,9 @@
 /// (nav_msgs/msg/OccupancyGrid), `/world` (the shapes as markers); `/clock` at every step;
 /// `/crowd` (people and forklifts as markers, 10 times a simulated second) when there are any.
 
-#include "floornav/io/mcap_writer.hpp"
+#include <functional>
+#include <string_view>
+
 #include "floornav/scenario/scenario.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
 #include "floornav/sim/run_result.hpp"
@@ -29,17 +31,18 @@ inline constexpr double kMaxMcapRangeValues = 2e7;
 /// senses every step, 100 times a second at dt = 0.01).
 inline constexpr double kMcapSensorPeriod = 0.1;
 
+/// Where a bag goes: the bytes of the file, piece by piece, in order.
+using McapSink = std::function<void(std::string_view)>;
+
 /// The sim.record_ranges_every a run of `scenario` needs for its bag's sensor topics: the steps
 /// closest to kMcapSensorPeriod (at least 1), more while the robots' sensors over t_max would pass
 /// kMaxMcapRangeValues. 0 when no robot has a sensor.
 int mcap_ranges_interval(const Scenario& scenario);
 
 /// The bag of one robot's run (`result.trajectory` recorded), handed to `sink` in pieces.
-void write_run_mcap(const Scenario& scenario, const RunResult& result,
-                    const McapWriter::Sink& sink);
+void write_run_mcap(const Scenario& scenario, const RunResult& result, const McapSink& sink);
 
 /// The bag of a fleet (every robot, and the people and forklifts).
-void write_fleet_mcap(const Scenario& scenario, const FleetResult& result,
-                      const McapWriter::Sink& sink);
+void write_fleet_mcap(const Scenario& scenario, const FleetResult& result, const McapSink& sink);
 
 }  // namespace floornav
