@@ -325,26 +325,29 @@ class OrcaLayer final : public Controller {
   std::span<const std::uint32_t> nearest_moving(std::span<const NearbyRobot> robots, const Vec2& x,
                                                 OrcaWork& work) const {
     std::vector<std::uint32_t>& order = work.nearest;
+    std::vector<std::pair<double, std::uint32_t>>& by_distance = work.by_distance;
     order.clear();
-    for (std::size_t j = 0; j < robots.size(); ++j)
-      if (robots[j].moving) order.push_back(static_cast<std::uint32_t>(j));
+    by_distance.clear();
+    for (std::size_t j = 0; j < robots.size(); ++j) {
+      if (!robots[j].moving) continue;
+      order.push_back(static_cast<std::uint32_t>(j));
+      by_distance.emplace_back((robots[j].position - x).squaredNorm(),
+                               static_cast<std::uint32_t>(j));
+    }
     const auto k = static_cast<std::size_t>(params_.neighbours);
     if (order.size() <= k) return order;
-    // The k nearest, kept sorted by (distance, index) as the robots come in index order: one that
-    // ties the farthest kept comes later and stays out, as it would from a sort by the pair.
-    std::vector<std::pair<double, std::uint32_t>>& kept = work.by_distance;
-    kept.clear();
-    for (const std::uint32_t j : order) {
-      const double d2 = (robots[j].position - x).squaredNorm();
-      if (kept.size() == k && !(d2 < kept.back().first)) continue;
-      if (kept.size() == k) kept.pop_back();
-      const auto at = std::upper_bound(kept.begin(), kept.end(), d2,
-                                       [](double d, const auto& e) { return d < e.first; });
-      kept.insert(at, {d2, j});
-    }
+    // The k nearest by (distance, index): of two at one distance the first told is nearer. They
+    // are the pairs up to the k-th smallest; taken in index order, they need no sort.
+    const auto kth = by_distance.begin() + static_cast<std::ptrdiff_t>(k - 1);
+    std::nth_element(by_distance.begin(), kth, by_distance.end());
+    const std::pair<double, std::uint32_t> last = *kth;
     order.clear();
-    for (const auto& e : kept) order.push_back(e.second);
-    std::sort(order.begin(), order.end());
+    for (std::size_t j = 0; j < robots.size(); ++j) {
+      if (!robots[j].moving) continue;
+      const std::pair<double, std::uint32_t> e{(robots[j].position - x).squaredNorm(),
+                                               static_cast<std::uint32_t>(j)};
+      if (!(last < e)) order.push_back(e.second);
+    }
     return order;
   }
 

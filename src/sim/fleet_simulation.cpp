@@ -212,9 +212,11 @@ void FleetSimulation::gather_robots(std::size_t i, SensingScratch& scratch,
   const double gap_reach = safety ? safety_reach_[i] + max_top_step_ : 0.0;
   double look = std::max(reach + max_radius_, tell);
   if (safety) look = std::max(look, radius_[i] + max_radius_ + gap_reach);
+  const double look_sq = look * look;
   grid_.for_each_near(p, look, [&](std::size_t j) {
-    if (j == i) return;
     const double d2 = (positions_[j] - p).squaredNorm();
+    // The cells cover a square: a third of their robots lie beyond every list's reach.
+    if (d2 >= look_sq || j == i) return;
     const double r = reach + radius_[j];
     if (d2 < r * r) others.push_back({positions_[j], radius_[j]});
     if (d2 < tell * tell)
