@@ -41,8 +41,14 @@ double safety_reach(const RobotSpec& robot, const SafetyParams& safety, double d
          2.0 * std::abs(layer.stopping_path({v, 0.0}).v);
 }
 
-// Rays a thread should have per step before a fleet is split across threads.
+// The work of a robot's step in rays cast (a ray is ~200 instructions): what a thread should have
+// per step before a fleet is split across threads, and what a robot's layers add to its rays
+// (callgrind of circle_100: ORCA with its neighbours ~30 rays, the safety layer ~10).
+// BM_Fleet_QuickBotWarehouse and BM_Fleet_Circle on 1 and 2 threads decide them: 100 QuickBots
+// with both layers pay for a second thread, 50 do not.
 constexpr std::size_t kRaysPerThread = 2000;
+constexpr std::size_t kAvoidanceRays = 25;
+constexpr std::size_t kSafetyRays = 10;
 // Robots a thread takes at a time when a fleet is split: small enough that the threads finish a
 // phase together (robots cost from a free-disc shortcut to a full scan, and finished robots
 // nothing), large enough that taking one costs nothing beside stepping it.
@@ -94,7 +100,9 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
       tell_range_[i] = t.controller.avoidance.range;
     }
     for (const RangeSensorSpec& sensor : t.robot.sensors)
-      rays_per_step_ += static_cast<std::size_t>(std::max(sensor.cone_rays, 1));
+      work_per_step_ += static_cast<std::size_t>(std::max(sensor.cone_rays, 1));
+    if (t.controller.safety.enabled) work_per_step_ += kSafetyRays;
+    if (t.controller.avoidance.kind != RobotAvoidance::None) work_per_step_ += kAvoidanceRays;
   }
   thread_scratch_.emplace_back(max_sensors);
   events_.resize(1);
@@ -396,10 +404,8 @@ long long FleetSimulation::robot_steps() const {
 std::size_t FleetSimulation::threads_for(int requested) const {
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t wanted = requested > 0 ? static_cast<std::size_t>(requested) : hw;
-  // A step must hold enough work to pay for two barriers (a few microseconds each): about 2,000
-  // rays per thread (100 QuickBots are 500 rays: one thread is faster). BM_Fleet_QuickBotWarehouse
-  // on 1 and 2 threads (bench/fleet_bench.cpp) decides the threshold.
-  return std::min(wanted, std::max<std::size_t>(1, rays_per_step_ / kRaysPerThread));
+  // A step must hold enough work to pay for two barriers (a few microseconds each).
+  return std::min(wanted, std::max<std::size_t>(1, work_per_step_ / kRaysPerThread));
 }
 
 long long FleetSimulation::run_steps(long long max_steps, int threads) {

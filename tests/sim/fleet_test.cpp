@@ -313,6 +313,29 @@ TEST(Fleet, ParkedRobotsAreObstaclesUnlessTheyLeave) {
 
 // A random fleet of 60 noisy robots (72-beam rings, enough work for threads): one thread and
 // three threads give the same bits.
+// QuickBots (5 IR) on a lattice 1 m apart in a hall, each bound for the opposite corner, with
+// the fleet defaults (ORCA, the safety layer) unless `extra` changes them.
+Scenario quickbot_lattice(int robots, const std::string& extra = "") {
+  std::string yaml = "world: {bounds: [0, 0, 20, 20]}\nrobot: {preset: quickbot}\n" + extra +
+                     "sim: {t_max: 20}\nrobots:\n";
+  for (int i = 0; i < robots; ++i) {
+    const double x = 0.5 + (i % 19) * 1.0, y = 0.5 + (i / 19) * 1.0;
+    yaml += "  - {start: [" + std::to_string(x) + ", " + std::to_string(y) + ", 0], goal: [" +
+            std::to_string(20.0 - x) + ", " + std::to_string(20.0 - y) + "]}\n";
+  }
+  return load_scenario_text(yaml, "lattice.yaml");
+}
+
+TEST(Fleet, ThreadsFollowTheWorkOfAStep) {
+  // 100 QuickBots with ORCA and the safety layer pay for a second thread (BM_Fleet_Circle/100,
+  // BM_Fleet_QuickBotWarehouse/100); 50 do not, nor 100 with their 5 rays alone.
+  EXPECT_EQ(make_fleet_simulation(quickbot_lattice(100)).threads_for(2), 2u);
+  EXPECT_EQ(make_fleet_simulation(quickbot_lattice(50)).threads_for(2), 1u);
+  const std::string bare = "controller: {robot_avoidance: none, safety: off}\n";
+  EXPECT_EQ(make_fleet_simulation(quickbot_lattice(100, bare)).threads_for(2), 1u);
+  EXPECT_EQ(make_fleet_simulation(quickbot_lattice(100)).threads_for(1), 1u);
+}
+
 TEST(Fleet, AnyNumberOfThreadsGivesTheSameResult) {
   std::string yaml =
       "world: {bounds: [0, 0, 8, 8], obstacles: [{circle: {center: [4, 4], radius: 0.5}}]}\n"
@@ -330,7 +353,8 @@ TEST(Fleet, AnyNumberOfThreadsGivesTheSameResult) {
   }
   const Scenario s = load_scenario_text(yaml, "random.yaml");
   FleetSimulation one = make_fleet_simulation(s), three = make_fleet_simulation(s);
-  ASSERT_EQ(three.threads_for(3), 2u);  // 60 x 72 rays: two threads' worth of work
+  // 60 x (72 rays, and what ORCA and the safety layer add): three threads' worth of work.
+  ASSERT_EQ(three.threads_for(3), 3u);
   one.run(1);
   three.run(3);
   const FleetResult a = one.result(), b = three.result();

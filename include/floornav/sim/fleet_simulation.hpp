@@ -103,7 +103,8 @@ class FleetSimulation {
   /// simulation is then of no further use).
   long long run_steps(long long max_steps, int threads = 1);
   /// The threads run_steps uses when asked for `requested` (0: all cores): fewer when a step is
-  /// too little work to share (under ~2,000 rays per thread).
+  /// too little work to share (under ~2,000 rays' worth per thread: a robot's rays, and what its
+  /// robot avoidance and safety layer add).
   std::size_t threads_for(int requested) const;
   /// Robot-steps taken so far, over all robots.
   long long robot_steps() const;
@@ -177,7 +178,7 @@ class FleetSimulation {
   std::vector<double> top_step_;
   double max_top_step_{0.0};
   double max_radius_{0.0};
-  std::size_t rays_per_step_{0};  ///< over all robots: the work of a step, to size the threads
+  std::size_t work_per_step_{0};  ///< over all robots, in rays cast: to size the threads
   RobotNeighbourGrid grid_;
   // Per thread, each on cache lines of its own: a step writes the counts and vector ends in them
   // for every robot, and two threads' std::vector headers side by side would share a line
