@@ -80,7 +80,7 @@ void BM_Fleet_Circle(benchmark::State& state) {
   step_fleet(state, it->second, static_cast<int>(state.range(1)));
 }
 BENCHMARK(BM_Fleet_Circle)
-    ->ArgsProduct({{100, 1000}, {1, 2}})
+    ->ArgsProduct({{20, 100, 300, 1000}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -19,6 +19,10 @@ medians and the range of the per-pair ratios. Nothing is timed but the simulatio
                      rvo2_driver, its Circle example with 1,000 agents, run to the end as the
                      example runs (and Blocks, 1,000 agents, a fixed number of steps), on
                      OMP_NUM_THREADS = T. Unit: robot (agent) steps per second.
+  circle_N           like for like (issue 33), N = 20, 100, 300, 1,000: floornav's fleet step on
+                     RVO2's Circle as shipped (BM_Fleet_Circle/N/T: scenarios/circle/circle_N.yaml,
+                     the automaton, ORCA and the safety layer, every robot casting its IR rays)
+                     against rvo2_driver's Circle with N agents run to the end, on T = 1 and 2.
 
 Paths: --floornav (default build/floornav), --bench (build/bench/floornav_bench), --peers
 ($PEERS_DIR or /tmp/floornav-peers, where the build scripts put Stage, RVO2 and the drivers).
@@ -57,15 +61,15 @@ def stage(peers, world, updates, robots):
     return float(re.search(r"robot_updates_per_s=([0-9.]+)", out).group(1))
 
 
-def fleet_bench(bench, threads, seconds):
-    out = run([bench, f"--benchmark_filter=^BM_Fleet_QuickBotWarehouse/1000/{threads}/",
+def fleet_bench(bench, threads, seconds, case="QuickBotWarehouse/1000"):
+    out = run([bench, f"--benchmark_filter=^BM_Fleet_{case}/{threads}/",
                f"--benchmark_min_time={seconds}", "--benchmark_format=json"])
     return json.loads(out)["benchmarks"][0]["items_per_second"]
 
 
-def rvo2(peers, scenario, steps, threads):
+def rvo2(peers, scenario, steps, threads, agents=1000):
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
-    out = run([os.path.join(peers, "rvo2", "rvo2_driver"), scenario, "1000", str(steps)], env)
+    out = run([os.path.join(peers, "rvo2", "rvo2_driver"), scenario, str(agents), str(steps)], env)
     return float(re.search(r"agent_steps_per_s=([0-9.]+)", out).group(1))
 
 
@@ -76,7 +80,7 @@ def fmt(v):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--pairs", type=int, default=5)
-    ap.add_argument("--only", choices=["stage", "rvo2"])
+    ap.add_argument("--only", choices=["stage", "rvo2", "circle"])
     ap.add_argument("--floornav", default="build/floornav")
     ap.add_argument("--bench", default="build/bench/floornav_bench")
     ap.add_argument("--peers", default=os.environ.get("PEERS_DIR", "/tmp/floornav-peers"))
@@ -105,6 +109,13 @@ def main():
             cases.append((f"1,000 robots, {t} thread{'s' if t > 1 else ''}: RVO2 Blocks",
                           lambda tmp, t=t: fleet_bench(a.bench, t, a.fleet_seconds), "RVO2",
                           lambda t=t: rvo2(a.peers, "blocks", a.rvo2_blocks_steps, t)))
+    if a.only == "circle":
+        for n in (20, 100, 300, 1000):
+            for t in (1, 2):
+                cases.append((f"Circle, {n} robots, {t} thread{'s' if t > 1 else ''}",
+                              lambda tmp, n=n, t=t: fleet_bench(a.bench, t, a.fleet_seconds,
+                                                                f"Circle/{n}"), "RVO2",
+                              lambda n=n, t=t: rvo2(a.peers, "circle", 10**9, t, n)))
     load = os.getloadavg()
     results = []
     with tempfile.TemporaryDirectory() as tmp:

@@ -220,28 +220,39 @@ void FleetSimulation::gather_robots(std::size_t i, SensingScratch& scratch,
   const double gap_reach = safety ? safety_reach_[i] + max_top_step_ : 0.0;
   double look = std::max(reach + max_radius_, tell);
   if (safety) look = std::max(look, radius_[i] + max_radius_ + gap_reach);
-  const double look_sq = look * look;
+  const double look_sq = look * look, tell_sq = tell * tell, radius_i = radius_[i];
+  // Plain pointers and local counts: the stores into the lists would otherwise make the compiler
+  // reload every member array for each robot visited.
+  const Vec2* const position = positions_.data();
+  const Vec2* const velocity = velocities_.data();
+  const double* const radius = radius_.data();
+  const std::uint8_t* const moving = moving_.data();
+  const std::uint8_t* const safety_on = safety_on_.data();
+  const double* const top_step = top_step_.data();
+  NearbyRobot* const told = scratch.robots.data();
+  SafetyDisc* const discs = scratch.safety_discs.data();
+  std::size_t n_told = 0, n_discs = 0;
   grid_.for_each_near(p, look, [&](std::size_t j) {
-    const double d2 = (positions_[j] - p).squaredNorm();
+    const double d2 = (position[j] - p).squaredNorm();
     // The cells cover a square: a third of their robots lie beyond every list's reach.
     if (d2 >= look_sq || j == i) return;
-    const double r = reach + radius_[j];
-    if (d2 < r * r) others.push_back({positions_[j], radius_[j]});
-    if (d2 < tell * tell)
-      scratch.robots[scratch.robot_count++] = {positions_[j], velocities_[j], radius_[j],
-                                               moving_[j] != 0};
+    const double r = reach + radius[j];
+    if (d2 < r * r) others.push_back({position[j], radius[j]});
+    if (d2 < tell_sq) told[n_told++] = {position[j], velocity[j], radius[j], moving[j] != 0};
     if (!safety) return;
-    const double keep = radius_[i] + radius_[j] + gap_reach;
+    const double keep = radius_i + radius[j] + gap_reach;
     if (d2 >= keep * keep) return;
-    const bool moving = moving_[j] != 0;
-    SafetyDisc& d = scratch.safety_discs[scratch.safety_disc_count++];
-    d.position = positions_[j];
-    d.radius = radius_[j];
-    d.reciprocal = moving && safety_on_[j];
-    d.approach = moving && !safety_on_[j] ? top_step_[j] : 0.0;
+    const bool runs = moving[j] != 0;
+    SafetyDisc& d = discs[n_discs++];
+    d.position = position[j];
+    d.radius = radius[j];
+    d.reciprocal = runs && safety_on[j];
+    d.approach = runs && !safety_on[j] ? top_step[j] : 0.0;
     d.extra_margin = 0.0;
     d.who = {BodyRef::Kind::Robot, static_cast<std::uint32_t>(j)};
   });
+  scratch.robot_count = n_told;
+  scratch.safety_disc_count = n_discs;
 }
 
 void FleetSimulation::keep_sensing() {
