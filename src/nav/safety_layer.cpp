@@ -23,9 +23,35 @@ constexpr double kTolerance = 1e-9;
 // Bisection steps of the largest allowed speed: 1/256 of the wanted speed.
 constexpr int kBisections = 8;
 
+}  // namespace
+
+// What the measures of one filter call share: they all start from one pose.
+struct SafetyShared {
+  // Range returns kept by index below; with more near ones, every measure goes over them all.
+  static constexpr std::size_t kMaxNear = 256;
+  ClearanceHint hint;  // every clearance is measured near the pose
+  // The body's clearance to the world at the pose, measured on first use.
+  bool has_clearance{false};
+  double clearance{0.0};
+  // The range returns that a stopping path sweeping at most `reach_bound` may come near (in the
+  // scene's order, with their squared distances from the pose): the others are beyond every
+  // such path, and count only through the nearest of them (`far_d2`).
+  bool has_near{false};
+  double reach_bound{0.0};
+  std::size_t near_count{0};
+  std::array<std::uint32_t, kMaxNear> near_index;
+  std::array<double, kMaxNear> near_d2;
+  double far_d2{kInf};
+};
+
+namespace {
+
 // The poses along a stopping path, from the pose (k = 0) to the path's end (k = count - 1).
+// The arrays are left uninitialised (only the first `count` are written and read): a measure
+// makes one, and most paths have a few samples of the 33.
 struct PathSamples {
-  std::array<Pose2, kMaxSamples + 1> pose;
+  std::array<Vec2, kMaxSamples + 1> position;
+  std::array<double, kMaxSamples + 1> theta;
   std::array<Vec2, kMaxSamples + 1> axis;  ///< (cos, sin) of each pose's heading
   /// s from now at which the robot passes each pose (+infinity on a path that does not move the
   /// centre: it stands, turning at most)
@@ -47,10 +73,11 @@ double time_along(double s, double speed, double drive, double decel) {
   return drive + (speed - std::sqrt(rest)) / decel;
 }
 
-PathSamples sample_path(const Pose2& pose, const UnicycleCommand& path, double reach, double speed,
-                        double drive, double decel) {
-  PathSamples s;
-  s.pose[0] = pose;
+// Fills `s` (fresh) with the samples.
+void sample_path(const Pose2& pose, const UnicycleCommand& path, double reach, double speed,
+                 double drive, double decel, PathSamples& s) {
+  s.position[0] = pose.position;
+  s.theta[0] = pose.theta;
   s.axis[0] = pose.heading();
   s.time[0] = 0.0;
   const int segments =
@@ -71,7 +98,8 @@ PathSamples sample_path(const Pose2& pose, const UnicycleCommand& path, double r
     const Vec2 moved = straight
                            ? Vec2(f * path.v * a0)
                            : Vec2(bend * (s.axis[i].y() - a0.y()), bend * (a0.x() - s.axis[i].x()));
-    s.pose[i] = {pose.position + moved, pose.theta + f * path.omega};
+    s.position[i] = pose.position + moved;
+    s.theta[i] = pose.theta + f * path.omega;
     s.time[i] = time_along(f * std::abs(path.v), speed, drive, decel);
   }
   s.count = segments + 1;
@@ -81,7 +109,6 @@ PathSamples sample_path(const Pose2& pose, const UnicycleCommand& path, double r
     const double t = std::abs(turn);
     if (t > 0.0) s.centre_sagitta = s.centre_spacing / t * (1.0 - std::cos(0.5 * t));
   }
-  return s;
 }
 
 // The least a 1-Lipschitz function of the path (a distance, a projection) can be between two
@@ -90,11 +117,11 @@ double between(double a, double b, double spacing) {
   return 0.5 * (a + b - spacing);
 }
 
-// Signed distance from a point (world frame) to the footprint at `pose` (heading (cos, sin) =
-// `axis`): negative inside.
-double footprint_gap(std::span<const Vec2> footprint, const Pose2& pose, const Vec2& axis,
+// Signed distance from a point (world frame) to the footprint at `position` (heading (cos, sin)
+// = `axis`): negative inside.
+double footprint_gap(std::span<const Vec2> footprint, const Vec2& position, const Vec2& axis,
                      const Vec2& q) {
-  const Vec2 d0 = q - pose.position;
+  const Vec2 d0 = q - position;
   const Vec2 local(axis.x() * d0.x() + axis.y() * d0.y(), -axis.y() * d0.x() + axis.x() * d0.y());
   const double d = boundary_distance(footprint, local);
   return contains(footprint, local) ? -d : d;
@@ -139,7 +166,7 @@ double projection_slack(const PathSamples& s, const Vec2& n, double need, double
   double before = -need;  // the slack at the pose itself, now
   for (int k = 1; k < s.count; ++k) {
     const std::size_t i = static_cast<std::size_t>(k);
-    const double now = n.dot(s.pose[i].position - s.pose[0].position) - need_at(s.time[i]);
+    const double now = n.dot(s.position[i] - s.position[0]) - need_at(s.time[i]);
     worst = std::min(worst, std::min(before, now) - s.centre_sagitta);
     before = now;
   }
@@ -155,7 +182,7 @@ class LazySamples {
       : pose_(pose), path_(path), reach_(reach), speed_(speed), drive_(drive), decel_(decel) {}
 
   const PathSamples& operator()() {
-    if (!sampled_) samples_ = sample_path(pose_, path_, reach_, speed_, drive_, decel_);
+    if (!sampled_) sample_path(pose_, path_, reach_, speed_, drive_, decel_, samples_);
     sampled_ = true;
     return samples_;
   }
@@ -190,14 +217,24 @@ struct MeasuredBody {
   double travel;  ///< m: the length of the centre's stopping path
   double dt;      ///< s
   LazySamples& samples;
+  /// Only whether the slack is >= stop matters: below it, measuring may stop (-inf: exact).
+  double stop;
 };
 
+// The body's clearance to the world at the filter's pose, measured once per filter call.
+double pose_clearance(const World& world, const RobotSpec& robot, const Pose2& pose,
+                      SafetyShared& shared) {
+  if (!shared.has_clearance) shared.clearance = body_clearance(world, robot, pose, shared.hint);
+  shared.has_clearance = true;
+  return shared.clearance;
+}
+
 // The least of a gap's interval bounds along the sampled path minus `need`, the gaps measured by
-// `gap(k)` and `before` the gap at the pose itself.
+// `gap(k)` and `before` the gap at the pose itself. Stops early once below `stop`.
 template <typename Gap>
-double path_slack(const PathSamples& s, Gap gap, double need, double before) {
+double path_slack(const PathSamples& s, Gap gap, double need, double before, double stop = -kInf) {
   double least = s.count == 1 ? before - need : kInf;
-  for (int k = 1; k < s.count; ++k) {
+  for (int k = 1; k < s.count && !(least < stop); ++k) {
     const double now = gap(static_cast<std::size_t>(k));
     least = std::min(least, between(before, now, s.spacing) - need);
     before = now;
@@ -207,62 +244,117 @@ double path_slack(const PathSamples& s, Gap gap, double need, double before) {
 
 // The world: by the lower bound when it clears the whole sweep, else measured along the path.
 void world_slack(const MeasuredBody& body, const World& world, double world_clearance,
-                 ClearanceHint& hint, LeastSlack& least) {
+                 SafetyShared& shared, LeastSlack& least) {
   const double bound = world_clearance - body.reach - body.margin;
   if (bound >= 0.0) {
     least.worst = std::min(least.worst, bound);
     return;
   }
   const PathSamples& s = body.samples();
-  const double before = body_clearance(world, body.robot, body.pose, hint);
+  const double before = pose_clearance(world, body.robot, body.pose, shared);
   const double need = std::min(body.margin, before);
+  ClearanceHint& hint = shared.hint;
   const double slack = path_slack(
-      s, [&](std::size_t k) { return body_clearance(world, body.robot, s.pose[k], hint); }, need,
-      before);
+      s,
+      [&](std::size_t k) {
+        return body_clearance(world, body.robot, Pose2{s.position[k], s.theta[k]}, hint);
+      },
+      need, before, body.stop);
   // The nearest world point is a search: found only when the path's samples set the least slack.
   if (least.blocker && s.count > 1 && slack < least.worst)
     *least.blocker = nearest_world_point(world, body.pose.position, hint);
   least.worst = std::min(least.worst, slack);
 }
 
-// This step's range returns, each like a piece of the world.
-void points_slack(const MeasuredBody& body, std::span<const Vec2> points, LeastSlack& least) {
-  const Vec2 p = body.pose.position;
-  const bool disc = body.robot.footprint.empty();
+// The squared distance beyond which a range return is clear of every stopping path that sweeps
+// at most `reach`.
+double clear_d2(const MeasuredBody& body, double reach) {
+  const double clear = (body.bound + reach + body.margin) * (1.0 + 1e-9);
+  return clear * clear;
+}
+
+// One range return `q`, `d2` squared metres from the pose, like a piece of the world. Points
+// clearly beyond the sweep are compared by squared distance (`nearest_clear`), the nearest one's
+// root taken once (the same value: the root is monotonic and correctly rounded).
+void point_slack(const MeasuredBody& body, const Vec2& q, double d2, double& nearest_clear,
+                 LeastSlack& least) {
   const double reach = body.reach, margin = body.margin;
-  // Points clearly beyond the sweep are compared by squared distance, the nearest one's root
-  // taken once (the same value: the root is monotonic and correctly rounded).
-  const double clear = (body.bound + reach + margin) * (1.0 + 1e-9);
+  if (d2 >= clear_d2(body, reach)) {
+    nearest_clear = std::min(nearest_clear, d2);
+    return;
+  }
+  const double lower = std::sqrt(d2) - body.bound;  // a lower bound on the gap now
+  if (lower - reach - margin >= 0.0) {
+    least.worst = std::min(least.worst, lower - reach - margin);
+    return;
+  }
+  const PathSamples& s = body.samples();
+  // The disc round the body first: its gaps are lower bounds, and the need is at most the
+  // margin, so a pass here is a pass (for a disc body it is the exact test).
+  const bool disc = body.robot.footprint.empty();
+  auto disc_gap = [&](std::size_t k) { return (q - s.position[k]).norm() - body.bound; };
+  const double disc_before = disc_gap(0);
+  double point_worst = path_slack(s, disc_gap, disc ? std::min(margin, disc_before) : margin,
+                                  disc_before, body.stop);
+  if (!disc && point_worst < 0.0) {
+    auto gap = [&](std::size_t k) {
+      return footprint_gap(body.robot.footprint, s.position[k], s.axis[k], q);
+    };
+    const double before = gap(0);
+    point_worst = path_slack(s, gap, std::min(margin, before), before, body.stop);
+  }
+  least.take(point_worst, q);
+}
+
+// Sorts the range returns, once per filter call, into those a stopping path sweeping at most
+// `body.reach` may come near and the rest. False when there are too many near ones to keep.
+bool sort_points(const MeasuredBody& body, std::span<const Vec2> points, SafetyShared& shared) {
+  shared.has_near = true;
+  shared.reach_bound = body.reach;
+  const Vec2 p = body.pose.position;
+  const double clear2 = clear_d2(body, body.reach);
+  double far = kInf;
+  std::size_t near = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double d2 = (points[i] - p).squaredNorm();
+    if (d2 >= clear2) {
+      far = std::min(far, d2);
+      continue;
+    }
+    if (near == SafetyShared::kMaxNear) {
+      shared.reach_bound = -kInf;  // no measure uses the list
+      return false;
+    }
+    shared.near_index[near] = static_cast<std::uint32_t>(i);
+    shared.near_d2[near++] = d2;
+  }
+  shared.far_d2 = far;
+  shared.near_count = near;
+  return true;
+}
+
+// This step's range returns, each like a piece of the world. A path that sweeps no farther than
+// the filter's first goes over the near ones only, in the scene's order (the least slack and the
+// point that set it are those of the whole set: the others are all clear of the sweep, and count
+// by the nearest of them).
+void points_slack(const MeasuredBody& body, std::span<const Vec2> points, SafetyShared& shared,
+                  LeastSlack& least) {
+  if (!shared.has_near) sort_points(body, points, shared);
   double nearest_clear = kInf;
-  for (const Vec2& q : points) {
-    const double d2 = (q - p).squaredNorm();
-    if (d2 >= clear * clear) {
-      nearest_clear = std::min(nearest_clear, d2);
-      continue;
+  if (body.reach <= shared.reach_bound) {
+    nearest_clear = shared.far_d2;
+    for (std::size_t j = 0; j < shared.near_count && !(least.worst < body.stop); ++j) {
+      const std::uint32_t i = shared.near_index[j];
+      point_slack(body, points[i], shared.near_d2[j], nearest_clear, least);
     }
-    const double lower = std::sqrt(d2) - body.bound;  // a lower bound on the gap now
-    if (lower - reach - margin >= 0.0) {
-      least.worst = std::min(least.worst, lower - reach - margin);
-      continue;
-    }
-    const PathSamples& s = body.samples();
-    // The disc round the body first: its gaps are lower bounds, and the need is at most the
-    // margin, so a pass here is a pass (for a disc body it is the exact test).
-    auto disc_gap = [&](std::size_t k) { return (q - s.pose[k].position).norm() - body.bound; };
-    const double disc_before = disc_gap(0);
-    double point_worst =
-        path_slack(s, disc_gap, disc ? std::min(margin, disc_before) : margin, disc_before);
-    if (!disc && point_worst < 0.0) {
-      auto gap = [&](std::size_t k) {
-        return footprint_gap(body.robot.footprint, s.pose[k], s.axis[k], q);
-      };
-      const double before = gap(0);
-      point_worst = path_slack(s, gap, std::min(margin, before), before);
-    }
-    least.take(point_worst, q);
+  } else {
+    const Vec2 p = body.pose.position;
+    for (std::size_t i = 0; i < points.size() && !(least.worst < body.stop); ++i)
+      point_slack(body, points[i], (points[i] - p).squaredNorm(), nearest_clear, least);
   }
   if (nearest_clear < kInf)
-    least.worst = std::min(least.worst, std::sqrt(nearest_clear) - body.bound - reach - margin);
+    least.worst =
+        std::min(least.worst, std::sqrt(nearest_clear) - body.bound - body.reach - body.margin);
 }
 
 // Bodies that move: half-planes across the line between the centres. The robot's own body
@@ -325,12 +417,13 @@ double SafetyLayer::sweep_reach(const UnicycleCommand& path) const {
 
 double SafetyLayer::slack(const Pose2& pose, const UnicycleCommand& command,
                           const SafetyScene& scene) const {
-  ClearanceHint hint;
-  return measure(pose, command, scene, nullptr, hint);
+  SafetyShared shared;
+  return measure(pose, command, scene, nullptr, shared, -kInf);
 }
 
 double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
-                            const SafetyScene& scene, Vec2* blocker, ClearanceHint& hint) const {
+                            const SafetyScene& scene, Vec2* blocker, SafetyShared& shared,
+                            double decide) const {
   const UnicycleCommand path = stopping_path(command);
   const double reach = sweep_reach(path);
   LazySamples samples(pose, path, reach, std::abs(command.v), dt_ + params_.reaction_time,
@@ -343,23 +436,24 @@ double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
                           .bound = bound,
                           .travel = std::abs(path.v),
                           .dt = dt_,
-                          .samples = samples};
+                          .samples = samples,
+                          .stop = decide};
   LeastSlack least{kInf, blocker};
-  if (scene.world) world_slack(body, *scene.world, scene.world_clearance, hint, least);
-  points_slack(body, scene.points, least);
-  movers_slack(body, scene, least);
+  if (scene.world) world_slack(body, *scene.world, scene.world_clearance, shared, least);
+  if (!(least.worst < decide)) points_slack(body, scene.points, shared, least);
+  if (!(least.worst < decide)) movers_slack(body, scene, least);
   return least.worst;
 }
 
 double SafetyLayer::slowdown_cap(const Pose2& pose, const SafetyScene& scene,
-                                 ClearanceHint& hint) const {
+                                 SafetyShared& shared) const {
   const double field = params_.slowdown_distance;
   if (field <= 0.0) return kInf;
   const Vec2 p = pose.position;
   const double radius = robot_->footprint.empty() ? robot_->body_radius : body_reach_;
   bool inside = false;
   if (scene.world && scene.world_clearance < field)
-    inside = body_clearance(*scene.world, *robot_, pose, hint) < field;
+    inside = pose_clearance(*scene.world, *robot_, pose, shared) < field;
   for (const Vec2& q : scene.points) inside = inside || (q - p).norm() - radius < field;
   for (const SafetyDisc& b : scene.discs)
     inside = inside || (b.position - p).norm() - robot_->body_radius - b.radius < field;
@@ -369,7 +463,7 @@ double SafetyLayer::slowdown_cap(const Pose2& pose, const SafetyScene& scene,
 }
 
 UnicycleCommand SafetyLayer::way_out(const Pose2& pose, const SafetyScene& scene,
-                                     ClearanceHint& hint) const {
+                                     SafetyShared& shared) const {
   const DiffDriveParams& drive = robot_->drive;
   const double v = 0.25 * max_forward_speed(drive), w = 0.5 * max_turn_rate(drive);
   const std::array<UnicycleCommand, 9> options{{
@@ -387,7 +481,7 @@ UnicycleCommand SafetyLayer::way_out(const Pose2& pose, const SafetyScene& scene
   double best_slack = -kInf;
   for (const UnicycleCommand& o : options) {
     const UnicycleCommand c = wheels_to_unicycle(drive, saturate_wheels(drive, o));
-    const double s = measure(pose, c, scene, nullptr, hint);
+    const double s = measure(pose, c, scene, nullptr, shared, -kInf);
     if (s > best_slack + kTolerance) {
       best_slack = s;
       best = c;
@@ -399,8 +493,8 @@ UnicycleCommand SafetyLayer::way_out(const Pose2& pose, const SafetyScene& scene
 SafetyVerdict SafetyLayer::filter(const Pose2& pose, const UnicycleCommand& wanted,
                                   const SafetyScene& scene) const {
   UnicycleCommand c = wanted;
-  ClearanceHint hint;  // every clearance below is measured near this pose
-  const double cap = slowdown_cap(pose, scene, hint);
+  SafetyShared shared;  // every measure below starts from this pose
+  const double cap = slowdown_cap(pose, scene, shared);
   if (std::abs(c.v) > cap) c.v = std::copysign(cap, c.v);
   // What standing still keeps: normally a slack >= 0; below 0 when a body that moves on its own
   // is coming in and the robot can no longer keep its field by standing. Then any command that
@@ -408,11 +502,15 @@ SafetyVerdict SafetyLayer::filter(const Pose2& pose, const UnicycleCommand& want
   // A command that keeps its field passes whatever standing keeps (the floor is at most
   // -kTolerance): the common case costs one measure.
   Vec2 blocker = pose.position;
-  auto slack_of = [&](const UnicycleCommand& u) { return measure(pose, u, scene, nullptr, hint); };
-  const double wanted_slack = measure(pose, c, scene, &blocker, hint);
+  auto slack_of = [&](const UnicycleCommand& u) {
+    return measure(pose, u, scene, nullptr, shared, -kInf);
+  };
+  const double wanted_slack = measure(pose, c, scene, &blocker, shared, -kInf);
   if (wanted_slack >= -kTolerance) return {c, c.v != wanted.v || c.omega != wanted.omega};
   const double floor = std::min(0.0, slack_of(UnicycleCommand{})) - kTolerance;
-  auto allowed = [&](const UnicycleCommand& u) { return slack_of(u) >= floor; };
+  auto allowed = [&](const UnicycleCommand& u) {
+    return measure(pose, u, scene, nullptr, shared, floor) >= floor;
+  };
   if (wanted_slack >= floor) return {c, c.v != wanted.v || c.omega != wanted.omega};
   SafetyVerdict verdict;
   verdict.limited = true;
@@ -437,7 +535,7 @@ SafetyVerdict SafetyLayer::filter(const Pose2& pose, const UnicycleCommand& want
     verdict.command = largest([&](double s) { return UnicycleCommand{s * c.v, s * c.omega}; });
   // Something is coming in: a way out that keeps more than the controller's command does.
   if (floor < -kTolerance) {
-    const UnicycleCommand out = way_out(pose, scene, hint);
+    const UnicycleCommand out = way_out(pose, scene, shared);
     if (slack_of(out) > slack_of(verdict.command) + kTolerance) verdict.command = out;
   }
   return verdict;

@@ -40,6 +40,7 @@ namespace floornav {
 
 class World;
 struct ClearanceHint;
+struct SafetyShared;
 
 /// Which body of the floor a SafetyDisc or SafetyBox is (for reports: who held a robot up).
 struct BodyRef {
@@ -112,17 +113,19 @@ class SafetyLayer {
  private:
   /// slack(), and where `blocker` is given, the nearest point of what bound it (unchanged when
   /// nothing binds).
-  /// The world's clearance is measured through `hint` (bit for bit the plain query): one filter
-  /// measures many commands from one pose, along paths a few centimetres long.
+  /// One filter measures many commands from one pose, along paths a few centimetres long:
+  /// `shared` keeps what they have in common (bit for bit what each would compute).
+  /// With a finite `decide`, only whether the slack is >= decide matters: the measure stops as
+  /// soon as it is known to be below (and then returns some value below `decide`).
   double measure(const Pose2& pose, const UnicycleCommand& command, const SafetyScene& scene,
-                 Vec2* blocker, ClearanceHint& hint) const;
+                 Vec2* blocker, SafetyShared& shared, double decide) const;
   /// The farthest any point of the body moves along the stopping path of `command`.
   double sweep_reach(const UnicycleCommand& path) const;
   /// The forward speed cap of the slow-down field at `pose` (+infinity when it does not apply).
-  double slowdown_cap(const Pose2& pose, const SafetyScene& scene, ClearanceHint& hint) const;
+  double slowdown_cap(const Pose2& pose, const SafetyScene& scene, SafetyShared& shared) const;
   /// Among a few ways out (standing, creeping forwards or back, straight or turning), the one
   /// with the largest slack: for when standing still no longer keeps the field.
-  UnicycleCommand way_out(const Pose2& pose, const SafetyScene& scene, ClearanceHint& hint) const;
+  UnicycleCommand way_out(const Pose2& pose, const SafetyScene& scene, SafetyShared& shared) const;
 
   const RobotSpec* robot_;
   SafetyParams params_;
