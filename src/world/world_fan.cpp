@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include "floornav/geometry/fan_cone.hpp"
 #include "floornav/geometry/fan_layout.hpp"
@@ -18,15 +19,25 @@ namespace {
 using fan_detail::even_fan;
 using fan_detail::FanLayout;
 
-// The marks of `scratch` ready for a fan over `items` obstacles: item i is taken in this fan when
-// marks[i] == epoch. Allocates only when the world has more obstacles than the scratch has seen.
-std::uint32_t* fresh_marks(FanScratch& scratch, std::size_t items) {
-  if (scratch.marks.size() < items) scratch.marks.resize(items, 0);
-  if (++scratch.epoch == 0) {
-    std::fill(scratch.marks.begin(), scratch.marks.end(), 0);
-    scratch.epoch = 1;
+// Which obstacles the current fan has taken: item i when marks[i] == epoch. One set per thread,
+// not per caller: a thread that senses many robots in turn (VecEnv's copies) finds its marks in
+// the cache, where each robot's own were cold by its next step.
+struct FanMarks {
+  std::vector<std::uint32_t> marks;
+  std::uint32_t epoch{0};
+};
+
+// The thread's marks ready for a fan over `items` obstacles; sets `epoch`. Allocates only when
+// the world has more obstacles than the thread has seen.
+std::uint32_t* fresh_marks(std::size_t items, std::uint32_t& epoch) {
+  thread_local FanMarks m;
+  if (m.marks.size() < items) m.marks.resize(items, 0);
+  if (++m.epoch == 0) {
+    std::fill(m.marks.begin(), m.marks.end(), 0);
+    m.epoch = 1;
   }
-  return scratch.marks.data();
+  epoch = m.epoch;
+  return m.marks.data();
 }
 
 // `out` (the grid's casts) as cast_ray_from_free has them: min(max_range, the grid's cast_ray).
@@ -181,8 +192,8 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
   const int x0 = cell_x(origin.x() - reach), x1 = cell_x(origin.x() + reach);
   const int y0 = cell_y(origin.y() - reach), y1 = cell_y(origin.y() + reach);
   const std::size_t n_segments = segments_.size();
-  std::uint32_t* mark = fresh_marks(scratch, n_segments + circles_.size());
-  const std::uint32_t epoch = scratch.epoch;
+  std::uint32_t epoch = 0;
+  std::uint32_t* mark = fresh_marks(n_segments + circles_.size(), epoch);
   for (int y = y0; y <= y1; ++y) {
     // Distance from the origin to the row's span of y, then to each cell: a cell wholly beyond
     // reach holds no hit before max_range (such a hit lies in a cell that is within reach, and
