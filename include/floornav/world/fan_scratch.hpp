@@ -8,15 +8,11 @@
 
 namespace floornav {
 
-/// Scratch buffers for casting fans of rays. A fan grows them to what it needs (its beams, the
-/// world's obstacles) and leaves them for the next one, so a caller that keeps one FanScratch per
-/// thread (a robot's sensing keeps one in its SensingScratch) casts fans without allocating after
-/// the first. The contents mean nothing between calls; one FanScratch serves one thread at a time.
+/// Scratch buffers for casting fans of rays. A fan grows them to what it needs (its beams) and
+/// leaves them for the next one, so a caller that keeps one FanScratch per thread (a robot's
+/// sensing keeps one in its SensingScratch) casts fans without allocating after the first. The
+/// contents mean nothing between calls; one FanScratch serves one thread at a time.
 struct FanScratch {
-  /// World::cast_fan: obstacle i is taken in the current fan when `marks[i] == epoch` (the index
-  /// lists an obstacle in every cell it crosses; each is tested once per fan).
-  std::vector<std::uint32_t> marks;
-  std::uint32_t epoch{0};
   /// OccupancyGrid::cast_fan: the beams' directions in the grid frame, and each beam's nearest
   /// hit so far (cell units).
   std::vector<double> dx, dy, best;
