@@ -308,11 +308,16 @@ void point_slack(const MeasuredBody& body, const Vec2& q, double d2, double& nea
 
 // Sorts the range returns, once per filter call, into those a stopping path sweeping at most
 // `body.reach` may come near and the rest. False when there are too many near ones to keep.
-bool sort_points(const MeasuredBody& body, std::span<const Vec2> points, SafetyShared& shared) {
+bool sort_points(const MeasuredBody& body, const SafetyScene& scene, SafetyShared& shared) {
   shared.has_near = true;
   shared.reach_bound = body.reach;
   const Vec2 p = body.pose.position;
   const double clear2 = clear_d2(body, body.reach);
+  if (scene.points_origin == p && scene.points_nearest_d2 >= clear2) {  // all far: no pass
+    shared.far_d2 = scene.points_nearest_d2;
+    return true;
+  }
+  const std::span<const Vec2> points = scene.points;
   double far = kInf;
   std::size_t near = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -337,9 +342,10 @@ bool sort_points(const MeasuredBody& body, std::span<const Vec2> points, SafetyS
 // the filter's first goes over the near ones only, in the scene's order (the least slack and the
 // point that set it are those of the whole set: the others are all clear of the sweep, and count
 // by the nearest of them).
-void points_slack(const MeasuredBody& body, std::span<const Vec2> points, SafetyShared& shared,
+void points_slack(const MeasuredBody& body, const SafetyScene& scene, SafetyShared& shared,
                   LeastSlack& least) {
-  if (!shared.has_near) sort_points(body, points, shared);
+  const std::span<const Vec2> points = scene.points;
+  if (!shared.has_near) sort_points(body, scene, shared);
   double nearest_clear = kInf;
   if (body.reach <= shared.reach_bound) {
     nearest_clear = shared.far_d2;
@@ -440,7 +446,7 @@ double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
                           .stop = decide};
   LeastSlack least{kInf, blocker};
   if (scene.world) world_slack(body, *scene.world, scene.world_clearance, shared, least);
-  if (!(least.worst < decide)) points_slack(body, scene.points, shared, least);
+  if (!(least.worst < decide)) points_slack(body, scene, shared, least);
   if (!(least.worst < decide)) movers_slack(body, scene, least);
   return least.worst;
 }

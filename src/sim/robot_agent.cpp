@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -33,6 +34,17 @@ std::string fmt_decision_error(int mode, int guard, std::size_t modes, std::size
 constexpr double kClearanceBoundSlack = 1e-9;  // m
 // m/s: a robot slower than this is waiting (RunResult::wait_time).
 constexpr double kStillSpeed = 0.01;
+// The least (q - p).squaredNorm() over `points`, as the safety layer computes it (NaN when one
+// is not a number: the layer then goes over the points itself).
+double nearest_d2(std::span<const Vec2> points, const Vec2& p) {
+  double least = std::numeric_limits<double>::infinity();
+  for (const Vec2& q : points) {
+    const double d2 = (q - p).squaredNorm();
+    if (std::isnan(d2)) return std::numeric_limits<double>::quiet_NaN();
+    least = std::min(least, d2);
+  }
+  return least;
+}
 }  // namespace
 
 void SensingScratch::fit(std::size_t sensors) {
@@ -200,6 +212,8 @@ void RobotAgent::guard(const SensingScratch& scratch, WheelSpeeds& wheels,
     // A disc body's clearance bound is kept up to date every step; a footprint's is exact.
     scene.world_clearance = clearance_bound_;
     scene.points = {scratch.sensed.data(), scratch.sensed_count};
+    scene.points_nearest_d2 = scratch.sensed_nearest_d2;
+    scene.points_origin = scratch.sensed_origin;
   } else {  // mapless: what it sensed, and remembers
     scene.points = use_memory_ ? std::span<const Vec2>(scratch.points.data(), scratch.point_count)
                                : std::span<const Vec2>(scratch.sensed.data(), scratch.sensed_count);
@@ -307,6 +321,11 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others,
   if (has_safety_return_) {
     scratch.sensed[scratch.sensed_count++] = safety_return_;
     has_safety_return_ = false;
+  }
+  if (safety_) {
+    scratch.sensed_origin = pose_.position;
+    scratch.sensed_nearest_d2 =
+        nearest_d2({scratch.sensed.data(), scratch.sensed_count}, scratch.sensed_origin);
   }
   scratch.point_count = scratch.sensed_count;
   if (use_memory_) {

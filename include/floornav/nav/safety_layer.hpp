@@ -27,6 +27,7 @@
 /// with the speed through the braking distance.
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -78,6 +79,10 @@ struct SafetyScene {
   std::span<const SafetyDisc> discs;
   std::span<const SafetyBox> boxes;
   std::span<const Vec2> points;  ///< m, world frame: this step's range returns
+  /// Optional: the least (q - points_origin).squaredNorm() over `points`, found while they were
+  /// fresh in the cache (NaN: unknown). Used when points_origin is the filtered pose.
+  double points_nearest_d2{std::numeric_limits<double>::quiet_NaN()};
+  Vec2 points_origin{Vec2::Zero()};
 };
 
 /// What the layer did with one command.

@@ -43,7 +43,12 @@ struct SensingScratch {
   std::vector<Vec2> points;
   FanScratch fan;               ///< the lidar fans' working memory
   std::size_t sensed_count{0};  ///< returns of the last sense(), in `sensed`
-  std::size_t point_count{0};   ///< returns and remembered points, in `points`
+  /// The least (q - sensed_origin).squaredNorm() over `sensed` (NaN: unknown), sensed_origin the
+  /// position they were sensed from: the safety layer's next filter reads it instead of the
+  /// returns, which are out of the cache by then when many robots are stepped in turn.
+  double sensed_nearest_d2{std::numeric_limits<double>::quiet_NaN()};
+  Vec2 sensed_origin{Vec2::Zero()};
+  std::size_t point_count{0};  ///< returns and remembered points, in `points`
   /// The other robots this robot is told of (Observation::robots), written by the fleet before
   /// the step; robot_count is 0 for a lone robot and for robots without robot avoidance.
   std::vector<NearbyRobot> robots;
