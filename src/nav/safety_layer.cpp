@@ -42,6 +42,9 @@ struct SafetyShared {
   std::array<std::uint32_t, kMaxNear> near_index;
   std::array<double, kMaxNear> near_d2;
   double far_d2{kInf};
+  // The pose's heading (cos, sin), where the first stopping path is sampled.
+  bool has_heading{false};
+  Vec2 heading;
 };
 
 namespace {
@@ -74,11 +77,12 @@ double time_along(double s, double speed, double drive, double decel) {
 }
 
 // Fills `s` (fresh) with the samples.
-void sample_path(const Pose2& pose, const UnicycleCommand& path, double reach, double speed,
-                 double drive, double decel, PathSamples& s) {
+// `heading` is pose.heading().
+void sample_path(const Pose2& pose, const Vec2& heading, const UnicycleCommand& path, double reach,
+                 double speed, double drive, double decel, PathSamples& s) {
   s.position[0] = pose.position;
   s.theta[0] = pose.theta;
-  s.axis[0] = pose.heading();
+  s.axis[0] = heading;
   s.time[0] = 0.0;
   const int segments =
       reach > 0.0 ? std::clamp(static_cast<int>(std::ceil(reach / kSampleSpacing)), 1, kMaxSamples)
@@ -178,11 +182,21 @@ double projection_slack(const PathSamples& s, const Vec2& n, double need, double
 class LazySamples {
  public:
   LazySamples(const Pose2& pose, const UnicycleCommand& path, double reach, double speed,
-              double drive, double decel)
-      : pose_(pose), path_(path), reach_(reach), speed_(speed), drive_(drive), decel_(decel) {}
+              double drive, double decel, SafetyShared& shared)
+      : pose_(pose),
+        path_(path),
+        reach_(reach),
+        speed_(speed),
+        drive_(drive),
+        decel_(decel),
+        shared_(shared) {}
 
   const PathSamples& operator()() {
-    if (!sampled_) sample_path(pose_, path_, reach_, speed_, drive_, decel_, samples_);
+    if (!sampled_) {
+      if (!shared_.has_heading) shared_.heading = pose_.heading();
+      shared_.has_heading = true;
+      sample_path(pose_, shared_.heading, path_, reach_, speed_, drive_, decel_, samples_);
+    }
     sampled_ = true;
     return samples_;
   }
@@ -191,6 +205,7 @@ class LazySamples {
   const Pose2& pose_;
   const UnicycleCommand& path_;
   double reach_, speed_, drive_, decel_;
+  SafetyShared& shared_;
   PathSamples samples_;
   bool sampled_{false};
 };
@@ -433,7 +448,7 @@ double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
   const UnicycleCommand path = stopping_path(command);
   const double reach = sweep_reach(path);
   LazySamples samples(pose, path, reach, std::abs(command.v), dt_ + params_.reaction_time,
-                      robot_->max_acceleration);
+                      robot_->max_acceleration, shared);
   const double bound = robot_->footprint.empty() ? robot_->body_radius : body_reach_;
   const MeasuredBody body{.robot = *robot_,
                           .pose = pose,
