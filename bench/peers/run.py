@@ -19,10 +19,12 @@ medians and the range of the per-pair ratios. Nothing is timed but the simulatio
                      rvo2_driver, its Circle example with 1,000 agents, run to the end as the
                      example runs (and Blocks, 1,000 agents, a fixed number of steps), on
                      OMP_NUM_THREADS = T. Unit: robot (agent) steps per second.
-  circle_N           like for like (issue 33), N = 20, 100, 300, 1,000: floornav's fleet step on
-                     RVO2's Circle as shipped (BM_Fleet_Circle/N/T: scenarios/circle/circle_N.yaml,
-                     the automaton, ORCA and the safety layer, every robot casting its IR rays)
-                     against rvo2_driver's Circle with N agents run to the end, on T = 1 and 2.
+  circle_N           like for like (issue 33), N = 20, 100, 300, 1,000: floornav on RVO2's Circle
+                     as shipped (scenarios/circle/circle_N.yaml: the automaton, ORCA and the safety
+                     layer, every robot casting its IR rays), whole runs of `floornav run
+                     --threads T` without recording (robot-steps over the summary's wall_time, the
+                     simulation alone), against rvo2_driver's Circle with N agents, to the end or
+                     5,000 steps (its 20 agents never all arrive), on T = 1 and 2 threads.
 
 Paths: --floornav (default build/floornav), --bench (build/bench/floornav_bench), --peers
 ($PEERS_DIR or /tmp/floornav-peers, where the build scripts put Stage, RVO2 and the drivers).
@@ -37,6 +39,7 @@ import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+SCENARIOS = os.path.join(HERE, "..", "..", "scenarios", "circle")
 
 
 def run(cmd, env=None):
@@ -52,6 +55,14 @@ def floornav_batch(floornav, scenario, tmp):
     line = json.loads(open(os.path.join(out, "results.jsonl")).readline())
     steps = line.get("fleet", {}).get("robot_steps", line["steps"])
     return steps / line["wall_time"]
+
+
+def floornav_fleet_run(floornav, scenario, threads, tmp):
+    out = os.path.join(tmp, "run")
+    run([floornav, "run", scenario, "--threads", str(threads), "--set",
+         "sim.record_trajectory=false", "--quiet", "--no-html", "--out", out])
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    return summary["fleet"]["robot_steps"] / summary["wall_time"]
 
 
 def stage(peers, world, updates, robots):
@@ -113,9 +124,10 @@ def main():
         for n in (20, 100, 300, 1000):
             for t in (1, 2):
                 cases.append((f"Circle, {n} robots, {t} thread{'s' if t > 1 else ''}",
-                              lambda tmp, n=n, t=t: fleet_bench(a.bench, t, a.fleet_seconds,
-                                                                f"Circle/{n}"), "RVO2",
-                              lambda n=n, t=t: rvo2(a.peers, "circle", 10**9, t, n)))
+                              lambda tmp, n=n, t=t: floornav_fleet_run(
+                                  a.floornav, os.path.join(SCENARIOS, f"circle_{n}.yaml"), t, tmp),
+                              "RVO2",
+                              lambda n=n, t=t: rvo2(a.peers, "circle", 5000, t, n)))
     load = os.getloadavg()
     results = []
     with tempfile.TemporaryDirectory() as tmp:
