@@ -43,9 +43,9 @@ double safety_reach(const RobotSpec& robot, const SafetyParams& safety, double d
 
 // The work of a robot's step in rays cast (a ray is ~200 instructions): what a thread should have
 // per step before a fleet is split across threads, and what a robot's layers add to its rays
-// (callgrind of circle_100: ORCA with its neighbours ~30 rays, the safety layer ~10).
-// BM_Fleet_QuickBotWarehouse and BM_Fleet_Circle on 1 and 2 threads decide them: 100 QuickBots
-// with both layers pay for a second thread, 50 do not.
+// (callgrind of circle_100: ORCA with its neighbours 25-30 rays, the safety layer ~10). Whole
+// runs of circle_100 and BM_Fleet_QuickBotWarehouse/50 and /100 on 1 and 2 threads decide them:
+// 100 QuickBots with both layers pay for a second thread, 50 do not.
 constexpr std::size_t kRaysPerThread = 2000;
 constexpr std::size_t kAvoidanceRays = 25;
 constexpr std::size_t kSafetyRays = 10;
