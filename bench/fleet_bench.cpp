@@ -65,8 +65,10 @@ BENCHMARK(BM_Fleet_QuickBotWarehouse)
     ->UseRealTime();
 
 /// RVO2's Circle as shipped (scenarios/circle/circle_N.yaml: QuickBots 0.3 m apart on a circle,
-/// each bound for its antipode; the fleet defaults: the automaton, ORCA, the safety layer), the
-/// like-for-like case of bench/peers' `rvo2_driver circle N`; args: robots, threads.
+/// each bound for its antipode; the fleet defaults: the automaton, ORCA, the safety layer); args:
+/// robots, threads. It times as much of a run as its time allows, from the start: the robots'
+/// approach, cheaper than their crossing in the middle, and more of the run on two threads than
+/// on one. The like-for-like with RVO2 times whole runs: `bench/peers/run.py --only circle`.
 void BM_Fleet_Circle(benchmark::State& state) {
   static std::map<int, Scenario> cache;
   const auto robots = static_cast<int>(state.range(0));
