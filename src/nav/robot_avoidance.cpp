@@ -328,20 +328,20 @@ class OrcaLayer final : public Controller {
     std::vector<std::pair<double, std::uint32_t>>& by_distance = work.by_distance;
     order.clear();
     by_distance.clear();
-    for (std::size_t j = 0; j < robots.size(); ++j) {
-      if (!robots[j].moving) continue;
-      order.push_back(static_cast<std::uint32_t>(j));
-      by_distance.emplace_back((robots[j].position - x).squaredNorm(),
-                               static_cast<std::uint32_t>(j));
-    }
+    for (std::size_t j = 0; j < robots.size(); ++j)
+      if (robots[j].moving)
+        by_distance.emplace_back((robots[j].position - x).squaredNorm(),
+                                 static_cast<std::uint32_t>(j));
     const auto k = static_cast<std::size_t>(params_.neighbours);
-    if (order.size() <= k) return order;
+    if (by_distance.size() <= k) {  // all of them, in index order
+      for (const auto& e : by_distance) order.push_back(e.second);
+      return order;
+    }
     // The k nearest by (distance, index): of two at one distance the first told is nearer. They
     // are the pairs up to the k-th smallest; taken in index order, they need no sort.
     const auto kth = by_distance.begin() + static_cast<std::ptrdiff_t>(k - 1);
     std::nth_element(by_distance.begin(), kth, by_distance.end());
     const std::pair<double, std::uint32_t> last = *kth;
-    order.clear();
     for (std::size_t j = 0; j < robots.size(); ++j) {
       if (!robots[j].moving) continue;
       const std::pair<double, std::uint32_t> e{(robots[j].position - x).squaredNorm(),
