@@ -14,7 +14,8 @@ namespace floornav {
 WorkerPool::WorkerPool(int threads) {
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t n = threads > 0 ? static_cast<std::size_t>(threads) : hw;
-  for (std::size_t t = 1; t < n; ++t) workers_.emplace_back([this] { work_loop(); });
+  shares_.resize(n);
+  for (std::size_t t = 1; t < n; ++t) workers_.emplace_back([this, t] { work_loop(t); });
 }
 
 WorkerPool::~WorkerPool() {
@@ -26,17 +27,34 @@ WorkerPool::~WorkerPool() {
   for (std::thread& t : workers_) t.join();
 }
 
-void WorkerPool::take_chunks() {
+bool WorkerPool::next_chunk(std::size_t self, std::size_t& begin, std::size_t& end) {
+  Share& own = shares_[self];
+  if (own.next < own.end) {
+    begin = own.next;
+    end = std::min(own.end, begin + chunk_);
+    own.next = end;
+    return true;
+  }
+  // Stealing from the back leaves the other thread the front of its share, which it is taking.
+  Share* fullest = nullptr;
+  for (Share& s : shares_)
+    if (s.next < s.end && (!fullest || s.end - s.next > fullest->end - fullest->next)) fullest = &s;
+  if (!fullest) return false;
+  end = fullest->end;
+  begin = std::max(fullest->next, end - std::min(end, chunk_));
+  fullest->end = begin;
+  return true;
+}
+
+void WorkerPool::take_chunks(std::size_t self) {
   while (true) {
-    std::size_t begin;
+    std::size_t begin, end;
     {
       std::lock_guard lock(mutex_);
-      if (next_ >= n_ || error_) return;
-      begin = next_;
-      next_ = std::min(n_, next_ + chunk_);
+      if (error_ || !next_chunk(self, begin, end)) return;
     }
     try {
-      (*body_)(begin, std::min(n_, begin + chunk_));
+      (*body_)(begin, end);
     } catch (...) {
       std::lock_guard lock(mutex_);
       if (!error_) error_ = std::current_exception();
@@ -45,7 +63,7 @@ void WorkerPool::take_chunks() {
   }
 }
 
-void WorkerPool::work_loop() {
+void WorkerPool::work_loop(std::size_t self) {
   std::uint64_t seen = 0;
   while (true) {
     {
@@ -54,7 +72,7 @@ void WorkerPool::work_loop() {
       if (stopping_) return;
       seen = generation_;
     }
-    take_chunks();
+    take_chunks(self);
     {
       std::lock_guard lock(mutex_);
       --busy_;
@@ -74,15 +92,15 @@ void WorkerPool::run(std::size_t n, std::size_t chunk,
   {
     std::lock_guard lock(mutex_);
     body_ = &body;
-    n_ = n;
     chunk_ = chunk;
-    next_ = 0;
+    const std::size_t threads = shares_.size();
+    for (std::size_t t = 0; t < threads; ++t) shares_[t] = {n * t / threads, n * (t + 1) / threads};
     error_ = nullptr;
     busy_ = workers_.size();
     ++generation_;
   }
   wake_.notify_all();
-  take_chunks();
+  take_chunks(0);
   std::exception_ptr error;
   {
     std::unique_lock lock(mutex_);

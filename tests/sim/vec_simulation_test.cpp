@@ -4,9 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "floornav/io/scenario_file.hpp"
@@ -56,6 +60,60 @@ TEST(WorkerPool, RunsEveryIndexOnceAndRethrows) {
   std::atomic<int> n{0};
   pool.run(10, 1, [&](std::size_t b, std::size_t e) { n += static_cast<int>(e - b); });
   EXPECT_EQ(n.load(), 10);
+}
+
+// pool.run(100, 10, ...) with index `hold`, when the caller (`held_by_caller`) or else the
+// worker reaches it, waiting up to 10 s for index `until` to be done. The threads that ran each
+// index, in the order they were run.
+std::vector<std::pair<std::size_t, std::thread::id>> run_holding(WorkerPool& pool, std::size_t hold,
+                                                                 bool held_by_caller,
+                                                                 std::size_t until) {
+  const std::thread::id caller = std::this_thread::get_id();
+  std::vector<std::pair<std::size_t, std::thread::id>> order;
+  std::vector<bool> done(100, false);
+  std::mutex m;
+  std::condition_variable cv;
+  pool.run(done.size(), 10, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      std::unique_lock lock(m);
+      const std::thread::id self = std::this_thread::get_id();
+      order.emplace_back(i, self);
+      if (i == hold && (self == caller) == held_by_caller)
+        cv.wait_for(lock, std::chrono::seconds(10), [&] { return done[until]; });
+      done[i] = true;
+      cv.notify_all();
+    }
+  });
+  return order;
+}
+
+// The first index `thread` ran, or -1.
+long first_run_by(const std::vector<std::pair<std::size_t, std::thread::id>>& order,
+                  std::thread::id thread) {
+  for (const auto& [i, t] : order)
+    if (t == thread) return static_cast<long>(i);
+  return -1;
+}
+
+TEST(WorkerPool, EachThreadStartsOnItsShareAndTheIdleStealFromTheBack) {
+  // Copy i goes to the same thread every step, so its data stays in that core's cache: the
+  // caller starts at 0, the worker at n / 2 (the caller held at 0 until the worker ran 50).
+  WorkerPool pool(2);
+  const std::thread::id caller = std::this_thread::get_id();
+  auto order = run_holding(pool, 0, true, 50);
+  ASSERT_EQ(order.size(), 100u);
+  EXPECT_EQ(order.front(), std::make_pair(std::size_t{0}, caller));
+  EXPECT_EQ(order[1].first, 50u);
+  EXPECT_NE(order[1].second, caller);
+  // A worker held on its first index leaves the rest of its share to the caller, who takes it
+  // from the back: index 99 is the caller's (so the hold ends before its 10 s).
+  order = run_holding(pool, 50, false, 99);
+  ASSERT_EQ(order.size(), 100u);
+  std::thread::id last;
+  for (const auto& [i, t] : order)
+    if (i == 99) last = t;
+  EXPECT_EQ(last, caller);
+  EXPECT_EQ(first_run_by(order, caller), 0);
 }
 
 TEST(Simulation, ObserveBeforeStepSharesTheStepsSensing) {

@@ -42,6 +42,9 @@
 namespace floornav {
 
 /// A fixed set of threads (the caller's among them) that run one parallel loop at a time.
+/// Thread t starts on its own share of the indices, the t-th of `size()` equal ranges, so that a
+/// loop run every step hands index i to the same thread (its data stays in that core's cache);
+/// a thread that finishes its share early takes chunks from the end of the fullest other share.
 class WorkerPool {
  public:
   /// `threads` in all, the calling thread included (0: all cores).
@@ -59,8 +62,17 @@ class WorkerPool {
            const std::function<void(std::size_t, std::size_t)>& body);
 
  private:
-  void work_loop();
-  void take_chunks();
+  /// The indices of one thread's share not yet taken: [next, end).
+  struct Share {
+    std::size_t next{0};
+    std::size_t end{0};
+  };
+
+  void work_loop(std::size_t self);
+  void take_chunks(std::size_t self);
+  /// The next chunk for thread `self` (under mutex_): from the front of its own share, else from
+  /// the back of the share with the most left; false when every share is taken.
+  bool next_chunk(std::size_t self, std::size_t& begin, std::size_t& end);
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
@@ -71,9 +83,8 @@ class WorkerPool {
   bool stopping_{false};
   // The current loop.
   const std::function<void(std::size_t, std::size_t)>* body_{nullptr};
-  std::size_t n_{0};
   std::size_t chunk_{1};
-  std::size_t next_{0};  ///< first index not yet taken (under mutex_)
+  std::vector<Share> shares_;  ///< one per thread, the caller's first (under mutex_)
   std::exception_ptr error_;
 };
 
