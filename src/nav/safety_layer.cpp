@@ -51,7 +51,8 @@ namespace {
 
 // The poses along a stopping path, from the pose (k = 0) to the path's end (k = count - 1).
 // The arrays are left uninitialised (only the first `count` are written and read): a measure
-// makes one, and most paths have a few samples of the 33.
+// makes one, and most paths have a few samples of the 33. `time`, `centre_spacing` and
+// `centre_sagitta` are filled only for bodies that move (time_samples).
 struct PathSamples {
   std::array<Vec2, kMaxSamples + 1> position;
   std::array<double, kMaxSamples + 1> theta;
@@ -76,14 +77,13 @@ double time_along(double s, double speed, double drive, double decel) {
   return drive + (speed - std::sqrt(rest)) / decel;
 }
 
-// Fills `s` (fresh) with the samples.
+// Fills `s` (fresh) with the samples' poses (their times: time_samples).
 // `heading` is pose.heading().
 void sample_path(const Pose2& pose, const Vec2& heading, const UnicycleCommand& path, double reach,
-                 double speed, double drive, double decel, PathSamples& s) {
+                 PathSamples& s) {
   s.position[0] = pose.position;
   s.theta[0] = pose.theta;
   s.axis[0] = heading;
-  s.time[0] = 0.0;
   const int segments =
       reach > 0.0 ? std::clamp(static_cast<int>(std::ceil(reach / kSampleSpacing)), 1, kMaxSamples)
                   : 0;
@@ -104,13 +104,24 @@ void sample_path(const Pose2& pose, const Vec2& heading, const UnicycleCommand& 
                            : Vec2(bend * (s.axis[i].y() - a0.y()), bend * (a0.x() - s.axis[i].x()));
     s.position[i] = pose.position + moved;
     s.theta[i] = pose.theta + f * path.omega;
-    s.time[i] = time_along(f * std::abs(path.v), speed, drive, decel);
   }
   s.count = segments + 1;
+  if (segments > 0) s.spacing = reach / segments;
+}
+
+// Fills what projections along the centre's path need of `s` sampled along `path`: the times,
+// driven as in time_along, and the centre's spacing and sagitta.
+void time_samples(const UnicycleCommand& path, double speed, double drive, double decel,
+                  PathSamples& s) {
+  s.time[0] = 0.0;
+  const int segments = s.count - 1;
+  for (int k = 1; k <= segments; ++k) {
+    const double f = static_cast<double>(k) / segments;
+    s.time[static_cast<std::size_t>(k)] = time_along(f * std::abs(path.v), speed, drive, decel);
+  }
   if (segments > 0) {
-    s.spacing = reach / segments;
     s.centre_spacing = std::abs(path.v) / segments;
-    const double t = std::abs(turn);
+    const double t = std::abs(path.omega / segments);
     if (t > 0.0) s.centre_sagitta = s.centre_spacing / t * (1.0 - std::cos(0.5 * t));
   }
 }
@@ -195,9 +206,17 @@ class LazySamples {
     if (!sampled_) {
       if (!shared_.has_heading) shared_.heading = pose_.heading();
       shared_.has_heading = true;
-      sample_path(pose_, shared_.heading, path_, reach_, speed_, drive_, decel_, samples_);
+      sample_path(pose_, shared_.heading, path_, reach_, samples_);
     }
     sampled_ = true;
+    return samples_;
+  }
+
+  // With the times at which the robot passes each sample: only bodies that move need them.
+  const PathSamples& timed() {
+    operator()();
+    if (!timed_) time_samples(path_, speed_, drive_, decel_, samples_);
+    timed_ = true;
     return samples_;
   }
 
@@ -208,6 +227,7 @@ class LazySamples {
   SafetyShared& shared_;
   PathSamples samples_;
   bool sampled_{false};
+  bool timed_{false};
 };
 
 // The least slack found so far and, when asked for, the point that set it.
@@ -396,7 +416,7 @@ void movers_slack(const MeasuredBody& body, const SafetyScene& scene, LeastSlack
       continue;
     }
     const Vec2 n = distance > 0.0 ? Vec2(d / distance) : Vec2(body.pose.heading());
-    least.take(projection_slack(body.samples(), n, need, approach, body.dt),
+    least.take(projection_slack(body.samples.timed(), n, need, approach, body.dt),
                b.position + b.radius * n);
   }
   for (const SafetyBox& b : scene.boxes) {
@@ -407,7 +427,7 @@ void movers_slack(const MeasuredBody& body, const SafetyScene& scene, LeastSlack
       continue;
     }
     const Vec2 n = away_from_box(b.box, p);
-    least.take(projection_slack(body.samples(), n, need, b.approach, body.dt),
+    least.take(projection_slack(body.samples.timed(), n, need, b.approach, body.dt),
                p - (gap + radius) * n);
   }
 }
