@@ -3,6 +3,10 @@
 #include <optional>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "floornav/geometry/fan_cone.hpp"
 #include "floornav/geometry/fan_layout.hpp"
 #include "floornav/geometry/ray.hpp"
@@ -49,15 +53,47 @@ void at_most(double max_range, std::span<double> out) {
   for (double& r : out) r = std::min(max_range, r);
 }
 
-// Beam k's hit on segment [a, b] (edge e = b - a), kept when nearer than out[k].
-struct SegmentBeamTest {
+// Beams k0 to k1 against segment [a, b] (edge e = b - a), each hit kept when nearer than
+// out[k]: ray_segment_hit, two beams at a time where SSE2 is. The lanes do its IEEE operations
+// in its order (cross(w, e) is the same for every beam) and take t where it would (t >= 0,
+// t < out[k], neither u < 0 nor u > 1: a NaN u passes, as there), so the ranges are the same to
+// the bit; a pair with a beam parallel to the segment is left to it.
+struct SegmentSpanTest {
   const Vec2& origin;
   const Vec2* dirs;
   double* out;
   const Vec2& a;
   const Vec2& b;
   const Vec2& e;
-  void operator()(int k) const { out[k] = ray_segment_hit(origin, dirs[k], a, b, e, out[k]); }
+  void one(int k) const { out[k] = ray_segment_hit(origin, dirs[k], a, b, e, out[k]); }
+  void operator()(int k0, int k1) const {
+    int k = k0;
+#if defined(__SSE2__)
+    const Vec2 w = a - origin;
+    const __m128d ex = _mm_set1_pd(e.x()), ey = _mm_set1_pd(e.y());
+    const __m128d wx = _mm_set1_pd(w.x()), wy = _mm_set1_pd(w.y());
+    const __m128d num_t = _mm_set1_pd(cross(w, e)), parallel = _mm_set1_pd(1e-15);
+    const __m128d zero = _mm_setzero_pd(), one_ = _mm_set1_pd(1.0), sign = _mm_set1_pd(-0.0);
+    for (; k < k1; k += 2) {
+      const __m128d d0 = _mm_loadu_pd(dirs[k].data()), d1 = _mm_loadu_pd(dirs[k + 1].data());
+      const __m128d dx = _mm_unpacklo_pd(d0, d1), dy = _mm_unpackhi_pd(d0, d1);
+      const __m128d denom = _mm_sub_pd(_mm_mul_pd(dx, ey), _mm_mul_pd(dy, ex));
+      if (_mm_movemask_pd(_mm_cmplt_pd(_mm_andnot_pd(sign, denom), parallel)) != 0) {
+        one(k);
+        one(k + 1);
+        continue;
+      }
+      const __m128d t = _mm_div_pd(num_t, denom);
+      const __m128d u = _mm_div_pd(_mm_sub_pd(_mm_mul_pd(wx, dy), _mm_mul_pd(wy, dx)), denom);
+      double* r = out + k;
+      const __m128d best = _mm_loadu_pd(r);
+      const __m128d take = _mm_and_pd(_mm_and_pd(_mm_cmpge_pd(t, zero), _mm_cmplt_pd(t, best)),
+                                      _mm_and_pd(_mm_cmpnlt_pd(u, zero), _mm_cmpngt_pd(u, one_)));
+      _mm_storeu_pd(r, _mm_or_pd(_mm_and_pd(take, t), _mm_andnot_pd(take, best)));
+    }
+#endif
+    for (; k <= k1; ++k) one(k);
+  }
 };
 
 // Beam k's hit on a disc, kept when nearer than out[k].
@@ -92,7 +128,7 @@ class ObstacleFan {
 
   // Segment [a, b] with edge e = b - a.
   [[gnu::always_inline]] void segment(const Vec2& a, const Vec2& e, const Vec2& b) const {
-    const SegmentBeamTest test{origin_, dirs_, out_, a, b, e};
+    const SegmentSpanTest test{origin_, dirs_, out_, a, b, e};
     const Vec2 pa = a - origin_;
     const Vec2 pb = pa + e;
     const double len2 = e.squaredNorm();
@@ -103,11 +139,11 @@ class ObstacleFan {
     if (std::min(pa.squaredNorm(), pb.squaredNorm()) > reach2_ &&
         (foot < 0.0 || foot > len2 || cr * cr > reach2_ * len2))
       return;
-    if (!(cr * cr >= near_ * near_ * len2) || len2 == 0.0) return all_beams(test);
+    if (!(cr * cr >= near_ * near_ * len2) || len2 == 0.0) return test(0, n_ - 1);
     if (cr < 0.0) {  // b lies clockwise of a
-      cone_.for_beams(pb.x(), pb.y(), pa.x(), pa.y(), test);
+      cone_.for_spans(pb.x(), pb.y(), pa.x(), pa.y(), test);
     } else {
-      cone_.for_beams(pa.x(), pa.y(), pb.x(), pb.y(), test);
+      cone_.for_spans(pa.x(), pa.y(), pb.x(), pb.y(), test);
     }
   }
 

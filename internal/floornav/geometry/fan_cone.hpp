@@ -77,6 +77,17 @@ class FanCone {
     return for_angles(lo, hi, f);
   }
 
+  // The beams for_beams calls f for, as at most two intervals: g(k0, k1) for each, beams k0 to
+  // k1 (k0 <= k1), for callers that test several beams at once.
+  template <class G>
+  void for_spans(double cw_x, double cw_y, double ccw_x, double ccw_y, G&& g) const {
+    const int b0 = bin(cw_x, cw_y), b1 = bin(ccw_x, ccw_y);
+    const double lo = static_cast<double>(bounds_[b0]) - first_ - kFanMargin;
+    double hi = static_cast<double>(bounds_[b1 + 1]) - first_ + kFanMargin;
+    if (b1 < b0) hi += kTwoPi;
+    call_spans(spans(lo, hi), g);
+  }
+
   // The same for the beams within `half` (in [0, pi]) of the direction of (x, y) (not zero).
   template <class F>
   bool for_beams_about(double x, double y, double half, F&& f) const {
@@ -87,9 +98,7 @@ class FanCone {
   // k0 to k1 (k0 <= k1), for callers that test several beams at once.
   template <class G>
   void for_spans_about(double x, double y, double half, G&& g) const {
-    const Spans s = spans_about(x, y, half);
-    if (s.k0 <= s.k1) g(s.k0, s.k1);
-    if (s.wrap_last >= 0) g(0, s.wrap_last);
+    call_spans(spans_about(x, y, half), g);
   }
 
  private:
@@ -111,6 +120,12 @@ class FanCone {
       wrap_last = std::min(k2, k0 - 1);
     }
     return {k0, k1, wrap_last};
+  }
+
+  template <class G>
+  static void call_spans(const Spans& s, G&& g) {
+    if (s.k0 <= s.k1) g(s.k0, s.k1);
+    if (s.wrap_last >= 0) g(0, s.wrap_last);
   }
 
   // The spans of the beams within `half` of the direction of (x, y).
