@@ -53,6 +53,21 @@ void at_most(double max_range, std::span<double> out) {
   for (double& r : out) r = std::min(max_range, r);
 }
 
+// Whether a range is zero (either sign): a scan without a branch per beam, where they are rare.
+bool any_zero(std::span<const double> out) {
+  std::size_t i = 0;
+  bool zero = false;
+#if defined(__SSE2__)
+  const __m128d z = _mm_setzero_pd();
+  __m128d found = z;
+  for (; i + 1 < out.size(); i += 2)
+    found = _mm_or_pd(found, _mm_cmpeq_pd(_mm_loadu_pd(&out[i]), z));
+  zero = _mm_movemask_pd(found) != 0;
+#endif
+  for (; i < out.size(); ++i) zero |= out[i] == 0.0;
+  return zero;
+}
+
 // Beams k0 to k1 against segment [a, b] (edge e = b - a), each hit kept when nearer than
 // out[k]: ray_segment_hit, two beams at a time where SSE2 is. The lanes do its IEEE operations
 // in its order (cross(w, e) is the same for every beam) and take t where it would (t >= 0,
@@ -259,6 +274,7 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
   // Equal hits have equal bits, so the minimum does not depend on the order of the tests, with
   // one exception: +0 and -0 (an origin on a surface). Which zero cast_ray returns depends on
   // its walk's order, so such beams are cast again by the walk (rare).
+  if (!any_zero(out)) return;
   for (std::size_t i = 0; i < n; ++i)
     if (out[i] == 0.0) out[i] = cast_ray_from_free(origin, dirs[i], max_range);
 }
