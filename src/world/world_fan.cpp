@@ -7,6 +7,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "floornav/core/isa_clones.hpp"
 #include "floornav/geometry/fan_cone.hpp"
 #include "floornav/geometry/fan_layout.hpp"
 #include "floornav/geometry/ray.hpp"
@@ -203,6 +204,9 @@ void World::cast_fan(const Vec2& origin, std::span<const Vec2> dirs, std::span<c
   cast_fan(origin, dirs, angles, max_range, out, scratch);
 }
 
+// Compiled for x86-64-v3 too (isa_clones.hpp: the same bits): VEX's three-operand forms spare
+// the beam tests' register copies.
+FLOORNAV_ISA_CLONES
 void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
                                std::span<const double> angles, double max_range,
                                std::span<double> out, FanScratch& scratch) const {
