@@ -469,10 +469,14 @@ double RobotAgent::integrate(const WheelSpeeds& wheels, const UnicycleCommand& d
   // trajectory's samples), here over the poses the robot drove each step from, towards the goal
   // it was driving to. SEAN 2.0 names the same idea "rotations beyond the direct path's". A pose
   // on the goal itself adds atan2(0, 0) = 0. The metric only observes: nothing here feeds back.
-  const Vec2 to_goal = goal_ - pose_.position;
-  heading_error_sum_ += std::abs(
-      std::atan2(heading.x() * to_goal.y() - heading.y() * to_goal.x(), heading.dot(to_goal)));
-  r.path_irregularity = heading_error_sum_ / static_cast<double>(r.steps + 1);
+  if (sim_->path_irregularity) {
+    const Vec2 to_goal = goal_ - pose_.position;
+    heading_error_sum_ += std::abs(
+        std::atan2(heading.x() * to_goal.y() - heading.y() * to_goal.x(), heading.dot(to_goal)));
+    r.path_irregularity = heading_error_sum_ / static_cast<double>(r.steps + 1);
+  } else {
+    r.path_irregularity = std::numeric_limits<double>::quiet_NaN();
+  }
   pose_ = next;
   t_ += dt;
   ++r.steps;

@@ -138,6 +138,7 @@ VecSimulation::VecSimulation(std::vector<VecCopy> copies, int threads, EpisodeDr
                                   std::to_string(c.task->robot.sensors.size()));
     SimConfig s = *c.sim;
     s.record_trajectory = false;  // a learner keeps what it needs; a run here is not written out
+    s.path_irregularity = false;
     sims_.push_back(s);
     models_.push_back(models.find(*c.task));
     tasks_.push_back(*c.task);

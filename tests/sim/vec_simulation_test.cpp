@@ -173,6 +173,11 @@ TEST(VecSimulation, EachCopyEqualsASimulationWithItsSeed) {
       for (std::size_t j = 0; j < 5; ++j) ASSERT_EQ(a.ranges[j], b.ranges[j]);
     }
   }
+  // A learner reads no copy's result: the path irregularity (an atan2 a step) is not summed.
+  for (std::size_t i = 0; i < kCopies; ++i) {
+    EXPECT_TRUE(std::isnan(vec.agent(i).result().path_irregularity)) << i;
+    EXPECT_GT(sims[i].result().path_irregularity, 0.0) << i;
+  }
 }
 
 // Copies of one kind (here two equal scenarios, not one) read one robot model; one with another

@@ -43,6 +43,9 @@ struct SimConfig {
   /// scenario key.
   int record_ranges_also_every{0};
   RecordOptions record{};  ///< extra trajectory columns (not a scenario key; see above)
+  /// Sum the heading errors of RunResult::path_irregularity each step (an atan2); off, it stays
+  /// NaN. Not a scenario key: VecSimulation's copies, whose results a learner does not read.
+  bool path_irregularity{true};
 
   /// Lists every field once, with its key and doc (core/param_fields.hpp).
   template <class Fields>

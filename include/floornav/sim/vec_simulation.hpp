@@ -92,7 +92,9 @@ class WorkerPool {
 struct VecCopy {
   const World* world{nullptr};
   const RobotTask* task{nullptr};
-  const SimConfig* sim{nullptr};    ///< the seed is the copy's own (reset); nothing is recorded
+  /// The seed is the copy's own (reset); nothing is recorded, and RunResult::path_irregularity
+  /// is not summed (NaN): a learner reads no run's result.
+  const SimConfig* sim{nullptr};
   std::string name;                 ///< RunResult::scenario
   const CrowdSpec* crowd{nullptr};  ///< people and forklifts (none or empty: the robot alone)
 };
