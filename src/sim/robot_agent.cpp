@@ -86,6 +86,7 @@ RobotAgent::RobotAgent(AgentSetup setup)
 
   RunResult& r = result_;
   r.scenario = setup.name;
+  if (!sim_->path_irregularity) r.path_irregularity = std::numeric_limits<double>::quiet_NaN();
   r.goal_count = static_cast<int>(goals_.size());
   if (setup.names) {
     r.mode_names = controller_->mode_names();
@@ -474,8 +475,6 @@ double RobotAgent::integrate(const WheelSpeeds& wheels, const UnicycleCommand& d
     heading_error_sum_ += std::abs(
         std::atan2(heading.x() * to_goal.y() - heading.y() * to_goal.x(), heading.dot(to_goal)));
     r.path_irregularity = heading_error_sum_ / static_cast<double>(r.steps + 1);
-  } else {
-    r.path_irregularity = std::numeric_limits<double>::quiet_NaN();
   }
   pose_ = next;
   t_ += dt;
