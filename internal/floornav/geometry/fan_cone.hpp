@@ -69,23 +69,14 @@ class FanCone {
   // When f returns bool, true stops the calls: then for_beams returns whether one did.
   template <class F>
   bool for_beams(double cw_x, double cw_y, double ccw_x, double ccw_y, F&& f) const {
-    const int b0 = bin(cw_x, cw_y), b1 = bin(ccw_x, ccw_y);
-    // The cone's angles from beam 0.
-    const double lo = static_cast<double>(bounds_[b0]) - first_ - kFanMargin;
-    double hi = static_cast<double>(bounds_[b1 + 1]) - first_ + kFanMargin;
-    if (b1 < b0) hi += kTwoPi;  // through angle 0 of the vectors' frame
-    return for_angles(lo, hi, f);
+    return for_each_beam(spans_between(cw_x, cw_y, ccw_x, ccw_y), f);
   }
 
   // The beams for_beams calls f for, as at most two intervals: g(k0, k1) for each, beams k0 to
   // k1 (k0 <= k1), for callers that test several beams at once.
   template <class G>
   void for_spans(double cw_x, double cw_y, double ccw_x, double ccw_y, G&& g) const {
-    const int b0 = bin(cw_x, cw_y), b1 = bin(ccw_x, ccw_y);
-    const double lo = static_cast<double>(bounds_[b0]) - first_ - kFanMargin;
-    double hi = static_cast<double>(bounds_[b1 + 1]) - first_ + kFanMargin;
-    if (b1 < b0) hi += kTwoPi;
-    call_spans(spans(lo, hi), g);
+    call_spans(spans_between(cw_x, cw_y, ccw_x, ccw_y), g);
   }
 
   // The same for the beams within `half` (in [0, pi]) of the direction of (x, y) (not zero).
@@ -128,18 +119,22 @@ class FanCone {
     if (s.wrap_last >= 0) g(0, s.wrap_last);
   }
 
+  // The spans of the beams in the cone from (cw_x, cw_y) counter-clockwise to (ccw_x, ccw_y).
+  Spans spans_between(double cw_x, double cw_y, double ccw_x, double ccw_y) const {
+    const int b0 = bin(cw_x, cw_y), b1 = bin(ccw_x, ccw_y);
+    // The cone's angles from beam 0.
+    const double lo = static_cast<double>(bounds_[b0]) - first_ - kFanMargin;
+    double hi = static_cast<double>(bounds_[b1 + 1]) - first_ + kFanMargin;
+    if (b1 < b0) hi += kTwoPi;  // through angle 0 of the vectors' frame
+    return spans(lo, hi);
+  }
+
   // The spans of the beams within `half` of the direction of (x, y).
   Spans spans_about(double x, double y, double half) const {
     const int b = bin(x, y);
     const double lo = static_cast<double>(bounds_[b]) - first_ - half - kFanMargin;
     const double hi = static_cast<double>(bounds_[b + 1]) - first_ + half + kFanMargin;
     return spans(lo, hi);
-  }
-
-  // The beams at angles [lo, hi] from beam 0, modulo 2 pi: lo >= -4 pi, hi >= lo.
-  template <class F>
-  bool for_angles(double lo, double hi, F&& f) const {
-    return for_each_beam(spans(lo, hi), f);
   }
 
   // f(k) for each beam of `s` in order; when f returns bool, true stops the calls (and is
