@@ -37,6 +37,7 @@ World::World(WorldDesc desc)
     const Vec2 a = bounds_->min, c = bounds_->max;
     const Vec2 b(c.x(), a.y()), d(a.x(), c.y());
     segments_.insert(segments_.end(), {Segment{a, b}, Segment{b, c}, Segment{c, d}, Segment{d, a}});
+    solid_sides_.assign(4, -1.0);  // counter-clockwise, solid outside
   } else if (grid_) {
     // A map without bounds is the whole world: off the map is not known to be free, so its edge
     // is a wall like the bounds' (a robot never drives round a wall by leaving the map).
@@ -46,10 +47,15 @@ World::World(WorldDesc desc)
     map_edge_ = {o.transform_point({0.0, 0.0}), o.transform_point({w, 0.0}),
                  o.transform_point({w, h}), o.transform_point({0.0, h})};
     for (std::size_t i = 0; i < map_edge_.size(); ++i) segments_.push_back(edge(map_edge_, i));
+    solid_sides_.assign(map_edge_.size(), -1.0);  // counter-clockwise, solid outside
     map_edge_box_ = box_of(map_edge_);
   }
   for (const auto& poly : polygons_) {
     for (std::size_t i = 0; i < poly.size(); ++i) segments_.push_back(edge(poly, i));
+    // A simple polygon is solid on the side its winding turns to; a degenerate one (zero area)
+    // has no known side.
+    const double area = signed_area(poly);
+    solid_sides_.resize(segments_.size(), area > 0.0 ? 1.0 : (area < 0.0 ? -1.0 : 0.0));
     polygon_boxes_.push_back(box_of(poly));
   }
   bool empty = true;

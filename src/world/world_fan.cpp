@@ -72,8 +72,8 @@ bool any_zero(std::span<const double> out) {
 // Beams k0 to k1 against segment [a, b] (edge e = b - a), each hit kept when nearer than
 // out[k]: ray_segment_hit, two beams at a time where SSE2 is. The lanes do its IEEE operations
 // in its order (cross(w, e) is the same for every beam) and take t where it would (t >= 0,
-// t < out[k], neither u < 0 nor u > 1: a NaN u passes, as there), so the ranges are the same to
-// the bit; a pair with a beam parallel to the segment is left to it.
+// t < out[k], u within the segment's slack: a NaN u passes, as there), so the ranges are the same
+// to the bit; a pair with a beam parallel to the segment is left to it.
 struct SegmentSpanTest {
   const Vec2& origin;
   const Vec2* dirs;
@@ -89,7 +89,8 @@ struct SegmentSpanTest {
     const __m128d ex = _mm_set1_pd(e.x()), ey = _mm_set1_pd(e.y());
     const __m128d wx = _mm_set1_pd(w.x()), wy = _mm_set1_pd(w.y());
     const __m128d num_t = _mm_set1_pd(cross(w, e)), parallel = _mm_set1_pd(1e-15);
-    const __m128d zero = _mm_setzero_pd(), one_ = _mm_set1_pd(1.0), sign = _mm_set1_pd(-0.0);
+    const __m128d zero = _mm_setzero_pd(), sign = _mm_set1_pd(-0.0);
+    const __m128d u_lo = _mm_set1_pd(-kSegmentEndSlack), u_hi = _mm_set1_pd(1.0 + kSegmentEndSlack);
     for (; k < k1; k += 2) {
       const __m128d d0 = _mm_loadu_pd(dirs[k].data()), d1 = _mm_loadu_pd(dirs[k + 1].data());
       const __m128d dx = _mm_unpacklo_pd(d0, d1), dy = _mm_unpackhi_pd(d0, d1);
@@ -104,7 +105,7 @@ struct SegmentSpanTest {
       double* r = out + k;
       const __m128d best = _mm_loadu_pd(r);
       const __m128d take = _mm_and_pd(_mm_and_pd(_mm_cmpge_pd(t, zero), _mm_cmplt_pd(t, best)),
-                                      _mm_and_pd(_mm_cmpnlt_pd(u, zero), _mm_cmpngt_pd(u, one_)));
+                                      _mm_and_pd(_mm_cmpnlt_pd(u, u_lo), _mm_cmpngt_pd(u, u_hi)));
       _mm_storeu_pd(r, _mm_or_pd(_mm_and_pd(take, t), _mm_andnot_pd(take, best)));
     }
 #endif
@@ -142,13 +143,15 @@ class ObstacleFan {
   double reach() const { return reach_; }
   double reach2() const { return reach2_; }
 
-  // Segment [a, b] with edge e = b - a.
-  [[gnu::always_inline]] void segment(const Vec2& a, const Vec2& e, const Vec2& b) const {
-    const SegmentSpanTest test{origin_, dirs_, out_, a, b, e};
+  // Segment [a, b] with edge e = b - a, solid on `side` (see seen_from_solid_side).
+  [[gnu::always_inline]] void segment(const Vec2& a, const Vec2& e, const Vec2& b,
+                                      double side) const {
     const Vec2 pa = a - origin_;
+    const double cr = cross(pa, e);  // |e| times the distance from the origin to the line
+    if (side * cr > 0.0) return;     // seen_from_solid_side, with cr kept
+    const SegmentSpanTest test{origin_, dirs_, out_, a, b, e};
     const Vec2 pb = pa + e;
     const double len2 = e.squaredNorm();
-    const double cr = cross(pa, e);  // |e| times the distance from the origin to the line
     // A segment wholly beyond reach cannot be hit before max_range: both ends are, and so is
     // the line or the foot of the perpendicular falls outside the segment.
     const double foot = -pa.dot(e);  // len2 times the foot's position along the segment
@@ -265,7 +268,7 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
         if (mark[id] == epoch) continue;
         mark[id] = epoch;
         const SegmentRay& s = ix.segment_rays[k];
-        obstacles.segment(s.a, s.e, segments_[id].b);
+        obstacles.segment(s.a, s.e, segments_[id].b, ix.segment_sides[k]);
       }
       for (std::uint32_t k = ix.circle_offsets[c]; k < ix.circle_offsets[c + 1]; ++k) {
         const std::uint32_t id = ix.circle_items[k];

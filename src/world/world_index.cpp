@@ -87,10 +87,13 @@ void World::build_index() {
       },
       ix.segment_offsets, ix.segment_items);
   ix.segment_rays.reserve(ix.segment_items.size());
-  for (const std::uint32_t i : ix.segment_items)
+  ix.segment_sides.reserve(ix.segment_items.size());
+  for (const std::uint32_t i : ix.segment_items) {
     ix.segment_rays.push_back({segments_[i].a, segments_[i].b - segments_[i].a,
                                segments_[i].a.cwiseMin(segments_[i].b),
                                segments_[i].a.cwiseMax(segments_[i].b)});
+    ix.segment_sides.push_back(solid_sides_[i]);
+  }
   fill(
       circles_.size(),
       [&](std::size_t i, auto&& emit) {
@@ -121,6 +124,7 @@ double World::ray_in_cell(int cell, const Vec2& origin, const Vec2& dir, double 
                           const Box2* ray_box) const {
   const auto c = static_cast<std::size_t>(cell);
   const SegmentRay* rays = index_.segment_rays.data();
+  const double* sides = index_.segment_sides.data();
   const auto segments = [&](auto boxed) {
     for (std::uint32_t k = index_.segment_offsets[c]; k < index_.segment_offsets[c + 1]; ++k) {
       const SegmentRay& s = rays[k];
@@ -130,6 +134,7 @@ double World::ray_in_cell(int cell, const Vec2& origin, const Vec2& dir, double 
             s.lo.y() > ray_box->max.y() || s.hi.y() < ray_box->min.y())
           continue;
       }
+      if (seen_from_solid_side(sides[k], s.a - origin, s.e)) continue;
       best = ray_segment_hit(origin, dir, s.a, segments_[index_.segment_items[k]].b, s.e, best);
     }
   };

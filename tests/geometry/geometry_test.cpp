@@ -150,6 +150,21 @@ TEST(Ray, SegmentHitKeepsTheNearerOfItAndBest) {
   EXPECT_EQ(*intersect_ray(Segment{a, b}, o, dir), ray_segment_hit(o, dir, a, b, e, 1e9));
 }
 
+TEST(Ray, ASegmentIsSeenFromItsSolidSideWhenTheOriginIsOnIt) {
+  // a (2, -1) to b (2, 1) runs north: its left is west (x < 2), its right east.
+  const Vec2 a(2, -1), e(0, 2);
+  // From the origin (west): pa = (2, -1), cross(pa, e) = 2 * 2 - (-1) * 0 = 4 > 0.
+  EXPECT_TRUE(seen_from_solid_side(+1.0, a - Vec2(0, 0), e));   // solid on the left (west)
+  EXPECT_FALSE(seen_from_solid_side(-1.0, a - Vec2(0, 0), e));  // solid on the right (east)
+  // From (3, 0) (east): pa = (-1, -1), cross = -1 * 2 - (-1) * 0 = -2 < 0.
+  EXPECT_FALSE(seen_from_solid_side(+1.0, a - Vec2(3, 0), e));
+  EXPECT_TRUE(seen_from_solid_side(-1.0, a - Vec2(3, 0), e));
+  // On the line, or with no known side: from neither.
+  EXPECT_FALSE(seen_from_solid_side(+1.0, a - Vec2(2, 5), e));
+  EXPECT_FALSE(seen_from_solid_side(-1.0, a - Vec2(2, 5), e));
+  EXPECT_FALSE(seen_from_solid_side(0.0, a - Vec2(0, 0), e));
+}
+
 TEST(Ray, CircleHitKeepsTheNearerOfItAndBest) {
   const Circle c{Vec2(3, 0), 1.0};
   EXPECT_DOUBLE_EQ(ray_circle_hit(Vec2(0, 0), Vec2(1, 0), c, 5.0), 2.0);

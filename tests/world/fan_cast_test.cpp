@@ -55,6 +55,8 @@ RandomWorld random_world(Rng& rng, bool with_grid) {
         poly.emplace_back(c.x() + rr * std::cos(a), c.y() + rr * std::sin(a));
       }
     }
+    // Either winding: the casts skip the edges seen from their solid side, which it decides.
+    if (rng.uniform() < 0.5) std::reverse(poly.begin(), poly.end());
     d.polygons.push_back(poly);
   }
   const int circles = static_cast<int>(rng.uniform(0.0, 15.0));

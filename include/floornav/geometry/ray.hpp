@@ -39,10 +39,17 @@ inline bool clip_ray_to_box(const Vec2& origin, const Vec2& dir, const Box2& box
 double ray_collinear_segment_hit(const Vec2& origin, const Vec2& dir, const Vec2& a, const Vec2& b,
                                  double best);
 
+/// How far past its ends a segment is hit, as a fraction of its length: a ray through a vertex
+/// meets at least one of its two edges however the along-segment positions round (a solid's
+/// edges seen from its solid side are never tested, so the other edge may not be there to catch
+/// it). 1e-9 of a 1 m edge is a nanometre.
+inline constexpr double kSegmentEndSlack = 1e-9;
+
 /// The ray `origin + t dir` (t >= 0, `dir` a unit vector) against the segment from `a` to `b`,
 /// whose edge `e = b - a` the caller computes once: the distance t where they meet when it is
-/// below `best`, else `best` (so a NaN counts as no hit). The along-segment division is only paid
-/// for a hit nearer than `best`, and `b` is only read for a ray parallel to the segment.
+/// below `best`, else `best` (so a NaN counts as no hit). The segment reaches kSegmentEndSlack
+/// past each end. The along-segment division is only paid for a hit nearer than `best`, and `b`
+/// is only read for a ray parallel to the segment.
 inline double ray_segment_hit(const Vec2& origin, const Vec2& dir, const Vec2& a, const Vec2& b,
                               const Vec2& e, double best) {
   const Vec2 w = a - origin;
@@ -51,8 +58,17 @@ inline double ray_segment_hit(const Vec2& origin, const Vec2& dir, const Vec2& a
   const double t = cross(w, e) / denom;      // along the ray
   if (!(t >= 0.0 && t < best)) return best;  // behind, no nearer, or NaN
   const double u = cross(w, dir) / denom;    // along the segment, 0..1
-  if (u < 0.0 || u > 1.0) return best;
+  if (u < -kSegmentEndSlack || u > 1.0 + kSegmentEndSlack) return best;
   return t;
+}
+
+/// Whether a segment (from `a`, edge `e`, `pa` = a - origin) whose solid side is `side` (+1 the
+/// left of a -> b, -1 the right, 0 unknown) is seen from that side by the origin. A ray from a
+/// point outside a closed solid first meets it on an edge seen from the free side (or at a vertex
+/// it shares with one), so such edges need no ray test; an origin on the edge's line sees it
+/// from neither side.
+inline bool seen_from_solid_side(double side, const Vec2& pa, const Vec2& e) {
+  return side * cross(pa, e) > 0.0;
 }
 
 /// The ray against the solid disc `c`: `intersect_ray(c, origin, dir)` when it is below `best`,

@@ -128,6 +128,7 @@ class World {
     // Compressed rows: items of cell c are [offsets[c], offsets[c+1]) in each list.
     std::vector<std::uint32_t> segment_offsets, segment_items;
     std::vector<SegmentRay> segment_rays;  ///< segments_[segment_items[k]], copied in cell order
+    std::vector<double> segment_sides;     ///< solid_sides_[segment_items[k]], in the same order
     std::vector<std::uint32_t> circle_offsets, circle_items;
     std::vector<std::uint32_t> polygon_offsets, polygon_items;
   };
@@ -152,6 +153,11 @@ class World {
   Box2 map_edge_box_;
   std::vector<Circle> circles_;
   std::vector<Segment> segments_;
+  /// Per segment, which side of it is solid: +1 the left of a -> b (a counter-clockwise polygon's
+  /// edge), -1 the right (a clockwise polygon's, the bounds' and the map edge's), 0 neither
+  /// known. A ray from a free point first meets a solid on an edge whose solid side faces away
+  /// from it, so edges seen from their solid side are not tested (see segment_faces_away).
+  std::vector<double> solid_sides_;
   std::vector<std::vector<Vec2>> polygons_;
   std::vector<Box2> polygon_boxes_;
   std::shared_ptr<const OccupancyGrid> grid_;
