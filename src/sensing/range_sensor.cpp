@@ -158,10 +158,10 @@ std::size_t fan_end(std::span<const SensorBeam> beams, std::span<const RangeSens
 }
 
 // Sensors [i, end) of one run (see fan_end): the distances sense_one would cast, bit for bit,
-// written to ranges[i, end).
+// written to ranges[i, end). `spacing_known`: the run is (part of) a lidar's.
 void cast_fan(const World& world, std::span<const SensorBeam> beams, std::size_t i, std::size_t end,
-              double max_range, std::span<double> ranges, const FreeDisc& free,
-              FanScratch& scratch) {
+              double max_range, std::span<double> ranges, const FreeDisc& free, FanScratch& scratch,
+              bool spacing_known) {
   const Vec2 origin = beams[i].origin;
   const double free_radius = free.radius - kFreeMargin;
   const bool known_free =
@@ -177,9 +177,10 @@ void cast_fan(const World& world, std::span<const SensorBeam> beams, std::size_t
     const std::span<double> out = ranges.subspan(first, n);
     if (known_free) {
       world.cast_fan_from_free(origin, {dirs.data(), n}, {angles.data(), n}, max_range, out,
-                               scratch);
+                               scratch, spacing_known);
     } else {
-      world.cast_fan(origin, {dirs.data(), n}, {angles.data(), n}, max_range, out, scratch);
+      world.cast_fan(origin, {dirs.data(), n}, {angles.data(), n}, max_range, out, scratch,
+                     spacing_known);
     }
   }
 }
@@ -453,7 +454,8 @@ void sense_runs(const World& world, std::span<const SensorBeam> beams,
     if (end - i >= kMinFanBeams) {
       // Cast first (the world, then other robots' bodies), then draw the noise sensor by
       // sensor: the RNG sees the same order.
-      cast_fan(world, beams, i, end, sensors[i].max_range, ranges, free, scratch);
+      cast_fan(world, beams, i, end, sensors[i].max_range, ranges, free, scratch,
+               layout != nullptr && end == layout->fan_end(i) && layout->even_run(i));
       if (!others.empty()) fan_discs(beams, i, end, sensors[i].max_range, others, ranges);
       if (!boxes.empty()) fan_boxes(beams, i, end, sensors[i].max_range, boxes, ranges);
       if (layout && !(noise_stddev > 0.0)) {
@@ -511,6 +513,19 @@ SensorLayout::SensorLayout(std::span<const RangeSensorSpec> sensors)
       fan_end_[i] = fan_end_[i + 1];
     else
       fan_end_[i] = i + 1;
+  }
+  // The runs as sense_runs walks them, each checked for even spacing once here.
+  even_run_.assign(n, 0);
+  std::vector<double> thetas;
+  for (std::size_t i = 0; i < n;) {
+    const std::size_t end = std::max(fan_end_[i], i + 1);
+    thetas.clear();
+    for (std::size_t k = i; k < end; ++k) thetas.push_back(sensors[k].mount.theta);
+    if (const auto fan = fan_detail::even_fan(thetas))
+      even_run_[i] = fan_detail::evenly_spaced(
+          fan->first, fan->step, thetas.size(), [&](std::size_t k) { return thetas[k]; },
+          0.5 * fan_detail::kFanAngleTol);
+    i = end;
   }
 }
 

@@ -193,12 +193,13 @@ class ObstacleFan {
 }  // namespace
 
 void World::cast_fan(const Vec2& origin, std::span<const Vec2> dirs, std::span<const double> angles,
-                     double max_range, std::span<double> out, FanScratch& scratch) const {
+                     double max_range, std::span<double> out, FanScratch& scratch,
+                     bool spacing_known) const {
   if (inside_solid_shape(origin)) {
     std::fill(out.begin(), out.end(), 0.0);
     return;
   }
-  cast_fan_from_free(origin, dirs, angles, max_range, out, scratch);
+  cast_fan_from_free(origin, dirs, angles, max_range, out, scratch, spacing_known);
 }
 
 void World::cast_fan(const Vec2& origin, std::span<const Vec2> dirs, std::span<const double> angles,
@@ -212,7 +213,8 @@ void World::cast_fan(const Vec2& origin, std::span<const Vec2> dirs, std::span<c
 FLOORNAV_ISA_CLONES
 void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
                                std::span<const double> angles, double max_range,
-                               std::span<double> out, FanScratch& scratch) const {
+                               std::span<double> out, FanScratch& scratch,
+                               bool spacing_known) const {
   const std::size_t n = dirs.size();
   if (segments_.empty() && circles_.empty()) {
     // cast_ray_from_free is then min(max_range, the grid's cast_ray).
@@ -227,7 +229,7 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
   std::optional<FanLayout> fan;
   if (n >= 2 && (!segments_.empty() || !circles_.empty()) && is_finite(origin) &&
       max_range >= 0.0 && std::isfinite(max_range))
-    fan = even_fan(angles);
+    fan = even_fan(angles, spacing_known);
   if (!fan) {
     for (std::size_t i = 0; i < n; ++i) out[i] = cast_ray_from_free(origin, dirs[i], max_range);
     return;

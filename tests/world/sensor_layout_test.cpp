@@ -101,10 +101,25 @@ TEST(SensorLayout, FindsTheLidarsAndFansOfAMixedList) {
   for (std::size_t i = 24; i < l.size(); ++i) EXPECT_EQ(layout.fan_end(i), l.size()) << i;
   EXPECT_EQ(layout.min_ranges()[0], 0.02);
   EXPECT_EQ(layout.max_ranges()[24], 2.0);
+  // Neither fan is evenly spaced: sensor 23 is off the first lidar's turn, 24 off the second's.
+  EXPECT_FALSE(layout.even_run(3));
+  EXPECT_FALSE(layout.even_run(24));
   // Fewer than 16 sensors: no lidar, whatever their headings.
   const auto ring = make_lidar(15, 1.0, 0.1, 4.0, {Vec2(0.0, 0.0), 0.0});
   EXPECT_TRUE(SensorLayout(ring).lidars().empty());
   EXPECT_EQ(SensorLayout(ring).fan_end(0), 15u);
+}
+
+// A lidar's run is evenly spaced, a full turn included (its mount angles wrap past pi); one
+// beam 1e-6 rad off its place makes the run uneven, and its fans check their beams again.
+TEST(SensorLayout, KnowsWhichRunsAreEvenlySpaced) {
+  const auto full = make_lidar(180, 2.0 * kPi, 0.12, 3.5, {Vec2(-0.032, 0.0), 0.0});
+  EXPECT_TRUE(SensorLayout(full).even_run(0));
+  const auto half = make_lidar(180, kPi, 0.0, 8.0, {Vec2(0.13, 0.0), 2.5});
+  EXPECT_TRUE(SensorLayout(half).even_run(0));
+  auto bent = full;
+  bent[90].mount.theta += 1e-6;
+  EXPECT_FALSE(SensorLayout(bent).even_run(0));
 }
 
 TEST(SensorLayout, BeamsMatchThePlainFunction) {

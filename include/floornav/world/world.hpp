@@ -64,9 +64,12 @@ class World {
   /// lidar), the obstacles within `max_range` are gathered once and each is tested only against
   /// the rays its angular extent covers (with a margin far above rounding); any other fan is cast
   /// ray by ray. The three spans have the same size. Works in `scratch` (see FanScratch): no
-  /// allocation once it has grown to the fan and the world.
+  /// allocation once it has grown to the fan and the world. With `spacing_known`, the caller
+  /// vouches that the angles are evenly spaced (each within 1e-9 rad of angles[0] + k (angles[1]
+  /// - angles[0]), as a lidar's beams are), and the per-beam check of that is skipped.
   void cast_fan(const Vec2& origin, std::span<const Vec2> dirs, std::span<const double> angles,
-                double max_range, std::span<double> out, FanScratch& scratch) const;
+                double max_range, std::span<double> out, FanScratch& scratch,
+                bool spacing_known = false) const;
   /// `cast_fan` with scratch memory of its own (allocated per call).
   void cast_fan(const Vec2& origin, std::span<const Vec2> dirs, std::span<const double> angles,
                 double max_range, std::span<double> out) const;
@@ -75,7 +78,7 @@ class World {
   /// `cast_ray_from_free` per ray.
   void cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
                           std::span<const double> angles, double max_range, std::span<double> out,
-                          FanScratch& scratch) const;
+                          FanScratch& scratch, bool spacing_known = false) const;
 
   /// Signed distance from `p` to the nearest obstacle surface: negative inside an obstacle or
   /// outside the bounds (or, for a map without bounds, off the map: its edge is a wall).

@@ -66,8 +66,11 @@ inline bool evenly_spaced(double first, double step, std::size_t n, Angle&& angl
 }
 
 // The layout of `angles` when they are evenly spaced counter-clockwise and do not overlap
-// themselves after a full turn; nullopt otherwise.
-inline std::optional<FanLayout> even_fan(std::span<const double> angles) {
+// themselves after a full turn; nullopt otherwise. With `spacing_known` (the caller knows every
+// angle is within kFanAngleTol of first + k * step, as a SensorLayout lidar's are), the per-angle
+// check is skipped: the layout is read from the first two.
+inline std::optional<FanLayout> even_fan(std::span<const double> angles,
+                                         bool spacing_known = false) {
   const std::size_t n = angles.size();
   if (n < 2 || n > (1u << 24)) return std::nullopt;
   FanLayout f;
@@ -77,7 +80,8 @@ inline std::optional<FanLayout> even_fan(std::span<const double> angles) {
   f.n = static_cast<int>(n);
   if (!(f.step > 1e-6) || !((n - 1) * f.step <= kTwoPi - 0.5 * f.step)) return std::nullopt;
   f.inv_step = 1.0 / f.step;
-  if (!evenly_spaced(
+  if (!spacing_known &&
+      !evenly_spaced(
           f.first, f.step, n, [&](std::size_t i) { return angles[i]; }, kFanAngleTol))
     return std::nullopt;
   return f;

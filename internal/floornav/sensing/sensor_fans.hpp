@@ -59,6 +59,10 @@ class SensorLayout {
   std::size_t size() const { return min_range_.size(); }
   /// In order, not overlapping.
   std::span<const Lidar> lidars() const { return lidars_; }
+  /// Whether the run from `i` (to fan_end(i); `i` where such a run starts) has mount angles
+  /// evenly spaced modulo 2 pi, to within half the fan's tolerance: its beams' headings are then
+  /// evenly spaced at every pose, and their fan need not check it per beam.
+  bool even_run(std::size_t i) const { return even_run_[i] != 0; }
   /// The end of the run of single-beam sensors from `i` on `i`'s mount point with `i`'s
   /// max_range (i itself when `i` is a cone).
   std::size_t fan_end(std::size_t i) const { return fan_end_[i]; }
@@ -71,6 +75,7 @@ class SensorLayout {
  private:
   std::vector<Lidar> lidars_;
   std::vector<std::size_t> fan_end_;
+  std::vector<char> even_run_;
   std::vector<double> max_range_;
   std::vector<double> min_range_;
   std::vector<Vec2> mount_dir_;
