@@ -366,8 +366,11 @@ Vec2 lidar_turn(std::span<const RangeSensorSpec> sensors, std::size_t i, std::si
 // wrapped by whole turns (not wrap_angle's atan2: this is per beam), and each direction turned
 // from the previous one by `turn` (a rotation, not a sine and a cosine per beam), re-anchored
 // exactly every kAnchorEvery beams, so directions stay within ~1e-15 of the exact ones.
+// `mount_theta(k)` is sensors[k].mount.theta (from a contiguous copy where there is one).
+template <class MountTheta>
 void lidar_beams(const Pose2& robot, double c, double s, std::span<const RangeSensorSpec> sensors,
-                 std::size_t i, std::size_t end, const Vec2& turn, std::span<SensorBeam> beams) {
+                 std::size_t i, std::size_t end, const Vec2& turn, std::span<SensorBeam> beams,
+                 const MountTheta& mount_theta) {
   // Copies, not references: the stores to `beams` must not make the compiler reload them.
   const Vec2 origin = origin_of(robot, c, s, sensors[i]);
   const double ox = origin.x(), oy = origin.y();
@@ -387,12 +390,8 @@ void lidar_beams(const Pose2& robot, double c, double s, std::span<const RangeSe
       std::abs(robot_theta) +
           std::max(std::abs(sensors[i].mount.theta), std::abs(sensors[end - 1].mount.theta)) <=
       kOneTurnAway;
-  const auto by_turns = [&](std::size_t k) {
-    return wrap_turn(robot_theta + sensors[k].mount.theta);
-  };
-  const auto guarded = [&](std::size_t k) {
-    return beam_heading(robot_theta, sensors[k].mount.theta);
-  };
+  const auto by_turns = [&](std::size_t k) { return wrap_turn(robot_theta + mount_theta(k)); };
+  const auto guarded = [&](std::size_t k) { return beam_heading(robot_theta, mount_theta(k)); };
   // The chains of kAnchorEvery beams from each anchor are independent: stepped side by side
   // (four at a time), each rotation's latency overlaps the others' (one chain after another
   // waits on every multiply). Each chain does the same operations as alone: the same bits.
@@ -483,10 +482,12 @@ SensorLayout::SensorLayout(std::span<const RangeSensorSpec> sensors)
     : fan_end_(sensors.size()),
       max_range_(sensors.size()),
       min_range_(sensors.size()),
+      mount_theta_(sensors.size()),
       mount_dir_(sensors.size()) {
   const std::size_t n = sensors.size();
   for (std::size_t i = 0; i < n; ++i) {
     min_range_[i] = sensors[i].min_range;
+    mount_theta_[i] = sensors[i].mount.theta;
     max_range_[i] = sensors[i].max_range;
     mount_dir_[i] = mount_direction(sensors[i]);
   }
@@ -544,7 +545,8 @@ void compute_sensor_beams(const Pose2& robot, std::span<const RangeSensorSpec> s
       ++i;
       continue;
     }
-    lidar_beams(robot, c, s, sensors, i, end, lidar_turn(sensors, i, end), beams);
+    lidar_beams(robot, c, s, sensors, i, end, lidar_turn(sensors, i, end), beams,
+                [&](std::size_t k) { return sensors[k].mount.theta; });
     i = end;
   }
 }
@@ -563,7 +565,9 @@ void compute_sensor_beams(const Pose2& robot, const Vec2& heading,
   std::size_t i = 0;
   for (const SensorLayout::Lidar& lidar : layout.lidars()) {
     for (; i < lidar.begin; ++i) beams[i] = beam_of(robot, c, s, sensors[i], layout.mount_dir(i));
-    lidar_beams(robot, c, s, sensors, lidar.begin, lidar.end, lidar.turn, beams);
+    const double* mount_theta = layout.mount_thetas().data();
+    lidar_beams(robot, c, s, sensors, lidar.begin, lidar.end, lidar.turn, beams,
+                [mount_theta](std::size_t k) { return mount_theta[k]; });
     i = lidar.end;
   }
   for (; i < sensors.size(); ++i) beams[i] = beam_of(robot, c, s, sensors[i], layout.mount_dir(i));
@@ -603,15 +607,14 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
 }
 
 FLOORNAV_ISA_CLONES
-std::size_t ranges_to_points(std::span<const SensorBeam> beams,
-                             std::span<const RangeSensorSpec> sensors,
+std::size_t ranges_to_points(std::span<const SensorBeam> beams, std::span<const double> max_ranges,
                              std::span<const double> ranges, std::span<Vec2> points) {
   // Every point is written and kept when its beam saw something: no branch on the readings
   // (hits and misses alternate along a scan). points[n] is within the span (n <= i).
   std::size_t n = 0;
-  for (std::size_t i = 0; i < sensors.size(); ++i) {
+  for (std::size_t i = 0; i < max_ranges.size(); ++i) {
     points[n] = beams[i].origin + ranges[i] * beams[i].dir;
-    n += !(ranges[i] >= sensors[i].max_range);
+    n += !(ranges[i] >= max_ranges[i]);
   }
   return n;
 }

@@ -318,7 +318,8 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others,
     result_.range_steps.push_back(result_.steps);
     result_.ranges.insert(result_.ranges.end(), ranges.begin(), ranges.end());
   }
-  scratch.sensed_count = ranges_to_points(beams, robot.sensors, ranges, scratch.sensed);
+  scratch.sensed_count =
+      ranges_to_points(beams, sensor_layout_->max_ranges(), ranges, scratch.sensed);
   if (has_safety_return_) {
     scratch.sensed[scratch.sensed_count++] = safety_return_;
     has_safety_return_ = false;

@@ -69,6 +69,8 @@ class SensorLayout {
   /// Each sensor's min_range and max_range, contiguous (the noiseless clamp of a fan).
   std::span<const double> min_ranges() const { return min_range_; }
   std::span<const double> max_ranges() const { return max_range_; }
+  /// Each sensor's mount angle (rad, robot frame), contiguous.
+  std::span<const double> mount_thetas() const { return mount_theta_; }
   /// Sensor `i`'s mount direction (cos, sin) in the robot frame (mount_direction).
   const Vec2& mount_dir(std::size_t i) const { return mount_dir_[i]; }
 
@@ -78,6 +80,7 @@ class SensorLayout {
   std::vector<char> even_run_;
   std::vector<double> max_range_;
   std::vector<double> min_range_;
+  std::vector<double> mount_theta_;
   std::vector<Vec2> mount_dir_;
 };
 
@@ -117,9 +120,9 @@ void sense_ranges(const World& world, std::span<const SensorBeam> beams,
                   std::span<double> ranges, const FreeDisc& free = {},
                   std::span<const Circle> others = {}, std::span<const OrientedBox> boxes = {});
 
-/// `ranges_to_points` below, from beams already computed.
-std::size_t ranges_to_points(std::span<const SensorBeam> beams,
-                             std::span<const RangeSensorSpec> sensors,
+/// `ranges_to_points` below, from beams already computed and the sensors' max_ranges
+/// (SensorLayout::max_ranges: contiguous, where the specs are 56 bytes apart).
+std::size_t ranges_to_points(std::span<const SensorBeam> beams, std::span<const double> max_ranges,
                              std::span<const double> ranges, std::span<Vec2> points);
 
 }  // namespace floornav
