@@ -8,6 +8,10 @@
 #include <stdexcept>
 #include <string>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "floornav/geometry/angle.hpp"
 #include "floornav/geometry/oriented_box.hpp"
 #include "floornav/kinematics/unicycle.hpp"
@@ -38,12 +42,30 @@ constexpr double kStillSpeed = 0.01;
 // is not a number: the layer then goes over the points itself).
 double nearest_d2(std::span<const Vec2> points, const Vec2& p) {
   double least = std::numeric_limits<double>::infinity();
-  for (const Vec2& q : points) {
-    const double d2 = (q - p).squaredNorm();
-    if (std::isnan(d2)) return std::numeric_limits<double>::quiet_NaN();
+  bool nan = false;
+  std::size_t i = 0;
+#if defined(__SSE2__)
+  // Two points at a time, each d2 as squaredNorm has it (dx * dx + dy * dy); the minimum does
+  // not depend on the order (the d2 are never -0), and a NaN anywhere makes the result NaN.
+  const __m128d px = _mm_set1_pd(p.x()), py = _mm_set1_pd(p.y());
+  __m128d low = _mm_set1_pd(least), unordered = _mm_setzero_pd();
+  for (; i + 1 < points.size(); i += 2) {
+    const __m128d a = _mm_loadu_pd(points[i].data()), b = _mm_loadu_pd(points[i + 1].data());
+    const __m128d dx = _mm_sub_pd(_mm_unpacklo_pd(a, b), px);
+    const __m128d dy = _mm_sub_pd(_mm_unpackhi_pd(a, b), py);
+    const __m128d d2 = _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
+    unordered = _mm_or_pd(unordered, _mm_cmpunord_pd(d2, d2));
+    low = _mm_min_pd(d2, low);  // low when d2 is NaN, as std::min(low, d2)
+  }
+  nan = _mm_movemask_pd(unordered) != 0;
+  least = std::min(_mm_cvtsd_f64(low), _mm_cvtsd_f64(_mm_unpackhi_pd(low, low)));
+#endif
+  for (; i < points.size(); ++i) {
+    const double d2 = (points[i] - p).squaredNorm();
+    nan |= std::isnan(d2);
     least = std::min(least, d2);
   }
-  return least;
+  return nan ? std::numeric_limits<double>::quiet_NaN() : least;
 }
 }  // namespace
 
