@@ -35,7 +35,9 @@ struct ClearanceHint {
   bool valid{false};      ///< false: no search yet, or none that can be reused
 };
 
-/// What a world is made of, as a user describes it. Polygons may wind either way.
+/// What a world is made of, as a user describes it. Polygons may wind either way, but must be
+/// simple (the scenario readers check it): a cast tests only the edges that face its origin, the
+/// side a polygon's winding makes free.
 struct WorldDesc {
   std::optional<Box2> bounds;                 ///< walls on all four sides; outside is solid
   std::vector<Circle> circles;                ///< solid discs (radius 0: a point obstacle)
