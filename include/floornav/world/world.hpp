@@ -161,7 +161,7 @@ class World {
   /// Per segment, which side of it is solid: +1 the left of a -> b (a counter-clockwise polygon's
   /// edge), -1 the right (a clockwise polygon's, the bounds' and the map edge's), 0 neither
   /// known. A ray from a free point first meets a solid on an edge whose solid side faces away
-  /// from it, so edges seen from their solid side are not tested (see segment_faces_away).
+  /// from it, so edges seen from their solid side are not tested (see seen_from_solid_side).
   std::vector<double> solid_sides_;
   std::vector<std::vector<Vec2>> polygons_;
   std::vector<Box2> polygon_boxes_;
