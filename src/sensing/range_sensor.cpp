@@ -522,7 +522,9 @@ SensorLayout::SensorLayout(std::span<const RangeSensorSpec> sensors)
     const std::size_t end = std::max(fan_end_[i], i + 1);
     thetas.clear();
     for (std::size_t k = i; k < end; ++k) thetas.push_back(sensors[k].mount.theta);
-    if (const auto fan = fan_detail::even_fan(thetas))
+    // even_fan lays the run out (and checks its step); the spacing is checked here alone, to
+    // the tighter tolerance.
+    if (const auto fan = fan_detail::even_fan(thetas, /*spacing_known=*/true))
       even_run_[i] = fan_detail::evenly_spaced(
           fan->first, fan->step, thetas.size(), [&](std::size_t k) { return thetas[k]; },
           0.5 * fan_detail::kFanAngleTol);
