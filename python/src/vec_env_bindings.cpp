@@ -83,6 +83,9 @@ class VecCore {
         copy_(copy),
         reward_(reward),
         floor_draw_(std::move(floors)) {
+    // Each observation is copied to the arrays in after(i) (write_observation), where the
+    // stepping thread's frame still holds it.
+    vec_.keep_frames(false);
     const std::size_t n = scenarios_.size();
     if (floor_draw_.any()) {
       if (floor_draw_.generator != "factory_floor")
@@ -351,7 +354,6 @@ class VecCore {
   // Copy i's observation into row i of the arrays, and what the next step's reward starts from.
   void write_observation(std::size_t i, Buffers& b) {
     const RobotAgent& a = vec_.agent(i);
-    const SensingScratch& s = vec_.sensing(i);
     const Observation obs = vec_.observe(i);
     b.t_[i] = obs.t;
     b.pose_[3 * i] = obs.pose.position.x();
@@ -360,7 +362,7 @@ class VecCore {
     b.goal_[2 * i] = obs.goal.x();
     b.goal_[2 * i + 1] = obs.goal.y();
     b.goal_index_[i] = obs.goal_index;
-    std::memcpy(b.ranges_ + i * beams_, s.ranges.data(), beams_ * sizeof(double));
+    std::memcpy(b.ranges_ + i * beams_, obs.ranges.data(), beams_ * sizeof(double));
     beam_points(obs, b.points_ + 2 * i * beams_);
     distance_[i] = (obs.goal - obs.pose.position).norm();
     goals_[i] = a.result().goals_reached;

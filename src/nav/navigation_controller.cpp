@@ -69,6 +69,10 @@ std::unique_ptr<Controller> make_builtin_controller(const ControllerConfig& conf
 ControllerMaker::ControllerMaker() = default;
 ControllerMaker::~ControllerMaker() = default;
 
+bool controller_reads_frames(const ControllerConfig& config) {
+  return !config.is_builtin() || config.planner.kind != PlannerKind::None;
+}
+
 std::unique_ptr<Controller> ControllerMaker::make(const ControllerConfig& config,
                                                   const ControllerContext& context) {
   auto controller = make_planned(config, context);

@@ -431,7 +431,8 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
   while (thread_scratch_.size() < n_threads) {
     // Sized as the first thread's (read before emplace_back may move it).
     const ThreadScratch& first = thread_scratch_.front();
-    const std::size_t sensors = first.sensing.beams.size(), told = first.sensing.robots.size(),
+    const std::size_t sensors = first.sensing.frame.beams.size(),
+                      told = first.sensing.robots.size(),
                       bodies = first.others.capacity();  // robots, and people in a crowd
     const std::size_t discs = first.sensing.safety_discs.size(),
                       boxes = first.sensing.safety_boxes.size();

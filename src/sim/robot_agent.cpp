@@ -69,11 +69,15 @@ double nearest_d2(std::span<const Vec2> points, const Vec2& p) {
 }
 }  // namespace
 
-void SensingScratch::fit(std::size_t sensors) {
-  if (beams.size() >= sensors) return;
-  beams.assign(sensors, SensorBeam{});
-  ranges.assign(sensors, 0.0);
+void SensorFrame::fit(std::size_t sensors) {
+  beams.resize(sensors);
+  ranges.resize(sensors);
+}
+
+void SensingScratch::fit(std::size_t sensors, bool with_frame) {
+  if (with_frame && frame.beams.size() < sensors) frame.fit(sensors);
   // One more than the sensors: the point a safety stop met (RobotAgent::guard).
+  if (sensed.size() > sensors) return;
   sensed.assign(sensors + 1, Vec2::Zero());
   still.assign(sensors + 1, Vec2::Zero());
   points.assign(sensors + 1 + ObstacleMemory::kCapacity, Vec2::Zero());
@@ -218,10 +222,11 @@ void RobotAgent::record_extras(const SensingScratch* scratch) {
   }
   if (o.ranges) {
     const std::size_t n = robot_->sensors.size();
-    if (scratch == nullptr)
+    if (scratch == nullptr || scratch->frame.ranges.size() < n)
       v.insert(v.end(), n, nan);
     else
-      v.insert(v.end(), scratch->ranges.begin(), scratch->ranges.begin() + static_cast<long>(n));
+      v.insert(v.end(), scratch->frame.ranges.begin(),
+               scratch->frame.ranges.begin() + static_cast<long>(n));
   }
 }
 
@@ -317,14 +322,15 @@ void RobotAgent::collide_with_robot(double gap) {
   finish(RunStatus::Collision);
 }
 
-void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others,
+void RobotAgent::sense(SensingScratch& scratch, SensorFrame& frame, std::span<const Circle> others,
                        std::span<const OrientedBox> boxes) {
   const RobotSpec& robot = *robot_;
   // The body disc is clear of every obstacle by at least clearance_bound_, so sensors mounted
   // within it start outside the obstacles: the world need not test that per ray.
   const std::size_t n_sensors = robot.sensors.size();
-  const std::span<SensorBeam> beams(scratch.beams.data(), n_sensors);
-  const std::span<double> ranges(scratch.ranges.data(), n_sensors);
+  if (frame.beams.size() < n_sensors) frame.fit(n_sensors);
+  const std::span<SensorBeam> beams(frame.beams.data(), n_sensors);
+  const std::span<double> ranges(frame.ranges.data(), n_sensors);
   heading_ = Vec2(std::cos(pose_.theta), std::sin(pose_.theta));
   heading_theta_ = pose_.theta;
   compute_sensor_beams(pose_, heading_, robot.sensors, *sensor_layout_, beams);
@@ -365,8 +371,9 @@ void RobotAgent::sense(SensingScratch& scratch, std::span<const Circle> others,
   }
 }
 
-Observation RobotAgent::observe(const SensingScratch& scratch) const {
-  const std::size_t n_sensors = robot_->sensors.size();
+Observation RobotAgent::observe(const SensingScratch& scratch, const SensorFrame& frame) const {
+  const std::size_t n_sensors =
+      frame.beams.size() < robot_->sensors.size() ? 0 : robot_->sensors.size();
   Observation obs;
   obs.t = t_;
   obs.dt = sim_->dt;
@@ -374,8 +381,8 @@ Observation RobotAgent::observe(const SensingScratch& scratch) const {
   obs.goal = goal_;
   obs.goal_index = static_cast<int>(goal_index_);
   obs.goal_count = static_cast<int>(goals_.size());
-  obs.ranges = std::span<const double>(scratch.ranges.data(), n_sensors);
-  obs.beams = std::span<const SensorBeam>(scratch.beams.data(), n_sensors);
+  obs.ranges = std::span<const double>(frame.ranges.data(), n_sensors);
+  obs.beams = std::span<const SensorBeam>(frame.beams.data(), n_sensors);
   obs.sensed = std::span<const Vec2>(scratch.sensed.data(), scratch.sensed_count);
   obs.points =
       use_memory_ ? std::span<const Vec2>(scratch.points.data(), scratch.point_count) : obs.sensed;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "floornav/nav/navigation_controller.hpp"
 #include "floornav/sim/robot_models.hpp"
 
 namespace floornav {
@@ -114,6 +115,17 @@ void WorkerPool::run(std::size_t n, std::size_t chunk,
 // --- VecSimulation ---------------------------------------------------------------------------
 
 namespace {
+
+// The frame of this thread that a copy without kept frames senses into (VecSimulation::
+// keep_frames): one per thread, where it stays in the core's caches, lent to `copy` of `sim`
+// from its sensing until after(copy) returns.
+struct LentFrame {
+  const VecSimulation* sim{nullptr};
+  std::size_t copy{0};
+  SensorFrame frame;
+};
+thread_local LentFrame lent_frame;
+
 // Chunks small enough to balance copies that cost differently, large enough that taking one
 // (a lock) is rare next to stepping it.
 std::size_t chunk_for(std::size_t n, std::size_t threads) {
@@ -151,7 +163,41 @@ VecSimulation::VecSimulation(std::vector<VecCopy> copies, int threads, EpisodeDr
   for (std::size_t i = 0; i < copies_.size(); ++i)
     if (copies_[i].crowd && !copies_[i].crowd->empty())
       crowd_starts(*copies_[i].crowd, keep_discs_[i], keep_boxes_[i]);
-  scratch_.assign(copies_.size(), SensingScratch(beams_));
+  scratch_.assign(copies_.size(), SensingScratch(beams_, /*with_frame=*/false));
+  reads_frames_.resize(copies_.size());
+  for (std::size_t i = 0; i < copies_.size(); ++i)
+    reads_frames_[i] = controller_reads_frames(tasks_[i].controller);
+}
+
+Observation VecSimulation::observe(std::size_t i) const {
+  if (fleets_[i]) return fleets_[i]->observe(0);
+  const SensingScratch& s = scratch_[i];
+  if (lent_frame.sim == this && lent_frame.copy == i)
+    return agents_[i]->observe(s, lent_frame.frame);
+  return agents_[i]->observe(s, s.frame);
+}
+
+void VecSimulation::sense_copy(std::size_t i) {
+  RobotAgent& a = *agents_[i];
+  SensingScratch& s = scratch_[i];
+  // A copy that has ended is observed at every step until its reset: it keeps its last frame.
+  if (keep_frames_ || reads_frames_[i] || a.finished()) {
+    a.sense(s);
+    return;
+  }
+  s.frame.fit(0);  // the frame it last kept is not this sensing's
+  lent_frame.sim = this;
+  lent_frame.copy = i;
+  a.sense(s, lent_frame.frame);
+}
+
+void VecSimulation::report(std::size_t i, const std::function<void(std::size_t)>& after) const {
+  // Back before a later step may sense copy i on another thread: this thread's frame would
+  // then be its old one.
+  struct Release {
+    ~Release() { lent_frame.sim = nullptr; }
+  } release;
+  if (after) after(i);
 }
 
 void VecSimulation::replace_copy(std::size_t i, VecCopy c) {
@@ -165,6 +211,7 @@ void VecSimulation::replace_copy(std::size_t i, VecCopy c) {
   sims_[i] = *c.sim;
   sims_[i].record_trajectory = false;
   tasks_[i] = *c.task;
+  reads_frames_[i] = controller_reads_frames(tasks_[i].controller);
   keep_discs_[i].clear();
   keep_boxes_[i].clear();
   if (c.crowd && !c.crowd->empty()) crowd_starts(*c.crowd, keep_discs_[i], keep_boxes_[i]);
@@ -172,6 +219,11 @@ void VecSimulation::replace_copy(std::size_t i, VecCopy c) {
 }
 
 void VecSimulation::reset(std::size_t i, std::uint64_t seed) {
+  restart(i, seed);
+  if (agents_[i]) agents_[i]->sense(scratch_[i]);  // observed after this returns: kept
+}
+
+void VecSimulation::restart(std::size_t i, std::uint64_t seed) {
   // The old episode's controller goes before the new one is made (and before a copy source
   // replaces the world it ran in).
   agents_.at(i).reset();
@@ -208,7 +260,6 @@ void VecSimulation::reset(std::size_t i, std::uint64_t seed) {
   setup.names = false;
   setup.reserve_trajectory = false;
   agents_[i].emplace(std::move(setup));
-  agents_[i]->sense(scratch_[i]);
 }
 
 void VecSimulation::reset(std::span<const std::size_t> which, std::span<const std::uint64_t> seeds,
@@ -218,8 +269,10 @@ void VecSimulation::reset(std::span<const std::size_t> which, std::span<const st
   pool_.run(which.size(), chunk_for(which.size(), pool_.size()),
             [&](std::size_t begin, std::size_t end) {
               for (std::size_t k = begin; k < end; ++k) {
-                reset(which[k], seeds[k]);
-                if (after) after(which[k]);
+                const std::size_t i = which[k];
+                restart(i, seeds[k]);
+                if (agents_[i]) sense_copy(i);
+                report(i, after);
               }
             });
 }
@@ -244,9 +297,9 @@ void VecSimulation::step(std::span<const Command> commands,
                   }
                 } else if (RobotAgent& a = *agents_[i]; !a.finished()) {
                   a.act(scratch_[i], commands.empty() ? nullptr : &commands[i]);
-                  a.sense(scratch_[i]);  // the next observation; at the final pose if it ended
+                  sense_copy(i);  // the next observation; at the final pose if it ended
                 }
-                if (after) after(i);
+                report(i, after);
               }
             });
 }

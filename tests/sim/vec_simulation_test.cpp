@@ -286,3 +286,112 @@ TEST(VecSimulation, ACopySourceGivesEachEpisodeItsOwnCopy) {
   });
   EXPECT_THROW(vec.reset(1, 3), std::invalid_argument);
 }
+
+namespace {
+
+// 24 QuickBots with a noisy 72-beam lidar (cast as a fan) among pillars, from one start: some
+// reach the goal within t_max and end while the others run.
+Scenario lidar_floor() {
+  return load_scenario_text(
+      "world: {bounds: [0, 0, 6, 4], obstacles: [{circle: {center: [3, 2], radius: 0.4}}, "
+      "{polygon: [[1.5, 0.6], [2.0, 0.6], [2.0, 1.1]]}]}\n"
+      "robot: {preset: quickbot, start: [0.5, 2, 0], sensors: {noise: 0.003, lidar: {beams: 72, "
+      "fov: 6.283185307, min_range: 0.02, max_range: 1.5}}}\n"
+      "goal: [1.8, 2.6]\n"
+      "sim: {t_max: 25}\n",
+      "lidar_floor.yaml");
+}
+
+struct SeenFrame {
+  std::vector<double> ranges;
+  std::vector<SensorBeam> beams;
+};
+
+void expect_same_frame(const Observation& o, const SeenFrame& seen, const std::string& where) {
+  ASSERT_EQ(o.ranges.size(), seen.ranges.size()) << where;
+  for (std::size_t j = 0; j < seen.ranges.size(); ++j) {
+    ASSERT_EQ(o.ranges[j], seen.ranges[j]) << where << " beam " << j;
+    ASSERT_EQ(o.beams[j].origin, seen.beams[j].origin) << where;
+    ASSERT_EQ(o.beams[j].dir, seen.beams[j].dir) << where;
+    ASSERT_EQ(o.beams[j].theta, seen.beams[j].theta) << where;
+  }
+}
+
+}  // namespace
+
+// keep_frames(false): copies whose controllers read no frame sense into their thread's, and
+// after(i) sees every observation exactly as with kept frames; elsewhere a running copy shows
+// none and holds none, and a copy that has ended keeps its last one.
+TEST(VecSimulation, WithoutKeptFramesEachObservationIsTheSameInsideAfter) {
+  const Scenario s = lidar_floor();
+  ASSERT_FALSE(controller_reads_frames(s.robot().controller));
+  constexpr std::size_t kCopies = 24;
+  VecSimulation kept(copies(s, kCopies), 2), lean(copies(s, kCopies), 2);
+  lean.keep_frames(false);
+  std::vector<std::size_t> which(kCopies);
+  std::vector<std::uint64_t> seeds(kCopies);
+  for (std::size_t i = 0; i < kCopies; ++i) which[i] = i, seeds[i] = 50 + i;
+  std::vector<SeenFrame> seen(kCopies);
+  const auto record = [&](std::size_t i) {
+    const Observation o = lean.observe(i);
+    seen[i].ranges.assign(o.ranges.begin(), o.ranges.end());
+    seen[i].beams.assign(o.beams.begin(), o.beams.end());
+  };
+  kept.reset(which, seeds);
+  lean.reset(which, seeds, record);
+  std::size_t ended_checked = 0;
+  for (int k = 0; k <= 2500; ++k) {
+    for (std::size_t i = 0; i < kCopies; ++i) {
+      const std::string where = "step " + std::to_string(k) + " copy " + std::to_string(i);
+      ASSERT_EQ(lean.agent(i).pose().position, kept.agent(i).pose().position) << where;
+      ASSERT_EQ(seen[i].ranges.size(), 72u) << where;
+      expect_same_frame(kept.observe(i), seen[i], where);
+      const Observation outside = lean.observe(i);
+      if (lean.agent(i).finished()) {
+        expect_same_frame(outside, seen[i], where);
+        ++ended_checked;
+      } else {
+        EXPECT_TRUE(outside.ranges.empty() && outside.beams.empty()) << where;
+        EXPECT_TRUE(lean.sensing(i).frame.beams.empty()) << where;
+      }
+      ASSERT_EQ(outside.sensed.size(), kept.observe(i).sensed.size()) << where;
+    }
+    // Commands first, then the controllers drive (reading the returns each copy kept).
+    std::vector<Command> commands;
+    if (k < 600)
+      for (std::size_t i = 0; i < kCopies; ++i) commands.push_back(command_for(i, k));
+    kept.step(commands);
+    lean.step(commands, record);
+  }
+  EXPECT_GT(ended_checked, 0u) << "no copy ended";  // some reached the goal
+}
+
+// A user's controller (and the planning layer) may read the beams and ranges: such copies keep
+// theirs, and steer by them as with kept frames.
+TEST(VecSimulation, CopiesWhoseControllersReadFramesKeepThem) {
+  Scenario s = lidar_floor();
+  ControllerConfig planned = s.robot().controller;
+  planned.planner.kind = PlannerKind::AStar;
+  EXPECT_TRUE(controller_reads_frames(planned));
+  // Turns towards the side with more room, by the ranges at +-45 degrees.
+  s.robots[0].controller.factory = make_controller([](const Observation& obs) {
+    if (obs.ranges.size() != 72) throw std::logic_error("no frame to steer by");
+    return Command::unicycle(0.08, 2.0 * (obs.ranges[9] - obs.ranges[63]));
+  });
+  ASSERT_TRUE(controller_reads_frames(s.robot().controller));
+  constexpr std::size_t kCopies = 8;
+  VecSimulation kept(copies(s, kCopies), 2), lean(copies(s, kCopies), 2);
+  lean.keep_frames(false);
+  for (std::size_t i = 0; i < kCopies; ++i) {
+    kept.reset(i, i);
+    lean.reset(i, i);
+  }
+  for (int k = 0; k < 400; ++k) {
+    kept.step({});
+    lean.step({});
+  }
+  for (std::size_t i = 0; i < kCopies; ++i) {
+    EXPECT_EQ(lean.agent(i).pose().position, kept.agent(i).pose().position) << i;
+    EXPECT_EQ(lean.observe(i).ranges.size(), 72u) << i;
+  }
+}

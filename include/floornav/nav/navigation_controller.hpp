@@ -55,6 +55,11 @@ std::unique_ptr<Controller> make_builtin_controller(const ControllerConfig& conf
 
 class KnownMapRasters;
 
+/// Whether the controllers `config` makes may read Observation::beams and ::ranges: a user's
+/// controller may, and so does the planning layer (its rolling grid); the built-in kinds and
+/// robot avoidance read the points alone.
+bool controller_reads_frames(const ControllerConfig& config);
+
 /// Makes the controllers of many robots: a user's factory is called per robot; a built-in kind
 /// comes from the registry (controller_registry.hpp), its robots sharing automata. A
 /// `planner.kind` other than none wraps the controller in a PlannerController

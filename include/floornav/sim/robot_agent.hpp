@@ -34,10 +34,21 @@ namespace floornav {
 
 class SensorLayout;  // a sensor list's lidars and fans, found once (internal to the simulator)
 
-/// Per-step working memory of the sensing stage, sized once for the most sensors any robot has.
-struct SensingScratch {
+/// One sensing of a robot: each sensor's beam and range, what Observation::beams and ::ranges
+/// show.
+struct SensorFrame {
   std::vector<SensorBeam> beams;
   std::vector<double> ranges;
+
+  /// Holds `sensors` sensors (allocates only when growing); fit(0) empties it.
+  void fit(std::size_t sensors);
+};
+
+/// Per-step working memory of the sensing stage, sized once for the most sensors any robot has.
+struct SensingScratch {
+  /// The last sense()'s beams and ranges, unless that sense() wrote them to a frame of the
+  /// caller's (VecSimulation::keep_frames): then it is empty.
+  SensorFrame frame;
   std::vector<Vec2> sensed;
   std::vector<Vec2> still;  ///< the returns that go to the obstacle memory
   std::vector<Vec2> points;
@@ -60,9 +71,12 @@ struct SensingScratch {
   std::vector<SafetyBox> safety_boxes;
   std::size_t safety_box_count{0};
 
-  explicit SensingScratch(std::size_t sensors = 0) { fit(sensors); }
-  /// Makes room for robots with up to `sensors` sensors (allocates only when growing).
-  void fit(std::size_t sensors);
+  explicit SensingScratch(std::size_t sensors = 0, bool with_frame = true) {
+    fit(sensors, with_frame);
+  }
+  /// Makes room for robots with up to `sensors` sensors (allocates only when growing);
+  /// `with_frame` false leaves `frame` as it is.
+  void fit(std::size_t sensors, bool with_frame = true);
 };
 
 /// A robot model that agents may share (robots of one kind then read one copy, which keeps a
@@ -108,9 +122,19 @@ class RobotAgent {
   /// the remembered ones, into `scratch`. Once per step: it draws the sensor noise and updates
   /// the obstacle memory.
   void sense(SensingScratch& scratch, std::span<const Circle> others = {},
+             std::span<const OrientedBox> boxes = {}) {
+    sense(scratch, scratch.frame, others, boxes);
+  }
+  /// sense(), the beams and ranges written to `frame` (fitted to the robot's sensors) instead.
+  void sense(SensingScratch& scratch, SensorFrame& frame, std::span<const Circle> others = {},
              std::span<const OrientedBox> boxes = {});
   /// What the controller sees, from the sensing in `scratch` (valid while scratch is unchanged).
-  Observation observe(const SensingScratch& scratch) const;
+  Observation observe(const SensingScratch& scratch) const {
+    return observe(scratch, scratch.frame);
+  }
+  /// observe() with the beams and ranges of `frame`: none when it holds fewer than the robot's
+  /// sensors (a frame that went elsewhere).
+  Observation observe(const SensingScratch& scratch, const SensorFrame& frame) const;
   /// Steps 2-7 from the sensing in `scratch`. With `external`, that command drives the robot
   /// instead of the controller's (through the same pipeline and saturation), and the goal counts
   /// as reached within controller.epsilon. Throws std::domain_error for a command that is not

@@ -136,12 +136,21 @@ class VecSimulation {
   /// thread has stopped.
   void step(std::span<const Command> commands, const std::function<void(std::size_t)>& after = {});
 
-  /// What copy i's controller sees now (valid until the copy is stepped or reset).
-  Observation observe(std::size_t i) const { return agent(i).observe(sensing(i)); }
+  /// What copy i's controller sees now (valid until the copy is stepped or reset). Without kept
+  /// frames (keep_frames), a running copy's beams and ranges are shown inside after(i) alone.
+  Observation observe(std::size_t i) const;
+  /// Whether copies keep their beams and ranges once after(i) has returned (default: they do).
+  /// keep_frames(false): a copy whose controller reads neither (controller_reads_frames) senses
+  /// them into a frame of its stepping thread's, observed inside after(i); it keeps only its
+  /// returns, and a copy that has ended keeps its last frame. A caller that reads each
+  /// observation in after(i) (a learner's arrays) then steps a thousand copies without their
+  /// frames passing through the caches. From the next sensing on.
+  void keep_frames(bool keep) { keep_frames_ = keep; }
   const RobotAgent& agent(std::size_t i) const {
     return fleets_[i] ? fleets_[i]->robot(0) : *agents_[i];
   }
-  /// The sensing behind observe(i): ranges, beams and points.
+  /// The sensing behind observe(i): returns and points, and beams and ranges in its frame
+  /// (empty without kept frames).
   const SensingScratch& sensing(std::size_t i) const {
     return fleets_[i] ? fleets_[i]->sensing(0) : scratch_[i];
   }
@@ -159,6 +168,13 @@ class VecSimulation {
  private:
   /// Copy i from source_ (its robot checked against the shared model) with its own settings.
   void replace_copy(std::size_t i, VecCopy c);
+  /// reset(i, seed) up to the first sensing.
+  void restart(std::size_t i, std::uint64_t seed);
+  /// Copy i (not in a fleet) senses its next observation: into its own frame, or, without kept
+  /// frames, into this thread's, lent to it until release_frame().
+  void sense_copy(std::size_t i);
+  /// after(i), then the thread's frame goes back (observe(i) shows it no more).
+  void report(std::size_t i, const std::function<void(std::size_t)>& after) const;
 
   std::vector<VecCopy> copies_;
   EpisodeDraw draw_;
@@ -174,6 +190,9 @@ class VecSimulation {
   std::vector<std::vector<OrientedBox>> keep_boxes_;
   std::vector<RobotModel> models_;  ///< per copy, shared by copies of one kind
   std::vector<SensingScratch> scratch_;
+  /// Per copy: its controller reads beams and ranges (controller_reads_frames), so it keeps them.
+  std::vector<std::uint8_t> reads_frames_;
+  bool keep_frames_{true};
   std::size_t beams_{0};
   std::mutex maker_mutex_;  ///< ControllerMaker is not thread-safe; resets may run in parallel
   ControllerMaker maker_;
