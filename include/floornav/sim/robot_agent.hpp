@@ -223,7 +223,6 @@ class RobotAgent {
   ChatterMonitor chatter_{};
   PidState pid_{};
   Rng rng_;
-  ObstacleMemory memory_{};
   Pose2 pose_{};
   /// goals_[min(goal_index_, size - 1)], kept beside the pose: reading it from the task's goal
   /// list every step was a cache miss per robot step in a fleet of 1,000.
@@ -263,6 +262,9 @@ class RobotAgent {
   UnicycleCommand last_wanted_{};
   double last_theta_{0.0};  ///< rad, the heading the command was decided at
   RunResult result_{};
+  /// Last: 2.3 KB that most robots never touch (controller.obstacle_memory is off by default),
+  /// kept from between the fields every step reads.
+  ObstacleMemory memory_{};
 };
 
 }  // namespace floornav
