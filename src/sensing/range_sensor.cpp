@@ -137,8 +137,7 @@ constexpr std::size_t kMinFanBeams = 16;
 // A lidar's beam directions are turned from the previous beam's, and computed exactly every
 // this many beams.
 constexpr std::size_t kAnchorEvery = 32;
-// Two and four doubles (GCC's vector extensions).
-using V2d = double __attribute__((vector_size(16)));
+// Four doubles (GCC's vector extensions).
 using V4d = double __attribute__((vector_size(32)));
 constexpr std::size_t kFanChunk = 256;
 
@@ -393,40 +392,49 @@ void lidar_beams(const Pose2& robot, double c, double s, std::span<const RangeSe
   const auto by_turns = [&](std::size_t k) { return wrap_turn(robot_theta + mount_theta(k)); };
   const auto guarded = [&](std::size_t k) { return beam_heading(robot_theta, mount_theta(k)); };
   // The chains of kAnchorEvery beams from each anchor are independent: stepped side by side
-  // (four at a time), each rotation's latency overlaps the others' (one chain after another
-  // waits on every multiply). Each chain does the same operations as alone: the same bits.
-  const auto chains = [&]<std::size_t N>(std::integral_constant<std::size_t, N>, std::size_t first,
-                                         std::size_t len, const auto& heading) {
-    // The chains side by side as the lanes of one vector (GCC's vector extensions; SSE2 pairs
-    // outside the x86-64-v3 clone): one operation per rotation for all, lane by lane the same.
-    // Two lanes for a chain alone (GCC takes a vector of one double for a double); the unused
-    // one stays 0.
-    static_assert(N == 1 || N == 4);
-    using Lanes = std::conditional_t<N == 4, V4d, V2d>;
-    Lanes xs{}, ys{};
-    for (std::size_t a = 0; a < N; ++a) {
+  // (four at a time, the last ones too), each rotation's latency overlaps the others' (one chain
+  // after another waits on every multiply). Each chain does the same operations as alone: the
+  // same bits.
+  // Up to four chains of kAnchorEvery beams from `first`, the last one ending at `stop`, side by
+  // side as the lanes of one vector (GCC's vector extensions; SSE2 pairs outside the x86-64-v3
+  // clone): one operation per rotation for all, lane by lane the same. Unused lanes stay 0.
+  const auto chains = [&](std::size_t first, std::size_t stop, const auto& heading) {
+    const std::size_t count = (stop - first + kAnchorEvery - 1) / kAnchorEvery;
+    V4d xs{}, ys{};
+    for (std::size_t a = 0; a < count; ++a) {
       const std::size_t anchor = first + a * kAnchorEvery;
       const double theta0 = heading(anchor);
       xs[a] = std::cos(theta0);
       ys[a] = std::sin(theta0);
       put(anchor, xs[a], ys[a], theta0);
     }
-    for (std::size_t j = 1; j < len; ++j) {
-      const Lanes px = xs, py = ys;
+    const auto rotate = [&] {
+      const V4d px = xs, py = ys;
       xs = px * tx - py * ty;
       ys = px * ty + py * tx;
-      for (std::size_t a = 0; a < N; ++a) {
+    };
+    if (stop - first == 4 * kAnchorEvery) {  // four whole chains: no lane to leave out
+      for (std::size_t j = 1; j < kAnchorEvery; ++j) {
+        rotate();
+        for (std::size_t a = 0; a < 4; ++a) {
+          const std::size_t k = first + a * kAnchorEvery + j;
+          put(k, xs[a], ys[a], heading(k));
+        }
+      }
+      return;
+    }
+    const std::size_t longest = std::min(kAnchorEvery, stop - first);
+    for (std::size_t j = 1; j < longest; ++j) {
+      rotate();
+      for (std::size_t a = 0; a < count; ++a) {
         const std::size_t k = first + a * kAnchorEvery + j;
-        put(k, xs[a], ys[a], heading(k));
+        if (k < stop) put(k, xs[a], ys[a], heading(k));
       }
     }
   };
   const auto all = [&](const auto& heading) {
-    std::size_t k = i;
-    for (; end - k >= 4 * kAnchorEvery; k += 4 * kAnchorEvery)
-      chains(std::integral_constant<std::size_t, 4>{}, k, kAnchorEvery, heading);
-    for (; k < end; k += kAnchorEvery)
-      chains(std::integral_constant<std::size_t, 1>{}, k, std::min(kAnchorEvery, end - k), heading);
+    for (std::size_t k = i; k < end; k += 4 * kAnchorEvery)
+      chains(k, std::min(end, k + 4 * kAnchorEvery), heading);
   };
   if (within_turns)
     all(by_turns);
