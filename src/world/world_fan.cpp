@@ -24,24 +24,31 @@ namespace {
 using fan_detail::even_fan;
 using fan_detail::FanLayout;
 
-// Which obstacles the current fan has taken: item i when marks[i] == epoch. One set per thread,
-// not per caller: a thread that senses many robots in turn (VecEnv's copies) finds its marks in
-// the cache, where each robot's own were cold by its next step.
+// Which obstacles the current fan has taken: item i when marks[i] == epoch; and the segments it
+// gathered (their index entries). One set per thread, not per caller: a thread that senses many
+// robots in turn (VecEnv's copies) finds them in the cache, where each robot's own were cold by
+// its next step.
 struct FanMarks {
   std::vector<std::uint32_t> marks;
   std::uint32_t epoch{0};
+  std::vector<std::uint32_t> entries;
 };
 
-// The thread's marks ready for a fan over `items` obstacles; sets `epoch`. Allocates only when
-// the world has more obstacles than the thread has seen.
-std::uint32_t* fresh_marks(std::size_t items, std::uint32_t& epoch) {
+// The thread's marks ready for a fan over `items` obstacles, of which `segments` segments; sets
+// `epoch` and `entries` (room for every segment, and one more). Allocates only when the world has
+// more obstacles than the thread has seen.
+std::uint32_t* fresh_marks(std::size_t items, std::size_t segments, std::uint32_t& epoch,
+                           std::uint32_t*& entries) {
   thread_local FanMarks m;
   if (m.marks.size() < items) m.marks.resize(items, 0);
+  // One past the segments: the gathering writes an entry before it knows whether to keep it.
+  if (m.entries.size() <= segments) m.entries.resize(segments + 1);
   if (++m.epoch == 0) {
     std::fill(m.marks.begin(), m.marks.end(), 0);
     m.epoch = 1;
   }
   epoch = m.epoch;
+  entries = m.entries.data();
   return m.marks.data();
 }
 
@@ -143,21 +150,28 @@ class ObstacleFan {
   double reach() const { return reach_; }
   double reach2() const { return reach2_; }
 
-  // Segment [a, b] with edge e = b - a, solid on `side` (see seen_from_solid_side).
-  [[gnu::always_inline]] void segment(const Vec2& a, const Vec2& e, const Vec2& b,
-                                      double side) const {
+  // Whether segment a + [0, 1] e, solid on `side` (see seen_from_solid_side), may be hit: it
+  // faces the origin, and it is not wholly beyond reach (both ends are, and so is the line or
+  // the foot of the perpendicular falls outside the segment). No branch: a fan asks this of
+  // every segment near it, and which ones pass follows no pattern a predictor could learn.
+  [[gnu::always_inline]] bool may_hit(const Vec2& a, const Vec2& e, double side) const {
     const Vec2 pa = a - origin_;
     const double cr = cross(pa, e);  // |e| times the distance from the origin to the line
-    if (side * cr > 0.0) return;     // seen_from_solid_side, with cr kept
+    const Vec2 pb = pa + e;
+    const double len2 = e.squaredNorm();
+    const double foot = -pa.dot(e);  // len2 times the foot's position along the segment
+    const bool beyond = (std::min(pa.squaredNorm(), pb.squaredNorm()) > reach2_) &
+                        ((foot < 0.0) | (foot > len2) | (cr * cr > reach2_ * len2));
+    return !(side * cr > 0.0) & !beyond;
+  }
+
+  // Segment [a, b] with edge e = b - a, one that may_hit.
+  [[gnu::always_inline]] void segment(const Vec2& a, const Vec2& e, const Vec2& b) const {
+    const Vec2 pa = a - origin_;
+    const double cr = cross(pa, e);
     const SegmentSpanTest test{origin_, dirs_, out_, a, b, e};
     const Vec2 pb = pa + e;
     const double len2 = e.squaredNorm();
-    // A segment wholly beyond reach cannot be hit before max_range: both ends are, and so is
-    // the line or the foot of the perpendicular falls outside the segment.
-    const double foot = -pa.dot(e);  // len2 times the foot's position along the segment
-    if (std::min(pa.squaredNorm(), pb.squaredNorm()) > reach2_ &&
-        (foot < 0.0 || foot > len2 || cr * cr > reach2_ * len2))
-      return;
     if (!(cr * cr >= near_ * near_ * len2) || len2 == 0.0) return test(0, n_ - 1);
     if (cr < 0.0) {  // b lies clockwise of a
       cone_.for_spans(pb.x(), pb.y(), pa.x(), pa.y(), test);
@@ -253,8 +267,37 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
   const int y0 = cell_y(origin.y() - reach), y1 = cell_y(origin.y() + reach);
   const std::size_t n_segments = segments_.size();
   std::uint32_t epoch = 0;
-  std::uint32_t* mark = fresh_marks(n_segments + circles_.size(), epoch);
+  std::uint32_t* entries = nullptr;
+  std::uint32_t* mark = fresh_marks(n_segments + circles_.size(), n_segments, epoch, entries);
+  // The segments listed in the cells about the origin, each once (marked), gathered, then kept
+  // when they may be hit, then tested: no branch per segment until the last step. A row's cells
+  // are consecutive in the index, so a row's entries are one run; the square's corner cells
+  // beyond reach add segments that may_hit drops.
+  const std::uint32_t* offsets = ix.segment_offsets.data();
+  const std::uint32_t* items = ix.segment_items.data();
+  std::size_t gathered = 0;
   for (int y = y0; y <= y1; ++y) {
+    const auto row = static_cast<std::size_t>(y) * ix.nx;
+    for (std::uint32_t k = offsets[row + x0], end = offsets[row + x1 + 1]; k < end; ++k) {
+      const std::uint32_t id = items[k];
+      entries[gathered] = k;
+      gathered += mark[id] != epoch;
+      mark[id] = epoch;
+    }
+  }
+  const SegmentRay* rays = ix.segment_rays.data();
+  const double* sides = ix.segment_sides.data();
+  std::size_t kept = 0;
+  for (std::size_t j = 0; j < gathered; ++j) {
+    const std::uint32_t k = entries[j];
+    entries[kept] = k;
+    kept += obstacles.may_hit(rays[k].a, rays[k].e, sides[k]);
+  }
+  for (std::size_t j = 0; j < kept; ++j) {
+    const std::uint32_t k = entries[j];
+    obstacles.segment(rays[k].a, rays[k].e, segments_[items[k]].b);
+  }
+  for (int y = y0; !circles_.empty() && y <= y1; ++y) {
     // Distance from the origin to the row's span of y, then to each cell: a cell wholly beyond
     // reach holds no hit before max_range (such a hit lies in a cell that is within reach, and
     // an obstacle is listed in every cell it crosses).
@@ -265,13 +308,6 @@ void World::cast_fan_from_free(const Vec2& origin, std::span<const Vec2> dirs,
       const double gx = std::max({0.0, cx0 - origin.x(), origin.x() - (cx0 + ix.cell)});
       if (gx * gx + gy * gy > reach2) continue;
       const auto c = static_cast<std::size_t>(y) * ix.nx + x;
-      for (std::uint32_t k = ix.segment_offsets[c]; k < ix.segment_offsets[c + 1]; ++k) {
-        const std::uint32_t id = ix.segment_items[k];
-        if (mark[id] == epoch) continue;
-        mark[id] = epoch;
-        const SegmentRay& s = ix.segment_rays[k];
-        obstacles.segment(s.a, s.e, segments_[id].b, ix.segment_sides[k]);
-      }
       for (std::uint32_t k = ix.circle_offsets[c]; k < ix.circle_offsets[c + 1]; ++k) {
         const std::uint32_t id = ix.circle_items[k];
         if (mark[n_segments + id] == epoch) continue;
