@@ -116,15 +116,9 @@ void WorkerPool::run(std::size_t n, std::size_t chunk,
 
 namespace {
 
-// The frame of this thread that a copy without kept frames senses into (VecSimulation::
-// keep_frames): one per thread, where it stays in the core's caches, lent to `copy` of `sim`
-// from its sensing until after(copy) returns.
-struct LentFrame {
-  const VecSimulation* sim{nullptr};
-  std::size_t copy{0};
-  SensorFrame frame;
-};
-thread_local LentFrame lent_frame;
+// The frame of this thread that the copies without kept frames sense into (VecSimulation::
+// keep_frames): one per thread, where it stays in the core's caches.
+thread_local SensorFrame thread_frame;
 
 // Chunks small enough to balance copies that cost differently, large enough that taking one
 // (a lock) is rare next to stepping it.
@@ -165,6 +159,7 @@ VecSimulation::VecSimulation(std::vector<VecCopy> copies, int threads, EpisodeDr
       crowd_starts(*copies_[i].crowd, keep_discs_[i], keep_boxes_[i]);
   scratch_.assign(copies_.size(), SensingScratch(beams_, /*with_frame=*/false));
   reads_frames_.resize(copies_.size());
+  lent_.assign(copies_.size(), nullptr);
   for (std::size_t i = 0; i < copies_.size(); ++i)
     reads_frames_[i] = controller_reads_frames(tasks_[i].controller);
 }
@@ -172,12 +167,10 @@ VecSimulation::VecSimulation(std::vector<VecCopy> copies, int threads, EpisodeDr
 Observation VecSimulation::observe(std::size_t i) const {
   if (fleets_[i]) return fleets_[i]->observe(0);
   const SensingScratch& s = scratch_[i];
-  if (lent_frame.sim == this && lent_frame.copy == i)
-    return agents_[i]->observe(s, lent_frame.frame);
-  return agents_[i]->observe(s, s.frame);
+  return agents_[i]->observe(s, lent_[i] ? *lent_[i] : s.frame);
 }
 
-void VecSimulation::sense_copy(std::size_t i) {
+void VecSimulation::sense_copy(std::size_t i, SensorFrame& frame) {
   RobotAgent& a = *agents_[i];
   SensingScratch& s = scratch_[i];
   // A copy that has ended is observed at every step until its reset: it keeps its last frame.
@@ -186,17 +179,16 @@ void VecSimulation::sense_copy(std::size_t i) {
     return;
   }
   s.frame.fit(0);  // the frame it last kept is not this sensing's
-  lent_frame.sim = this;
-  lent_frame.copy = i;
-  a.sense(s, lent_frame.frame);
+  lent_[i] = &frame;
+  a.sense(s, frame);
 }
 
-void VecSimulation::report(std::size_t i, const std::function<void(std::size_t)>& after) const {
-  // Back before a later step may sense copy i on another thread: this thread's frame would
-  // then be its old one.
+void VecSimulation::report(std::size_t i, const std::function<void(std::size_t)>& after) {
+  // The frame goes back even when after(i) throws: the thread senses another copy into it next.
   struct Release {
-    ~Release() { lent_frame.sim = nullptr; }
-  } release;
+    const SensorFrame*& lent;
+    ~Release() { lent = nullptr; }
+  } release{lent_[i]};
   if (after) after(i);
 }
 
@@ -268,10 +260,11 @@ void VecSimulation::reset(std::span<const std::size_t> which, std::span<const st
     throw std::invalid_argument("reset: as many seeds as copies are needed");
   pool_.run(which.size(), chunk_for(which.size(), pool_.size()),
             [&](std::size_t begin, std::size_t end) {
+              SensorFrame& frame = thread_frame;  // one look-up of the thread's own per chunk
               for (std::size_t k = begin; k < end; ++k) {
                 const std::size_t i = which[k];
                 restart(i, seeds[k]);
-                if (agents_[i]) sense_copy(i);
+                if (agents_[i]) sense_copy(i, frame);
                 report(i, after);
               }
             });
@@ -285,6 +278,7 @@ void VecSimulation::step(std::span<const Command> commands,
     if (!agents_[i] && !fleets_[i]) throw std::logic_error("step: every copy must be reset first");
   pool_.run(copies_.size(), chunk_for(copies_.size(), pool_.size()),
             [&](std::size_t begin, std::size_t end) {
+              SensorFrame& frame = thread_frame;  // one look-up of the thread's own per chunk
               for (std::size_t i = begin; i < end; ++i) {
                 if (FleetSimulation* fleet = fleets_[i].get()) {
                   if (!fleet->finished()) {
@@ -297,7 +291,7 @@ void VecSimulation::step(std::span<const Command> commands,
                   }
                 } else if (RobotAgent& a = *agents_[i]; !a.finished()) {
                   a.act(scratch_[i], commands.empty() ? nullptr : &commands[i]);
-                  sense_copy(i);  // the next observation; at the final pose if it ended
+                  sense_copy(i, frame);  // the next observation; at the final pose if it ended
                 }
                 report(i, after);
               }

@@ -171,10 +171,10 @@ class VecSimulation {
   /// reset(i, seed) up to the first sensing.
   void restart(std::size_t i, std::uint64_t seed);
   /// Copy i (not in a fleet) senses its next observation: into its own frame, or, without kept
-  /// frames, into this thread's, lent to it until release_frame().
-  void sense_copy(std::size_t i);
-  /// after(i), then the thread's frame goes back (observe(i) shows it no more).
-  void report(std::size_t i, const std::function<void(std::size_t)>& after) const;
+  /// frames, into `frame` (its thread's), lent to it until report(i) returns.
+  void sense_copy(std::size_t i, SensorFrame& frame);
+  /// after(i), then the frame lent to copy i goes back (observe(i) shows it no more).
+  void report(std::size_t i, const std::function<void(std::size_t)>& after);
 
   std::vector<VecCopy> copies_;
   EpisodeDraw draw_;
@@ -192,6 +192,8 @@ class VecSimulation {
   std::vector<SensingScratch> scratch_;
   /// Per copy: its controller reads beams and ranges (controller_reads_frames), so it keeps them.
   std::vector<std::uint8_t> reads_frames_;
+  /// Per copy: the frame it sensed into while after(i) runs, when not its own (else null).
+  std::vector<const SensorFrame*> lent_;
   bool keep_frames_{true};
   std::size_t beams_{0};
   std::mutex maker_mutex_;  ///< ControllerMaker is not thread-safe; resets may run in parallel
