@@ -7,6 +7,7 @@
 
 #include "floornav/nav/navigation_controller.hpp"
 #include "floornav/sim/robot_models.hpp"
+#include "spin_barrier.hpp"
 
 namespace floornav {
 
@@ -15,6 +16,9 @@ namespace floornav {
 WorkerPool::WorkerPool(int threads) {
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t n = threads > 0 ? static_cast<std::size_t>(threads) : hw;
+  // More threads than cores: a spinning thread would hold up the one it waits for.
+  max_spins_ = n <= hw ? sim_detail::kBarrierSpins : 0;
+  spins_ = max_spins_;
   shares_.resize(n);
   for (std::size_t t = 1; t < n; ++t) workers_.emplace_back([this, t] { work_loop(t); });
 }
@@ -64,9 +68,30 @@ void WorkerPool::take_chunks(std::size_t self) {
   }
 }
 
+template <class Ready>
+void WorkerPool::spin_until(const Ready& ready) {
+  const int budget = spins_.load(std::memory_order_relaxed);
+  for (int i = 0; i < budget; ++i) {
+    if (ready()) {
+      if (budget < max_spins_)
+        spins_.store(std::min(max_spins_, 2 * budget + 1), std::memory_order_relaxed);
+      return;
+    }
+#if defined(__x86_64__) || defined(__i386__)
+    _mm_pause();
+#endif
+  }
+  // Never below a few microseconds: a budget of 0 could not grow back.
+  spins_.store(std::max(budget / 2, std::min(max_spins_, 64)), std::memory_order_relaxed);
+}
+
 void WorkerPool::work_loop(std::size_t self) {
   std::uint64_t seen = 0;
   while (true) {
+    spin_until([&] {
+      return generation_.load(std::memory_order_acquire) != seen ||
+             stopping_.load(std::memory_order_acquire);
+    });
     {
       std::unique_lock lock(mutex_);
       wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
@@ -102,6 +127,7 @@ void WorkerPool::run(std::size_t n, std::size_t chunk,
   }
   wake_.notify_all();
   take_chunks(0);
+  spin_until([&] { return busy_.load(std::memory_order_acquire) == 0; });
   std::exception_ptr error;
   {
     std::unique_lock lock(mutex_);

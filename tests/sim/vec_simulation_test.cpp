@@ -2,6 +2,7 @@
 // Simulation: a copy runs exactly as a Simulation with its seed, whatever the threads; the
 // sensors are cast once per step; a finished run is sensed once where it stopped.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <atomic>
 #include <chrono>
@@ -60,6 +61,25 @@ TEST(WorkerPool, RunsEveryIndexOnceAndRethrows) {
   std::atomic<int> n{0};
   pool.run(10, 1, [&](std::size_t b, std::size_t e) { n += static_cast<int>(e - b); });
   EXPECT_EQ(n.load(), 10);
+}
+
+// Workers spin a while for the next run before they sleep; an idle pool must not spin on.
+TEST(WorkerPool, AnIdlePoolSleepsAfterSpinningAWhile) {
+  WorkerPool pool(2);
+  std::atomic<int> n{0};
+  for (int k = 0; k < 100; ++k)
+    pool.run(100, 10, [&](std::size_t b, std::size_t e) { n += static_cast<int>(e - b); });
+  EXPECT_EQ(n.load(), 100 * 100);
+  const auto cpu = [] {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  };
+  const double before = cpu();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  // The worker's spinning (about a millisecond) and nothing after it.
+  EXPECT_LT(cpu() - before, 0.1);
 }
 
 // pool.run(100, 10, ...) with index `hold`, when the caller (`held_by_caller`) or else the

@@ -17,6 +17,7 @@
 /// bit for bit, whatever the number of threads. A copy that has ended is sensed once more where
 /// it stopped, so that its final observation describes its final pose.
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
@@ -74,13 +75,21 @@ class WorkerPool {
   /// the back of the share with the most left; false when every share is taken.
   bool next_chunk(std::size_t self, std::size_t& begin, std::size_t& end);
 
+  /// Spins until ready() or the spinning budget is spent (it adapts as SpinBarrier's does):
+  /// a thread asleep in the kernel wakes tens of microseconds late in a virtual machine, and a
+  /// learner's steps come back to back.
+  template <class Ready>
+  void spin_until(const Ready& ready);
+
   std::vector<std::thread> workers_;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::condition_variable done_;
-  std::uint64_t generation_{0};  ///< one per run()
-  std::size_t busy_{0};          ///< workers still inside the current run
-  bool stopping_{false};
+  std::atomic<std::uint64_t> generation_{0};  ///< one per run() (written under mutex_)
+  std::atomic<std::size_t> busy_{0};  ///< workers still inside the current run (under mutex_)
+  std::atomic<bool> stopping_{false};
+  int max_spins_{0};
+  std::atomic<int> spins_{0};  ///< the spinning budget now
   // The current loop.
   const std::function<void(std::size_t, std::size_t)>* body_{nullptr};
   std::size_t chunk_{1};
