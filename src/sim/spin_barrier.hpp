@@ -20,6 +20,33 @@ namespace floornav::sim_detail {
 // About a millisecond of spinning.
 inline constexpr int kBarrierSpins = 1 << 15;
 
+inline void spin_pause() {
+#if defined(__x86_64__) || defined(__i386__)
+  _mm_pause();
+#endif
+}
+
+// Spins until ready() or the budget `spins` (at most `max_spins`) is spent; true when ready()
+// held. The budget adapts: a wait that has to sleep halves it, one that ends while spinning
+// doubles it back. When other processes hold the cores, the thread awaited is often off its
+// core: spinning would keep it off longer (a fleet of 100 on two busy cores stepped 10 times
+// slower).
+template <class Ready>
+bool spin_until(std::atomic<int>& spins, int max_spins, const Ready& ready) {
+  const int budget = spins.load(std::memory_order_relaxed);
+  for (int i = 0; i < budget; ++i) {
+    if (ready()) {
+      if (budget < max_spins)
+        spins.store(std::min(max_spins, 2 * budget + 1), std::memory_order_relaxed);
+      return true;
+    }
+    spin_pause();
+  }
+  // Never below a few microseconds: a budget of 0 could not grow back.
+  spins.store(std::max(budget / 2, std::min(max_spins, 64)), std::memory_order_relaxed);
+  return false;
+}
+
 template <class Completion>
 class SpinBarrier {
  public:
@@ -39,32 +66,15 @@ class SpinBarrier {
       generation_.notify_all();
       return;
     }
-    // A fleet phase of 1,000 robots on two threads is a few hundred microseconds. The budget
-    // adapts: a wait that has to sleep halves it, one that ends while spinning doubles it back.
-    // When other processes hold the cores, the thread awaited is often off its core: spinning
-    // would keep it off longer (a fleet of 100 on two busy cores stepped 10 times slower).
-    const int budget = spins_.load(std::memory_order_relaxed);
-    for (int i = 0; i < budget; ++i) {
-      if (generation_.load(std::memory_order_acquire) != generation) {
-        if (budget < max_spins_)
-          spins_.store(std::min(max_spins_, 2 * budget + 1), std::memory_order_relaxed);
-        return;
-      }
-      pause();
-    }
-    // Never below a few microseconds: a budget of 0 could not grow back.
-    spins_.store(std::max(budget / 2, std::min(max_spins_, 64)), std::memory_order_relaxed);
+    // A fleet phase of 1,000 robots on two threads is a few hundred microseconds.
+    if (spin_until(spins_, max_spins_,
+                   [&] { return generation_.load(std::memory_order_acquire) != generation; }))
+      return;
     while (generation_.load(std::memory_order_acquire) == generation)
       generation_.wait(generation, std::memory_order_acquire);
   }
 
  private:
-  static void pause() {
-#if defined(__x86_64__) || defined(__i386__)
-    _mm_pause();
-#endif
-  }
-
   const std::size_t threads_;
   const int max_spins_;
   std::atomic<int> spins_;  ///< the spinning budget now

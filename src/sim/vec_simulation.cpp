@@ -68,27 +68,12 @@ void WorkerPool::take_chunks(std::size_t self) {
   }
 }
 
-template <class Ready>
-void WorkerPool::spin_until(const Ready& ready) {
-  const int budget = spins_.load(std::memory_order_relaxed);
-  for (int i = 0; i < budget; ++i) {
-    if (ready()) {
-      if (budget < max_spins_)
-        spins_.store(std::min(max_spins_, 2 * budget + 1), std::memory_order_relaxed);
-      return;
-    }
-#if defined(__x86_64__) || defined(__i386__)
-    _mm_pause();
-#endif
-  }
-  // Never below a few microseconds: a budget of 0 could not grow back.
-  spins_.store(std::max(budget / 2, std::min(max_spins_, 64)), std::memory_order_relaxed);
-}
-
 void WorkerPool::work_loop(std::size_t self) {
   std::uint64_t seen = 0;
   while (true) {
-    spin_until([&] {
+    // A learner's steps come back to back, and a thread woken from the kernel in a virtual
+    // machine comes back tens of microseconds late: spin a while first.
+    sim_detail::spin_until(spins_, max_spins_, [&] {
       return generation_.load(std::memory_order_acquire) != seen ||
              stopping_.load(std::memory_order_acquire);
     });
@@ -127,7 +112,8 @@ void WorkerPool::run(std::size_t n, std::size_t chunk,
   }
   wake_.notify_all();
   take_chunks(0);
-  spin_until([&] { return busy_.load(std::memory_order_acquire) == 0; });
+  sim_detail::spin_until(spins_, max_spins_,
+                         [&] { return busy_.load(std::memory_order_acquire) == 0; });
   std::exception_ptr error;
   {
     std::unique_lock lock(mutex_);

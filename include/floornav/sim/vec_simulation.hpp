@@ -75,12 +75,6 @@ class WorkerPool {
   /// the back of the share with the most left; false when every share is taken.
   bool next_chunk(std::size_t self, std::size_t& begin, std::size_t& end);
 
-  /// Spins until ready() or the spinning budget is spent (it adapts as SpinBarrier's does):
-  /// a thread asleep in the kernel wakes tens of microseconds late in a virtual machine, and a
-  /// learner's steps come back to back.
-  template <class Ready>
-  void spin_until(const Ready& ready);
-
   std::vector<std::thread> workers_;
   std::mutex mutex_;
   std::condition_variable wake_;
@@ -88,8 +82,9 @@ class WorkerPool {
   std::atomic<std::uint64_t> generation_{0};  ///< one per run() (written under mutex_)
   std::atomic<std::size_t> busy_{0};  ///< workers still inside the current run (under mutex_)
   std::atomic<bool> stopping_{false};
+  /// How long a waiting thread spins before it sleeps (the fleet barrier's adaptive budget).
   int max_spins_{0};
-  std::atomic<int> spins_{0};  ///< the spinning budget now
+  std::atomic<int> spins_{0};
   // The current loop.
   const std::function<void(std::size_t, std::size_t)>* body_{nullptr};
   std::size_t chunk_{1};
