@@ -324,30 +324,28 @@ class OrcaLayer final : public Controller {
   // `x` (by distance, then by index: the same order on every machine), in the order told.
   std::span<const std::uint32_t> nearest_moving(std::span<const NearbyRobot> robots, const Vec2& x,
                                                 OrcaWork& work) const {
-    std::vector<std::uint32_t>& order = work.nearest;
-    std::vector<std::pair<double, std::uint32_t>>& by_distance = work.by_distance;
-    order.clear();
-    by_distance.clear();
-    for (std::size_t j = 0; j < robots.size(); ++j)
-      if (robots[j].moving)
-        by_distance.emplace_back((robots[j].position - x).squaredNorm(),
-                                 static_cast<std::uint32_t>(j));
+    // A max-heap of the k nearest so far by (distance, index): of two at one distance the first
+    // told is nearer. Most robots told are farther than its top and cost one comparison.
+    std::vector<std::pair<double, std::uint32_t>>& heap = work.by_distance;
+    heap.clear();
     const auto k = static_cast<std::size_t>(params_.neighbours);
-    if (by_distance.size() <= k) {  // all of them, in index order
-      for (const auto& e : by_distance) order.push_back(e.second);
-      return order;
-    }
-    // The k nearest by (distance, index): of two at one distance the first told is nearer. They
-    // are the pairs up to the k-th smallest; taken in index order, they need no sort.
-    const auto kth = by_distance.begin() + static_cast<std::ptrdiff_t>(k - 1);
-    std::nth_element(by_distance.begin(), kth, by_distance.end());
-    const std::pair<double, std::uint32_t> last = *kth;
     for (std::size_t j = 0; j < robots.size(); ++j) {
       if (!robots[j].moving) continue;
       const std::pair<double, std::uint32_t> e{(robots[j].position - x).squaredNorm(),
                                                static_cast<std::uint32_t>(j)};
-      if (!(last < e)) order.push_back(e.second);
+      if (heap.size() < k) {
+        heap.push_back(e);
+        std::push_heap(heap.begin(), heap.end());
+      } else if (e < heap.front()) {
+        std::pop_heap(heap.begin(), heap.end());
+        heap.back() = e;
+        std::push_heap(heap.begin(), heap.end());
+      }
     }
+    std::vector<std::uint32_t>& order = work.nearest;
+    order.clear();
+    for (const auto& e : heap) order.push_back(e.second);
+    std::sort(order.begin(), order.end());  // in the order told
     return order;
   }
 
