@@ -324,27 +324,24 @@ class OrcaLayer final : public Controller {
   // `x` (by distance, then by index: the same order on every machine), in the order told.
   std::span<const std::uint32_t> nearest_moving(std::span<const NearbyRobot> robots, const Vec2& x,
                                                 OrcaWork& work) const {
-    // A max-heap of the k nearest so far by (distance, index): of two at one distance the first
-    // told is nearer. Most robots told are farther than its top and cost one comparison.
-    std::vector<std::pair<double, std::uint32_t>>& heap = work.by_distance;
-    heap.clear();
+    // The k nearest so far, nearest first, by (distance, index): of two at one distance the
+    // first told is nearer, so a robot goes after every one at its distance. A robot farther
+    // than the k-th costs one comparison.
+    std::vector<std::pair<double, std::uint32_t>>& best = work.by_distance;
     const auto k = static_cast<std::size_t>(params_.neighbours);
+    best.resize(k);
+    std::size_t n = 0;
     for (std::size_t j = 0; j < robots.size(); ++j) {
       if (!robots[j].moving) continue;
-      const std::pair<double, std::uint32_t> e{(robots[j].position - x).squaredNorm(),
-                                               static_cast<std::uint32_t>(j)};
-      if (heap.size() < k) {
-        heap.push_back(e);
-        std::push_heap(heap.begin(), heap.end());
-      } else if (e < heap.front()) {
-        std::pop_heap(heap.begin(), heap.end());
-        heap.back() = e;
-        std::push_heap(heap.begin(), heap.end());
-      }
+      const double d2 = (robots[j].position - x).squaredNorm();
+      if (n == k && !(d2 < best[k - 1].first)) continue;
+      std::size_t at = n < k ? n++ : k - 1;
+      for (; at > 0 && d2 < best[at - 1].first; --at) best[at] = best[at - 1];
+      best[at] = {d2, static_cast<std::uint32_t>(j)};
     }
     std::vector<std::uint32_t>& order = work.nearest;
     order.clear();
-    for (const auto& e : heap) order.push_back(e.second);
+    for (std::size_t m = 0; m < n; ++m) order.push_back(best[m].second);
     std::sort(order.begin(), order.end());  // in the order told
     return order;
   }
