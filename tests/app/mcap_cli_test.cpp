@@ -95,7 +95,9 @@ bool has_file_containing(const fs::path& dir, const std::string& part) {
 }
 
 // A full disk (a 64 KiB tmpfs): the bag (larger than that) fails part way; exit 1, the path of
-// run.mcap and the system's reason, and neither the bag nor a piece of it is left.
+// the file that did not fit and the system's reason, and neither the bag nor a piece of it is
+// left. The bag is written on its own thread while the other files are: which of them meets the
+// full disk first is a race (mostly the bag), so the message may name another file of the run.
 TEST(McapCli, ABagThatDoesNotFitIsExitOneAndNoFile) {
   const fs::path mnt = temp_dir("full");
   fs::create_directories(mnt);
@@ -121,7 +123,7 @@ TEST(McapCli, ABagThatDoesNotFitIsExitOneAndNoFile) {
   const bool left = has_file_containing(mnt, "mcap");
   ::umount(mnt.c_str());
   EXPECT_EQ(o.status, 1) << o.text;
-  EXPECT_NE(o.text.find((mnt / "run" / "run.mcap").string()), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find((mnt / "run").string() + "/"), std::string::npos) << o.text;
   EXPECT_NE(o.text.find("No space left on device"), std::string::npos) << o.text;
   EXPECT_EQ(std::count(o.text.begin(), o.text.end(), '\n'), 1) << o.text;
   EXPECT_FALSE(left);
