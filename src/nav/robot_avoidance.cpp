@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <utility>
 
 #include "floornav/geometry/angle.hpp"
@@ -228,15 +229,17 @@ Vec2 turn_first(const Vec2& u, const Observation& obs, std::span<const OrcaLine>
 // first decision of each run_steps call.
 struct OrcaWork {
   std::vector<Vec2> sensed;
-  std::vector<std::uint32_t> nearest;                         ///< the robots' indices ORCA avoids
-  std::vector<std::pair<double, std::uint32_t>> by_distance;  ///< squared distance, index
+  std::vector<std::uint32_t> nearest;  ///< the robots' indices ORCA avoids
+  std::vector<double> distances;       ///< squared, of those robots
+  std::vector<double> selected;        ///< the same, partly sorted
   OrcaScratch scratch;
 
   void fit(std::size_t n) {
     if (sensed.size() >= n) return;
     sensed.resize(n);
     nearest.reserve(256);
-    by_distance.reserve(256);
+    distances.reserve(256);
+    selected.reserve(256);
     scratch.lines.reserve(n + 64);
     scratch.projected.reserve(n + 64);
   }
@@ -290,7 +293,7 @@ class OrcaLayer final : public Controller {
         lines.push_back(still_point_line(rel, r_still, kStillHorizon));
     }
     const std::size_t hard = lines.size();
-    for (const std::uint32_t j : nearest_moving(obs.robots, x, work)) {
+    for (const std::uint32_t j : nearest_moving(obs.robots, x, 2.0 * p.v0 * obs.dt, work)) {
       const NearbyRobot& b = obs.robots[j];
       lines.push_back(orca_line(b.position - x, obs.velocity, b.velocity,
                                 r_self + b.radius + params_.margin, params_.horizon, obs.dt, 0.5));
@@ -316,39 +319,78 @@ class OrcaLayer final : public Controller {
   void reset() override {
     inner_->reset();
     bias_ = 0.0;
+    look_d2_ = kLookEverywhere;
   }
   int mode() const override { return inner_->mode(); }
 
  private:
   // The indices of the moving robots ORCA avoids: all of them, or the `neighbours` nearest to
   // `x` (by distance, then by index: the same order on every machine), in the order told.
+  // Robots move little in a step: those nearer than the last step's k-th nearest plus `slack`
+  // (two robots closing in at cruise speed) hold this step's k nearest whenever there are k of
+  // them, and are few more than k. Otherwise every moving robot is looked at.
   std::span<const std::uint32_t> nearest_moving(std::span<const NearbyRobot> robots, const Vec2& x,
-                                                OrcaWork& work) const {
-    // The k nearest so far, nearest first, by (distance, index): of two at one distance the
-    // first told is nearer, so a robot goes after every one at its distance. A robot farther
-    // than the k-th costs one comparison.
-    std::vector<std::pair<double, std::uint32_t>>& best = work.by_distance;
+                                                double slack, OrcaWork& work) {
     const auto k = static_cast<std::size_t>(params_.neighbours);
-    best.resize(k);
-    std::size_t n = 0;
-    for (std::size_t j = 0; j < robots.size(); ++j) {
-      if (!robots[j].moving) continue;
-      const double d2 = (robots[j].position - x).squaredNorm();
-      if (n == k && !(d2 < best[k - 1].first)) continue;
-      std::size_t at = n < k ? n++ : k - 1;
-      for (; at > 0 && d2 < best[at - 1].first; --at) best[at] = best[at - 1];
-      best[at] = {d2, static_cast<std::uint32_t>(j)};
-    }
     std::vector<std::uint32_t>& order = work.nearest;
-    order.clear();
-    for (std::size_t m = 0; m < n; ++m) order.push_back(best[m].second);
-    std::sort(order.begin(), order.end());  // in the order told
-    return order;
+    std::vector<double>& d2 = work.distances;
+    if (order.size() < robots.size()) {
+      order.resize(robots.size());
+      d2.resize(robots.size());
+    }
+    std::size_t moving = 0;
+    // The moving robots nearer than sqrt(limit), in the order told, without a branch.
+    const auto within = [&](double limit) {
+      std::size_t n = 0;
+      moving = 0;
+      for (std::size_t j = 0; j < robots.size(); ++j) {
+        const double d = (robots[j].position - x).squaredNorm();
+        order[n] = static_cast<std::uint32_t>(j);
+        d2[n] = d;
+        n += static_cast<std::size_t>(robots[j].moving & (d < limit));
+        moving += static_cast<std::size_t>(robots[j].moving);
+      }
+      return n;
+    };
+    std::size_t n = within(look_d2_);
+    if (n < k && n < moving) n = within(kLookEverywhere);
+    if (n > k) n = keep_nearest(order.data(), d2.data(), n, k, work.selected);
+    look_d2_ = kLookEverywhere;
+    if (n == k) {
+      const double kth = std::sqrt(*std::max_element(d2.begin(), d2.begin() + k));
+      look_d2_ = (kth + slack) * (kth + slack);
+    }
+    return {order.data(), n};
   }
+
+  // Keeps, in place and in order, the k of the n robots (indices, squared distances) that are
+  // nearest by (distance, index); returns k.
+  static std::size_t keep_nearest(std::uint32_t* index, double* d2, std::size_t n, std::size_t k,
+                                  std::vector<double>& selected) {
+    // The k nearest are those nearer than the k-th distance and, at that distance, the first.
+    selected.assign(d2, d2 + n);
+    const auto kth = selected.begin() + static_cast<std::ptrdiff_t>(k - 1);
+    std::nth_element(selected.begin(), kth, selected.end());
+    const double last = *kth;
+    std::size_t at_last = k;
+    for (std::size_t m = 0; m < n; ++m) at_last -= static_cast<std::size_t>(d2[m] < last);
+    std::size_t kept = 0;
+    for (std::size_t m = 0; m < n; ++m) {
+      const bool tie = d2[m] == last && at_last > 0;
+      at_last -= static_cast<std::size_t>(tie);
+      index[kept] = index[m];
+      d2[kept] = d2[m];
+      kept += static_cast<std::size_t>(d2[m] < last || tie);
+    }
+    return kept;
+  }
+
+  static constexpr double kLookEverywhere = std::numeric_limits<double>::infinity();
 
   std::unique_ptr<Controller> inner_;
   RobotAvoidanceParams params_;
   double bias_{0.0};  ///< rad: how far right the preferred velocity is turned (keep right)
+  double look_d2_{kLookEverywhere};  ///< m^2: where nearest_moving looks first
 };
 
 }  // namespace

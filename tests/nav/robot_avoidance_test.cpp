@@ -184,3 +184,30 @@ TEST(Orca, AvoidsTheNearestNeighboursOnly) {
   layer = make_orca_layer(std::make_unique<Straight>(), robot, eleven);
   EXPECT_LT(layer->decide(observation(robot, params, nothing, robots)).command.u().x(), 0.15);
 }
+
+// A layer looks first where its last k nearest were; when the robots told change more than a step
+// allows (one comes from farther to nearest, or all move away at once), it still avoids the k
+// nearest: each decision is the one a new layer makes of the same observation.
+TEST(Orca, FindsTheNearestAgainWhenTheRobotsToldChange) {
+  const RobotSpec robot = find_robot_preset("quickbot")->robot;
+  NavigationParams params;
+  const std::vector<Vec2> nothing;
+  std::vector<NearbyRobot> robots;
+  for (int k = 0; k < 10; ++k)
+    robots.push_back({Vec2(-0.3, 0.05 * (k - 4.5)), Vec2(-0.15, 0), 0.075, true});
+  robots.push_back({Vec2(0.7, 0), Vec2(-0.15, 0), 0.075, true});
+  auto layer = make_orca_layer(std::make_unique<Straight>(), robot, RobotAvoidanceParams{});
+  const auto decide_as_new = [&] {
+    auto fresh = make_orca_layer(std::make_unique<Straight>(), robot, RobotAvoidanceParams{});
+    const Vec2 u = layer->decide(observation(robot, params, nothing, robots)).command.u();
+    EXPECT_EQ(u, fresh->decide(observation(robot, params, nothing, robots)).command.u());
+    return u;
+  };
+  EXPECT_EQ(decide_as_new(), Vec2(0.15, 0.0));  // the one ahead is not among the ten nearest
+  robots.back().position = Vec2(0.25, 0.0);     // now it is, inside the last look
+  EXPECT_LT(decide_as_new().x(), 0.15);
+  robots.back().position = Vec2(0.7, 0.0);
+  EXPECT_EQ(decide_as_new(), Vec2(0.15, 0.0));
+  for (int k = 0; k < 10; ++k) robots[k].position.x() = -2.0;  // all beyond the last look
+  EXPECT_LT(decide_as_new().x(), 0.15);
+}
