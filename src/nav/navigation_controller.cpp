@@ -78,7 +78,8 @@ std::unique_ptr<Controller> ControllerMaker::make(const ControllerConfig& config
   auto controller = make_planned(config, context);
   // Robot avoidance is the outermost layer: it bends whatever velocity the controller wants.
   if (config.avoidance.kind == RobotAvoidance::Orca)
-    return make_orca_layer(std::move(controller), context.robot, config.avoidance);
+    return make_orca_layer(std::move(controller), context.robot, config.avoidance,
+                           controller_reads_frames(config));
   return controller;
 }
 

@@ -253,10 +253,11 @@ OrcaWork& thread_orca_work() {
 class OrcaLayer final : public Controller {
  public:
   OrcaLayer(std::unique_ptr<Controller> inner, const RobotSpec& robot,
-            const RobotAvoidanceParams& params)
+            const RobotAvoidanceParams& params, bool inner_reads_sensed)
       : Controller(inner->mode_names(), inner->guard_names()),
         inner_(std::move(inner)),
-        params_(params) {
+        params_(params),
+        inner_reads_sensed_(inner_reads_sensed) {
     thread_orca_work().fit(robot.sensors.size() + ObstacleMemory::kCapacity);
   }
 
@@ -272,10 +273,13 @@ class OrcaLayer final : public Controller {
     // Remembered points hold none of them (RobotAgent::sense keeps moving robots' returns out of
     // the memory).
     Observation still = obs;
-    still.sensed = {
-        work.sensed.data(),
-        drop_robot_points(obs.sensed, obs.robots, robot_return_tolerance(*obs.robot), work.sensed)};
-    if (obs.points.data() == obs.sensed.data()) still.points = still.sensed;
+    const bool points_sensed = obs.points.data() == obs.sensed.data();
+    if (inner_reads_sensed_ || points_sensed) {
+      still.sensed = {work.sensed.data(),
+                      drop_robot_points(obs.sensed, obs.robots, robot_return_tolerance(*obs.robot),
+                                        work.sensed)};
+      if (points_sensed) still.points = still.sensed;
+    }
     const Decision d = inner_->decide(still);
     if (d.command.kind() != Command::Kind::Velocity) return d;
 
@@ -389,6 +393,7 @@ class OrcaLayer final : public Controller {
 
   std::unique_ptr<Controller> inner_;
   RobotAvoidanceParams params_;
+  bool inner_reads_sensed_;
   double bias_{0.0};  ///< rad: how far right the preferred velocity is turned (keep right)
   double look_d2_{kLookEverywhere};  ///< m^2: where nearest_moving looks first
 };
@@ -397,8 +402,9 @@ class OrcaLayer final : public Controller {
 
 std::unique_ptr<Controller> make_orca_layer(std::unique_ptr<Controller> inner,
                                             const RobotSpec& robot,
-                                            const RobotAvoidanceParams& params) {
-  return std::make_unique<OrcaLayer>(std::move(inner), robot, params);
+                                            const RobotAvoidanceParams& params,
+                                            bool inner_reads_sensed) {
+  return std::make_unique<OrcaLayer>(std::move(inner), robot, params, inner_reads_sensed);
 }
 
 }  // namespace floornav

@@ -55,9 +55,9 @@ std::unique_ptr<Controller> make_builtin_controller(const ControllerConfig& conf
 
 class KnownMapRasters;
 
-/// Whether the controllers `config` makes may read Observation::beams and ::ranges: a user's
-/// controller may, and so does the planning layer (its rolling grid); the built-in kinds and
-/// robot avoidance read the points alone.
+/// Whether the controllers `config` makes may read Observation::beams, ::ranges and ::sensed: a
+/// user's controller may, and so does the planning layer (its rolling grid); the built-in kinds
+/// and robot avoidance read the points alone.
 bool controller_reads_frames(const ControllerConfig& config);
 
 /// Makes the controllers of many robots: a user's factory is called per robot; a built-in kind
