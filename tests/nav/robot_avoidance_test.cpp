@@ -119,9 +119,11 @@ class Straight final : public Controller {
  public:
   Decision decide(const Observation& obs) override {
     seen = obs.points.size();
+    seen_sensed = obs.sensed.size();
     return Command::velocity(Vec2(0.15, 0.0));
   }
   std::size_t seen{0};
+  std::size_t seen_sensed{0};
 };
 
 Observation observation(const RobotSpec& robot, const NavigationParams& params,
@@ -210,4 +212,25 @@ TEST(Orca, FindsTheNearestAgainWhenTheRobotsToldChange) {
   EXPECT_EQ(decide_as_new(), Vec2(0.15, 0.0));
   for (int k = 0; k < 10; ++k) robots[k].position.x() = -2.0;  // all beyond the last look
   EXPECT_LT(decide_as_new().x(), 0.15);
+}
+
+// A controller that reads the points alone (a built-in kind): the moving robot's return leaves
+// its points when they are the returns; with remembered points (kept free of moving robots by the
+// memory) the points and the returns pass as they are.
+TEST(Orca, AControllerOfPointsAloneKeepsItsReturns) {
+  const RobotSpec robot = find_robot_preset("quickbot")->robot;
+  NavigationParams params;
+  auto inner = std::make_unique<Straight>();
+  Straight* straight = inner.get();
+  auto layer = make_orca_layer(std::move(inner), robot, RobotAvoidanceParams{}, false);
+  const std::vector<NearbyRobot> coming{{Vec2(0.6, 0), Vec2(-0.15, 0), 0.075, true}};
+  const std::vector<Vec2> seen{Vec2(0.0, 0.5), Vec2(0.525, 0.0)};
+  layer->decide(observation(robot, params, seen, coming));
+  EXPECT_EQ(straight->seen, 1u);
+  const std::vector<Vec2> remembered{Vec2(0.0, 0.5), Vec2(0.0, -0.5), Vec2(-0.5, 0.0)};
+  Observation obs = observation(robot, params, seen, coming);
+  obs.points = remembered;
+  layer->decide(obs);
+  EXPECT_EQ(straight->seen, 3u);
+  EXPECT_EQ(straight->seen_sensed, 2u);
 }

@@ -78,9 +78,9 @@ std::size_t drop_robot_points(std::span<const Vec2> points, std::span<const Near
 /// Wraps a controller with the ORCA layer above (`params.kind` is not looked at: the caller
 /// chose the layer). `robot` sizes the buffers once (no allocation per step). The wrapped
 /// controller's modes and guards are reported unchanged. `inner_reads_sensed` false: the wrapped
-/// controller reads Observation::points alone, never ::sensed (the built-in kinds), so the
-/// moving robots' returns are taken out of the points alone (when the points are the returns;
-/// remembered points hold none), not of ::sensed as well.
+/// controller reads Observation::points alone, never ::sensed (the built-in kinds), so the moving
+/// robots' returns are taken out only when the points are the returns (remembered points hold
+/// none of them).
 std::unique_ptr<Controller> make_orca_layer(std::unique_ptr<Controller> inner,
                                             const RobotSpec& robot,
                                             const RobotAvoidanceParams& params,
