@@ -311,8 +311,8 @@ class OrcaLayer final : public Controller {
     Vec2 u = solve_orca(lines, hard, pref, p.v0, work.scratch.projected);
     // Tries the way to its right (45 degrees) too, and takes it if that lets it move faster.
     if (u.norm() < 0.5 * pref.norm()) {
-      const Vec2 right =
-          solve_orca(lines, hard, rotate(pref, -kPi / 4.0), p.v0, work.scratch.projected);
+      static const double c = std::cos(-kPi / 4.0), s = std::sin(-kPi / 4.0);  // taken once
+      const Vec2 right = solve_orca(lines, hard, rotate(pref, c, s), p.v0, work.scratch.projected);
       if (right.norm() > u.norm()) u = right;
     }
     const bool held = u.norm() < 0.5 * wanted.norm();

@@ -15,11 +15,15 @@ inline double cross(const Vec2& a, const Vec2& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
+/// `v` rotated counter-clockwise by the angle whose cosine and sine are `c` and `s`.
+inline Vec2 rotate(const Vec2& v, double c, double s) {
+  return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+}
 /// `v` rotated by `phi` radians counter-clockwise: R(phi) v, the rotation of eqs. 5.22-5.24.
 inline Vec2 rotate(const Vec2& v, double phi) {
-  const double c = std::cos(phi);
-  const double s = std::sin(phi);
-  return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+  // cos(+-0) = 1 and sin(+-0) = +-0 exactly: the same bits without the library's calls.
+  if (phi == 0.0) return rotate(v, 1.0, phi);
+  return rotate(v, std::cos(phi), std::sin(phi));
 }
 
 /// `v` rotated by +pi/2 exactly (no trigonometry, so no rounding).
