@@ -359,11 +359,13 @@ void Crowd::safety_bodies_near(const Vec2& p, double reach, double dt, double pe
   }
 }
 
-void Crowd::people_near(const Vec2& p, double reach, std::vector<Circle>& out) const {
+std::size_t Crowd::people_near(const Vec2& p, double reach, std::span<Circle> out,
+                               std::size_t n) const {
   for (const Circle& c : bodies_) {
     const double r = reach + c.radius;
-    if ((c.center - p).squaredNorm() < r * r) out.push_back(c);
+    if ((c.center - p).squaredNorm() < r * r) out[n++] = c;
   }
+  return n;
 }
 
 CrowdResult Crowd::result() const {

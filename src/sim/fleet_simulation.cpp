@@ -108,7 +108,7 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
   events_.resize(1);
   if (!tell_range_.empty()) thread_scratch_.back().sensing.robots.resize(n);
   if (!tell_range_.empty() || (crowd && !crowd->empty())) velocities_.assign(n, Vec2::Zero());
-  thread_scratch_.back().others.reserve(n);
+  thread_scratch_.back().fit(n);
 
   // The grid covers the world (and the robots, for unbounded worlds); cells about one sensing
   // reach wide, so a robot's query touches few cells.
@@ -140,7 +140,7 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
   // The crowd starts after that check (validation keeps robots clear of people and forklifts).
   if (crowd && !crowd->empty()) {
     crowd_ = std::make_unique<Crowd>(*crowd, world_, n, sim_.record_trajectory);
-    thread_scratch_.back().others.reserve(n + crowd->people.size());
+    thread_scratch_.back().fit(n, crowd->people.size());
   }
   if (!safety_on_.empty()) {
     SensingScratch& first = thread_scratch_.back().sensing;
@@ -167,14 +167,14 @@ void FleetSimulation::update_snapshot() {
 
 void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_t thread) {
   SensingScratch& scratch = thread_scratch_[thread].sensing;
-  std::vector<Circle>& others = thread_scratch_[thread].others;
+  ThreadScratch& bodies = thread_scratch_[thread];
   for (std::size_t i = begin; i < end; ++i) {
     if (!moving_[i]) {
       moved_to_[i] = positions_[i];
       continue;
     }
     if (robot_scratch_.empty()) {
-      sense_robot(i, scratch, others);
+      sense_robot(i, scratch, bodies);
       agents_[i].act(scratch);
     } else {  // sensed at the end of the last step (keep_sensing)
       const bool commanded = !commands_.empty() && commands_[i].has_value();
@@ -188,30 +188,26 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
   }
 }
 
-void FleetSimulation::sense_robot(std::size_t i, SensingScratch& scratch,
-                                  std::vector<Circle>& others) {
-  gather_robots(i, scratch, others);
+void FleetSimulation::sense_robot(std::size_t i, SensingScratch& scratch, ThreadScratch& bodies) {
+  std::size_t n_others = gather_robots(i, scratch, bodies);
+  std::span<Circle> others = bodies.others;
   const Vec2 p = positions_[i];
   if (crowd_) {
     if (!safety_on_.empty() && safety_on_[i])
       crowd_->safety_bodies_near(p, radius_[i] + safety_reach_[i] + max_top_step_, sim_.dt,
                                  tasks_[i].controller.safety.person_margin, scratch);
-    crowd_->people_near(p, reach_[i], others);
-    agents_[i].sense(scratch, others, crowd_->forklifts());
+    n_others = crowd_->people_near(p, reach_[i], others, n_others);
+    agents_[i].sense(scratch, others.first(n_others), crowd_->forklifts());
   } else {
-    agents_[i].sense(scratch, others);
+    agents_[i].sense(scratch, others.first(n_others));
   }
 }
 
-void FleetSimulation::gather_robots(std::size_t i, SensingScratch& scratch,
-                                    std::vector<Circle>& others) const {
+std::size_t FleetSimulation::gather_robots(std::size_t i, SensingScratch& scratch,
+                                           ThreadScratch& bodies) const {
   // One pass over the grid for the three lists of other robots, each in the grid's order:
   // the bodies this robot's sensors could reach, as they stood at the start of the step; the
   // robots it is told of (tell_range_); the bodies its safety layer keeps clear of.
-  others.clear();
-  scratch.robot_count = 0;
-  scratch.safety_disc_count = 0;
-  scratch.safety_box_count = 0;
   const Vec2 p = positions_[i];
   const double reach = reach_[i];
   const double tell = tell_range_.empty() ? 0.0 : tell_range_[i];
@@ -220,39 +216,59 @@ void FleetSimulation::gather_robots(std::size_t i, SensingScratch& scratch,
   const double gap_reach = safety ? safety_reach_[i] + max_top_step_ : 0.0;
   double look = std::max(reach + max_radius_, tell);
   if (safety) look = std::max(look, radius_[i] + max_radius_ + gap_reach);
-  const double look_sq = look * look, tell_sq = tell * tell, radius_i = radius_[i];
+  const double tell_sq = tell * tell, radius_i = radius_[i];
+  const std::size_t keeps = safety;
   // Plain pointers and local counts: the stores into the lists would otherwise make the compiler
   // reload every member array for each robot visited.
   const Vec2* const position = positions_.data();
-  const Vec2* const velocity = velocities_.data();
   const double* const radius = radius_.data();
-  const std::uint8_t* const moving = moving_.data();
-  const std::uint8_t* const safety_on = safety_on_.data();
-  const double* const top_step = top_step_.data();
-  NearbyRobot* const told = scratch.robots.data();
-  SafetyDisc* const discs = scratch.safety_discs.data();
-  std::size_t n_told = 0, n_discs = 0;
+  const std::size_t n = agents_.size();
+  std::uint32_t* const near_bodies = bodies.near.data();
+  std::uint32_t* const near_told = near_bodies + n;
+  std::uint32_t* const near_discs = near_told + n;
+  std::size_t n_bodies = 0, n_told = 0, n_discs = 0;
+  // The candidates come in no order of distance: a branch on each one's distance would be
+  // mispredicted for about one in three. Each is written into every list of indices and kept
+  // where it lies within that list's reach (each within `look`; room for every robot), and
+  // the lists are filled from the indices kept.
   grid_.for_each_near(p, look, [&](std::size_t j) {
     const double d2 = (position[j] - p).squaredNorm();
-    // The cells cover a square: a third of their robots lie beyond every list's reach.
-    if (d2 >= look_sq || j == i) return;
-    const double r = reach + radius[j];
-    if (d2 < r * r) others.push_back({position[j], radius[j]});
-    if (d2 < tell_sq) told[n_told++] = {position[j], velocity[j], radius[j], moving[j] != 0};
-    if (!safety) return;
-    const double keep = radius_i + radius[j] + gap_reach;
-    if (d2 >= keep * keep) return;
-    const bool runs = moving[j] != 0;
-    SafetyDisc& d = discs[n_discs++];
+    const std::size_t other = j != i;
+    const double r = reach + radius[j], keep = radius_i + radius[j] + gap_reach;
+    const auto index = static_cast<std::uint32_t>(j);
+    near_bodies[n_bodies] = index;
+    n_bodies += other & static_cast<std::size_t>(d2 < r * r);
+    near_told[n_told] = index;
+    n_told += other & static_cast<std::size_t>(d2 < tell_sq);
+    near_discs[n_discs] = index;
+    n_discs += other & keeps & static_cast<std::size_t>(d2 < keep * keep);
+  });
+  Circle* const others = bodies.others.data();
+  for (std::size_t k = 0; k < n_bodies; ++k) {
+    const std::uint32_t j = near_bodies[k];
+    others[k] = {position[j], radius[j]};
+  }
+  NearbyRobot* const told = scratch.robots.data();
+  for (std::size_t k = 0; k < n_told; ++k) {
+    const std::uint32_t j = near_told[k];
+    told[k] = {position[j], velocities_[j], radius[j], moving_[j] != 0};
+  }
+  SafetyDisc* const discs = scratch.safety_discs.data();
+  for (std::size_t k = 0; k < n_discs; ++k) {
+    const std::uint32_t j = near_discs[k];
+    const bool runs = moving_[j] != 0;
+    SafetyDisc& d = discs[k];
     d.position = position[j];
     d.radius = radius[j];
-    d.reciprocal = runs && safety_on[j];
-    d.approach = runs && !safety_on[j] ? top_step[j] : 0.0;
+    d.reciprocal = runs && safety_on_[j];
+    d.approach = runs && !safety_on_[j] ? top_step_[j] : 0.0;
     d.extra_margin = 0.0;
-    d.who = {BodyRef::Kind::Robot, static_cast<std::uint32_t>(j)};
-  });
+    d.who = {BodyRef::Kind::Robot, j};
+  }
   scratch.robot_count = n_told;
   scratch.safety_disc_count = n_discs;
+  scratch.safety_box_count = 0;
+  return n_bodies;
 }
 
 void FleetSimulation::keep_sensing() {
@@ -264,7 +280,7 @@ void FleetSimulation::keep_sensing() {
     s.robots.resize(first.robots.size());
     s.safety_discs.resize(first.safety_discs.size());
     s.safety_boxes.resize(first.safety_boxes.size());
-    if (moving_[i]) sense_robot(i, s, thread_scratch_.front().others);
+    if (moving_[i]) sense_robot(i, s, thread_scratch_.front());
   }
 }
 
@@ -284,7 +300,7 @@ bool FleetSimulation::step(std::span<const std::optional<Command>> commands) {
   commands_ = {};
   after_step();
   for (std::size_t i = 0; i < agents_.size(); ++i)
-    if (ran_[i]) sense_robot(i, robot_scratch_[i], thread_scratch_.front().others);
+    if (ran_[i]) sense_robot(i, robot_scratch_[i], thread_scratch_.front());
   return running_ > 0;
 }
 
@@ -432,15 +448,15 @@ long long FleetSimulation::run_steps(long long max_steps, int threads) {
     // Sized as the first thread's (read before emplace_back may move it).
     const ThreadScratch& first = thread_scratch_.front();
     const std::size_t sensors = first.sensing.frame.beams.size(),
-                      told = first.sensing.robots.size(),
-                      bodies = first.others.capacity();  // robots, and people in a crowd
+                      told = first.sensing.robots.size(), robots = agents_.size(),
+                      people = first.others.size() - robots;
     const std::size_t discs = first.sensing.safety_discs.size(),
                       boxes = first.sensing.safety_boxes.size();
     ThreadScratch& added = thread_scratch_.emplace_back(sensors);
     added.sensing.robots.resize(told);
     added.sensing.safety_discs.resize(discs);
     added.sensing.safety_boxes.resize(boxes);
-    added.others.reserve(bodies);
+    added.fit(robots, people);
   }
   events_.resize(std::max(events_.size(), n_threads));
   // Each thread steps its own slice of the robots, in chunks taken from the slice's counter,

@@ -136,8 +136,9 @@ class Crowd {
   /// `person_margin` as extra margin.
   void safety_bodies_near(const Vec2& p, double reach, double dt, double person_margin,
                           SensingScratch& scratch) const;
-  /// Appends to `out` the bodies of the people whose disc comes within `reach` of `p`.
-  void people_near(const Vec2& p, double reach, std::vector<Circle>& out) const;
+  /// Writes the bodies of the people whose disc comes within `reach` of `p` into `out` from
+  /// index `n` (out has room for every person beyond it); returns the new count.
+  std::size_t people_near(const Vec2& p, double reach, std::span<Circle> out, std::size_t n) const;
 
   /// How many (ordered) pairs of people the last step tested for a push: at most n (n - 1), only
   /// the pairs within a grid cell of each other (docs/RELIABILITY.md, "Limits").

@@ -121,7 +121,8 @@ class FleetSimulation {
  private:
   void step_robots(std::size_t begin, std::size_t end, std::size_t thread);
   /// Robot i senses the world, the bodies near it and what it is told, into `scratch`.
-  void sense_robot(std::size_t i, SensingScratch& scratch, std::vector<Circle>& others);
+  struct ThreadScratch;
+  void sense_robot(std::size_t i, SensingScratch& scratch, ThreadScratch& bodies);
   // The serial and parallel parts of a step after the robots moved: file the new positions,
   // measure each robot's gap to the nearest other body (parallel), apply contacts and gaps.
   void prepare_contacts();
@@ -132,8 +133,8 @@ class FleetSimulation {
   void update_snapshot();
   /// The other robots near robot i: the bodies its sensors could reach (`others`), those it is
   /// told of when it uses robot avoidance (Observation::robots), and those its safety layer
-  /// keeps clear of.
-  void gather_robots(std::size_t i, SensingScratch& scratch, std::vector<Circle>& others) const;
+  /// keeps clear of. Returns how many of `others` it wrote.
+  std::size_t gather_robots(std::size_t i, SensingScratch& scratch, ThreadScratch& bodies) const;
   /// The name of a body of the floor (a robot's, a person's, a forklift's).
   std::string body_name(const BodyRef& who, const CrowdResult& crowd) const;
   /// The fleet's result from each robot's run (in robot order), names filled in.
@@ -186,7 +187,14 @@ class FleetSimulation {
   struct alignas(64) ThreadScratch {
     explicit ThreadScratch(std::size_t sensors) : sensing(sensors) {}
     SensingScratch sensing;
-    std::vector<Circle> others;  ///< the bodies a robot's sensors could reach; reserved for all
+    std::vector<Circle> others;       ///< the bodies a robot's sensors could reach; room for all
+    std::vector<std::uint32_t> near;  ///< gather_robots' three lists of indices, room for all
+
+    /// Room for every robot and person.
+    void fit(std::size_t robots, std::size_t people = 0) {
+      others.resize(robots + people);
+      near.resize(3 * robots);
+    }
   };
   std::vector<ThreadScratch> thread_scratch_;
   std::vector<FleetCollision> collisions_;
