@@ -130,6 +130,10 @@ FleetSimulation::FleetSimulation(const World& world, std::span<const RobotTask> 
     note_status(i);
   }
   moved_to_ = positions_;
+  if (!velocities_.empty()) {
+    moved_velocity_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) note_velocity(i);
+  }
   moved_cell_.resize(n);
   for (std::size_t i = 0; i < n; ++i) moved_cell_[i] = grid_.cell_index(positions_[i]);
   update_snapshot();
@@ -171,6 +175,7 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
   for (std::size_t i = begin; i < end; ++i) {
     if (!moving_[i]) {
       moved_to_[i] = positions_[i];
+      if (!moved_velocity_.empty()) moved_velocity_[i] = Vec2::Zero();
       continue;
     }
     if (robot_scratch_.empty()) {
@@ -184,6 +189,7 @@ void FleetSimulation::step_robots(std::size_t begin, std::size_t end, std::size_
     moved_to_[i] = agents_[i].pose().position;
     moved_cell_[i] = grid_.cell_index(moved_to_[i]);
     note_status(i);
+    if (!moved_velocity_.empty()) note_velocity(i);
     if (status_[i] != 0) events_[thread].any = true;
   }
 }
@@ -310,12 +316,14 @@ void FleetSimulation::note_status(std::size_t i) {
                                          (a.result().collided ? kCollided : 0));
 }
 
+void FleetSimulation::note_velocity(std::size_t i) {
+  moved_velocity_[i] = (status_[i] & kEnded) != 0 ? Vec2::Zero() : agents_[i].velocity();
+}
+
 void FleetSimulation::prepare_contacts() {
   ++steps_;
   positions_.swap(moved_to_);  // step_robots wrote every robot's
-  if (!velocities_.empty())
-    for (std::size_t i = 0; i < agents_.size(); ++i)
-      velocities_[i] = (status_[i] & kEnded) != 0 ? Vec2::Zero() : agents_[i].velocity();
+  velocities_.swap(moved_velocity_);
   grid_.refile(moved_cell_, present_);  // the cells taken on the robots' threads
   if (crowd_) crowd_->step(static_cast<double>(steps_ - 1) * sim_.dt, sim_.dt, bodies());
 }

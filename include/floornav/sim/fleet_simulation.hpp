@@ -157,6 +157,10 @@ class FleetSimulation {
   // rather than being copied on the thread that completes the step: one serial loop fewer.
   std::vector<Vec2> moved_to_;
   std::vector<std::uint32_t> moved_cell_;  ///< grid_.cell_index(moved_to_[i])
+  /// Each robot's velocity after its move (zero once ended), to become velocities_ by a swap:
+  /// empty when velocities_ is.
+  std::vector<Vec2> moved_velocity_;
+  void note_velocity(std::size_t i);
   static constexpr std::uint8_t kEnded = 1, kCollided = 2;
   std::vector<std::uint8_t> status_;  ///< kEnded | kCollided, as of the last note_status(i)
   void note_status(std::size_t i);
