@@ -26,6 +26,7 @@ medians and the range of the per-pair ratios. Nothing is timed but the simulatio
                      simulation alone), against rvo2_driver's Circle with N agents, to the end or
                      5,000 steps (its 20 agents never all arrive), on T = 1 and 2 threads.
 
+--pin CPU runs both sides of the one-thread circle cases on that CPU (taskset).
 Paths: --floornav (default build/floornav), --bench (build/bench/floornav_bench), --peers
 ($PEERS_DIR or /tmp/floornav-peers, where the build scripts put Stage, RVO2 and the drivers).
 """
@@ -42,7 +43,13 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SCENARIOS = os.path.join(HERE, "..", "..", "scenarios", "circle")
 
 
-def run(cmd, env=None):
+# --pin: the CPU that one-thread cases run on (None: wherever the scheduler puts them).
+PIN = None
+
+
+def run(cmd, env=None, threads=None):
+    if PIN is not None and threads == 1:
+        cmd = ["taskset", "-c", str(PIN)] + cmd
     p = subprocess.run(cmd, capture_output=True, text=True, env=env)
     if p.returncode != 0:
         sys.exit(f"failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr[-2000:]}")
@@ -60,7 +67,7 @@ def floornav_batch(floornav, scenario, tmp):
 def floornav_fleet_run(floornav, scenario, threads, tmp):
     out = os.path.join(tmp, "run")
     run([floornav, "run", scenario, "--threads", str(threads), "--set",
-         "sim.record_trajectory=false", "--quiet", "--no-html", "--out", out])
+         "sim.record_trajectory=false", "--quiet", "--no-html", "--out", out], threads=threads)
     summary = json.load(open(os.path.join(out, "summary.json")))
     return summary["fleet"]["robot_steps"] / summary["wall_time"]
 
@@ -78,9 +85,10 @@ def fleet_bench(bench, threads, seconds, case="QuickBotWarehouse/1000"):
     return json.loads(out)["benchmarks"][0]["items_per_second"]
 
 
-def rvo2(peers, scenario, steps, threads, agents=1000):
+def rvo2(peers, scenario, steps, threads, agents=1000, pinnable=False):
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
-    out = run([os.path.join(peers, "rvo2", "rvo2_driver"), scenario, str(agents), str(steps)], env)
+    out = run([os.path.join(peers, "rvo2", "rvo2_driver"), scenario, str(agents), str(steps)], env,
+              threads if pinnable else None)
     return float(re.search(r"agent_steps_per_s=([0-9.]+)", out).group(1))
 
 
@@ -100,7 +108,12 @@ def main():
     ap.add_argument("--rvo2-blocks-steps", type=int, default=1000)
     ap.add_argument("--fleet-seconds", type=float, default=2.0)
     ap.add_argument("--json", help="also write every measurement here")
+    ap.add_argument("--pin", type=int, metavar="CPU",
+                    help="run both sides of the one-thread circle cases on this CPU (taskset): "
+                    "a virtual machine's vCPUs may change speed independently")
     a = ap.parse_args()
+    global PIN
+    PIN = a.pin
     worlds = os.path.join(a.peers, "worlds")
     cases = []  # (name, unit, floornav fn, peer name, peer fn)
     if a.only in (None, "stage"):
@@ -127,7 +140,7 @@ def main():
                               lambda tmp, n=n, t=t: floornav_fleet_run(
                                   a.floornav, os.path.join(SCENARIOS, f"circle_{n}.yaml"), t, tmp),
                               "RVO2",
-                              lambda n=n, t=t: rvo2(a.peers, "circle", 5000, t, n)))
+                              lambda n=n, t=t: rvo2(a.peers, "circle", 5000, t, n, True)))
     load = os.getloadavg()
     results = []
     with tempfile.TemporaryDirectory() as tmp:
