@@ -74,23 +74,10 @@ constexpr double kFreeMargin = 1e-9;  // m
 // a ray-segment test (its collinear tolerance is 1e-12 m).
 constexpr double kReachMargin = 1e-6;  // m
 
-// The nearest of `others` along the ray, or `best` when none is nearer: ray_circle_hit on each,
-// its three tests (the origin inside, the disc behind, the line missing it) combined without a
-// branch, so that the one branch left is taken only when the ray meets the disc's line ahead
-// (a ray misses most bodies near it, and those tests went either way).
+// The nearest of `others` along the ray, or `best` when none is nearer.
 double nearest_disc(std::span<const Circle> others, const Vec2& origin, const Vec2& dir,
                     double best) {
-  for (const Circle& c : others) {
-    const Vec2 m = origin - c.center;
-    const double cc = m.squaredNorm() - c.radius * c.radius;
-    const double b = m.dot(dir);
-    const double disc = b * b - cc;
-    const unsigned inside = cc <= 0.0;
-    const unsigned ahead = static_cast<unsigned>(b <= 0.0) & static_cast<unsigned>(disc >= 0.0);
-    if ((inside | ahead) == 0) continue;
-    const double t = inside ? 0.0 : -b - std::sqrt(disc);
-    if (t < best) best = t;
-  }
+  for (const Circle& c : others) best = ray_circle_hit(origin, dir, c, best);
   return best;
 }
 

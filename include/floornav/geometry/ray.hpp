@@ -72,10 +72,19 @@ inline bool seen_from_solid_side(double side, const Vec2& pa, const Vec2& e) {
 }
 
 /// The ray against the solid disc `c`: `intersect_ray(c, origin, dir)` when it is below `best`,
-/// else `best`.
+/// else `best`. Its three tests (the origin inside, the disc behind, the line missing it) are
+/// combined without a branch: the one branch left is taken only when the ray meets the disc's
+/// line ahead (a ray misses most discs it is tested against, and those tests went either way).
 inline double ray_circle_hit(const Vec2& origin, const Vec2& dir, const Circle& c, double best) {
-  if (auto t = intersect_ray(c, origin, dir); t && *t < best) return *t;
-  return best;
+  const Vec2 m = origin - c.center;
+  const double cc = m.squaredNorm() - c.radius * c.radius;
+  const double b = m.dot(dir);
+  const double disc = b * b - cc;
+  const unsigned inside = cc <= 0.0;
+  const unsigned ahead = static_cast<unsigned>(b <= 0.0) & static_cast<unsigned>(disc >= 0.0);
+  if ((inside | ahead) == 0) return best;
+  const double t = inside ? 0.0 : -b - std::sqrt(disc);
+  return t < best ? t : best;
 }
 
 }  // namespace floornav
