@@ -68,6 +68,7 @@
 #include "floornav/scenario/shared_floor.hpp"
 #include "floornav/scenario/simulate.hpp"
 #include "floornav/scenario/validate.hpp"
+#include "floornav/sensing/near_point_memory.hpp"
 #include "floornav/sensing/obstacle_memory.hpp"
 #include "floornav/sensing/range_sensor.hpp"
 #include "floornav/sim/crowd.hpp"

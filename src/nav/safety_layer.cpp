@@ -439,6 +439,12 @@ SafetyLayer::SafetyLayer(const RobotSpec& robot, const SafetyParams& params, dou
   for (const Vec2& q : robot.footprint) body_reach_ = std::max(body_reach_, q.norm());
 }
 
+double SafetyLayer::gap_reach() const {
+  const double top = max_forward_speed(robot_->drive);
+  return params_.margin + params_.person_margin + params_.slowdown_distance +
+         2.0 * std::abs(stopping_path({top, 0.0}).v);
+}
+
 UnicycleCommand SafetyLayer::stopping_path(const UnicycleCommand& c) const {
   const double drive = dt_ + params_.reaction_time;
   const double v = std::abs(c.v), w = std::abs(c.omega);

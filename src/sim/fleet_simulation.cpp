@@ -32,13 +32,10 @@ double sensing_reach(const RobotSpec& robot) {
   return reach;
 }
 
-// m of gap within which another body matters to robot `robot`'s safety layer: its field and
-// twice its stopping path at top speed (its share of the room, against a body that takes none).
+// m of gap within which another body matters to robot `robot`'s safety layer. The bodies
+// within it are the ones whose returns its mapless memory does not keep (RobotAgent).
 double safety_reach(const RobotSpec& robot, const SafetyParams& safety, double dt) {
-  const SafetyLayer layer(robot, safety, dt);
-  const double v = max_forward_speed(robot.drive);
-  return safety.margin + safety.person_margin + safety.slowdown_distance +
-         2.0 * std::abs(layer.stopping_path({v, 0.0}).v);
+  return SafetyLayer(robot, safety, dt).gap_reach();
 }
 
 // The work of a robot's step in rays cast (a ray is ~200 instructions): what a thread should have

@@ -28,6 +28,12 @@ constexpr std::size_t kMaxSensorsForMemory = 32;
 // The transition log is reserved for this many switches, so that logging one allocates nothing
 // in the step loop; a run that chatters beyond it grows the log (amortised, rare).
 constexpr std::size_t kReservedTransitions = 1024;
+// Mapless safety's memory of returns: kept this far beyond where they are added (a robot that
+// drives farther than this from a return and then backs towards it has forgotten it), one per
+// square of this side (a lidar's returns on a wall 1 m off lie 6.5 mm apart).
+constexpr double kNearMemoryBeyond = 1.0;  // m
+constexpr double kNearMemoryCell = 0.03;   // m
+constexpr double kNearMemorySlack = 1e-3;  // m, against rounding at the edge of `add`
 std::string fmt_decision_error(int mode, int guard, std::size_t modes, std::size_t guards) {
   return "the controller reported mode " + std::to_string(mode) + " and guard " +
          std::to_string(guard) + ", but names " + std::to_string(modes) + " modes and " +
@@ -100,6 +106,15 @@ RobotAgent::RobotAgent(AgentSetup setup)
   mode_ = controller_->mode();
   if (const SafetyParams& safety = setup.task->controller.safety; safety.enabled)
     safety_.emplace(*robot_, safety, sim_->dt);
+  if (safety_ && safety_->params().map == SafetyMap::Sensed) {
+    // Added within the gap where the layer is told of every moving body (FleetSimulation's
+    // safety discs and boxes): a return nearer than this on a moving body lies on one of them.
+    const double add = robot_->body_radius + safety_->gap_reach() -
+                       robot_return_tolerance(*robot_) - kNearMemorySlack;
+    near_memory_ = std::make_unique<NearPointMemory>(
+        std::max(add, 0.0), std::max(add, 0.0) + kNearMemoryBeyond, kNearMemoryCell);
+    safety_points_.resize(robot_->sensors.size() + 1 + NearPointMemory::kCapacity);
+  }
   const std::size_t n_sensors = robot_->sensors.size();
   use_memory_ = nav_->obstacle_memory > 0.0 && n_sensors <= kMaxSensorsForMemory;
   stuck_radius_ = sim_->stuck_radius > 0.0 ? sim_->stuck_radius : robot_->body_radius;
@@ -242,9 +257,8 @@ void RobotAgent::guard(const SensingScratch& scratch, WheelSpeeds& wheels,
     scene.points = {scratch.sensed.data(), scratch.sensed_count};
     scene.points_nearest_d2 = scratch.sensed_nearest_d2;
     scene.points_origin = scratch.sensed_origin;
-  } else {  // mapless: what it sensed, and remembers
-    scene.points = use_memory_ ? std::span<const Vec2>(scratch.points.data(), scratch.point_count)
-                               : std::span<const Vec2>(scratch.sensed.data(), scratch.sensed_count);
+  } else {  // mapless: what it senses, and the returns it remembers near it
+    scene.points = mapless_points(scratch);
   }
   const SafetyVerdict verdict = safety_->filter(pose_, driven, scene);
   if (!verdict.limited) return;
@@ -264,6 +278,27 @@ void RobotAgent::guard(const SensingScratch& scratch, WheelSpeeds& wheels,
     driven = {};
   }
   ++result_.safety_steps;
+}
+
+std::span<const Vec2> RobotAgent::mapless_points(const SensingScratch& scratch) {
+  const std::span<const Vec2> sensed(scratch.sensed.data(), scratch.sensed_count);
+  // Returns on bodies that move (robots that run, people, forklifts) are not world to keep.
+  const double tolerance = robot_return_tolerance(*robot_);
+  moving_bodies_.clear();
+  for (std::size_t k = 0; k < scratch.safety_disc_count; ++k) {
+    const SafetyDisc& d = scratch.safety_discs[k];
+    if (d.reciprocal || d.approach > 0.0)
+      moving_bodies_.push_back({d.position, d.radius + tolerance});
+  }
+  for (std::size_t k = 0; k < scratch.safety_box_count; ++k) {
+    const OrientedBox& b = scratch.safety_boxes[k].box;
+    moving_bodies_.push_back({b.center, b.bounding_radius() + tolerance});
+  }
+  const std::span<const Vec2> kept = near_memory_->update(sensed, pose_.position, moving_bodies_);
+  // This step's returns as they are (a remembered square may hold an older return of it).
+  std::copy(sensed.begin(), sensed.end(), safety_points_.begin());
+  std::copy(kept.begin(), kept.end(), safety_points_.begin() + sensed.size());
+  return {safety_points_.data(), sensed.size() + kept.size()};
 }
 
 void RobotAgent::note_movers(const SensingScratch& scratch) {

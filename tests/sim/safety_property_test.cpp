@@ -113,3 +113,35 @@ TEST(SafetyProperty, QuickBotFleetsOnGeneratedFloorsNeverTouchAndDeliver) {
   tally.print("QuickBot fleets");
   EXPECT_GE(100 * tally.delivered_all, 80 * tally.robots);
 }
+
+// Mapless (controller.safety.map: sensed, as BARN runs): the lidar robots' layers (TurtleBot3's
+// 360 degree lidar, the Jackal's 270 degree one) know only their own returns and those they
+// remember near them. The mixed fleets again, people and forklifts on some floors: never a
+// contact. (Five IR beams or a sonar ring leave gaps a corner fits in: mapless, those robots
+// are safe only against what they happen to see, docs/SAFETY.md.)
+TEST(SafetyProperty, MaplessLidarRobotsOnGeneratedFloorsNeverTouch) {
+  Tally tally, known;
+  int mapless = 0;
+  const int n = floors_to_run(12);
+  for (int k = 0; k < n; ++k) {
+    const std::uint64_t seed = 9000 + static_cast<std::uint64_t>(k);
+    SharedFloorOptions o;
+    o.t_max = 45.0;
+    Scenario s = make_shared_floor(seed, o);
+    for (RobotTask& t : s.robots)
+      if (t.robot.sensors.size() >= 270) {
+        t.controller.safety.map = SafetyMap::Sensed;
+        ++mapless;
+      }
+    const FleetResult f = simulate_fleet(s, 1);
+    expect_no_contact(s, f, seed);
+    tally.add(s, f);
+    for (RobotTask& t : s.robots) t.controller.safety.map = SafetyMap::Known;
+    known.add(s, simulate_fleet(s, 1));
+  }
+  tally.print("mixed fleets, lidar robots mapless");
+  known.print("the same fleets on their maps");
+  EXPECT_GT(mapless, n) << "the draw has too few lidar robots to test anything";
+  // Knowing less, they may deliver a little less, but must not freeze.
+  EXPECT_GE(4 * tally.deliveries, 3 * known.deliveries);
+}

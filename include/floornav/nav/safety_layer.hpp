@@ -115,6 +115,11 @@ class SafetyLayer {
 
   const SafetyParams& params() const { return params_; }
 
+  /// m of gap within which another body matters to the layer: its field (margin, person margin,
+  /// slow-down distance) and twice its stopping path at top speed (its share of the room, against
+  /// a body that takes none).
+  double gap_reach() const;
+
  private:
   /// slack(), and where `blocker` is given, the nearest point of what bound it (unchanged when
   /// nothing binds).

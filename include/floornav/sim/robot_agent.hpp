@@ -23,6 +23,7 @@
 #include "floornav/nav/controller.hpp"
 #include "floornav/nav/pid.hpp"
 #include "floornav/nav/safety_layer.hpp"
+#include "floornav/sensing/near_point_memory.hpp"
 #include "floornav/sensing/obstacle_memory.hpp"
 #include "floornav/sensing/range_sensor.hpp"
 #include "floornav/sim/robot_task.hpp"
@@ -196,6 +197,8 @@ class RobotAgent {
   bool check_liveness();
   /// Step 4b: the safety layer's verdict on the command about to be driven.
   void guard(const SensingScratch& scratch, WheelSpeeds& wheels, UnicycleCommand& driven);
+  /// Mapless safety's points: this step's returns and the near ones remembered.
+  std::span<const Vec2> mapless_points(const SensingScratch& scratch);
   /// Appends the extra columns (SimConfig::record) of the row just recorded.
   void record_extras(const SensingScratch* scratch);
   /// Whether the run records sensor ranges at all, and at `step` (either interval's multiple).
@@ -265,6 +268,11 @@ class RobotAgent {
   /// Last: 2.3 KB that most robots never touch (controller.obstacle_memory is off by default),
   /// kept from between the fields every step reads.
   ObstacleMemory memory_{};
+  /// Mapless safety (SafetyMap::Sensed) only: the returns near the robot, for the layer to keep
+  /// clear of where the sensors no longer see (RobotAgent::guard).
+  std::unique_ptr<NearPointMemory> near_memory_;
+  std::vector<Vec2> safety_points_;    ///< this step's returns, then the remembered ones
+  std::vector<Circle> moving_bodies_;  ///< the step's moving bodies, whose returns are not kept
 };
 
 }  // namespace floornav
