@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "floornav/geometry/angle.hpp"
@@ -185,7 +186,11 @@ TEST(Circle, RayAndDistance) {
   EXPECT_DOUBLE_EQ(*t, 2.0);
   EXPECT_FALSE(intersect_ray(c, Vec2(0, 0), Vec2(0, 1)));
   EXPECT_DOUBLE_EQ(*intersect_ray(c, Vec2(3, 0.5), Vec2(0, 1)), 0.0);  // inside
-  EXPECT_DOUBLE_EQ(signed_distance(c, Vec2(0, 4)), 4.0);               // |(-3,4)| - 1
+  EXPECT_DOUBLE_EQ(*intersect_ray(c, Vec2(0, 1), Vec2(1, 0)), 3.0);    // grazing: tangent at (3, 1)
+  EXPECT_FALSE(intersect_ray(c, Vec2(5, 0), Vec2(1, 0)));              // behind
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(intersect_ray(c, Vec2(nan, 0), Vec2(1, 0)));  // no number, no hit
+  EXPECT_DOUBLE_EQ(signed_distance(c, Vec2(0, 4)), 4.0);     // |(-3,4)| - 1
   EXPECT_DOUBLE_EQ(signed_distance(c, Vec2(3, 0)), -1.0);
 }
 

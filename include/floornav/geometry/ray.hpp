@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <utility>
 
 #include "floornav/geometry/box2.hpp"
@@ -71,10 +73,12 @@ inline bool seen_from_solid_side(double side, const Vec2& pa, const Vec2& e) {
   return side * cross(pa, e) > 0.0;
 }
 
-/// The ray against the solid disc `c`: `intersect_ray(c, origin, dir)` when it is below `best`,
-/// else `best`. Its three tests (the origin inside, the disc behind, the line missing it) are
-/// combined without a branch: the one branch left is taken only when the ray meets the disc's
-/// line ahead (a ray misses most discs it is tested against, and those tests went either way).
+/// The ray `origin + t dir` (t >= 0, `dir` a unit vector) against the solid disc `c`: the
+/// distance t to its boundary (0 when the origin is inside) when it is below `best`, else `best`
+/// (a NaN counts as no hit). Its three tests (the origin inside, the disc behind, the line
+/// missing it) are combined without a branch: the one branch left is taken only when the ray
+/// meets the disc's line ahead (a ray misses most discs it is tested against, and those tests
+/// went either way).
 inline double ray_circle_hit(const Vec2& origin, const Vec2& dir, const Circle& c, double best) {
   const Vec2 m = origin - c.center;
   const double cc = m.squaredNorm() - c.radius * c.radius;
@@ -85,6 +89,14 @@ inline double ray_circle_hit(const Vec2& origin, const Vec2& dir, const Circle& 
   if ((inside | ahead) == 0) return best;
   const double t = inside ? 0.0 : -b - std::sqrt(disc);
   return t < best ? t : best;
+}
+
+/// `ray_circle_hit` without a bound: the distance to the disc's boundary (0 from inside), or none
+/// when the ray misses it.
+inline std::optional<double> intersect_ray(const Circle& c, const Vec2& origin, const Vec2& dir) {
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  const double t = ray_circle_hit(origin, dir, c, kNone);
+  return t < kNone ? std::optional<double>(t) : std::nullopt;
 }
 
 }  // namespace floornav
