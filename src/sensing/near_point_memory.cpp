@@ -64,9 +64,11 @@ std::span<const Vec2> NearPointMemory::update(std::span<const Vec2> points, cons
     keys_[kept] = keys_[k];
     ++kept;
   }
-  points_.resize(kept);
-  keys_.resize(kept);
-  refill_table();
+  if (kept < points_.size()) {  // indices moved: the table is filed afresh
+    points_.resize(kept);
+    keys_.resize(kept);
+    refill_table();
+  }
   for (const Vec2& q : points) {
     if (points_.size() == kCapacity) break;
     // Not near, or not a number (a NaN compares false): not kept.

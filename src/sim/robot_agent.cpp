@@ -109,10 +109,10 @@ RobotAgent::RobotAgent(AgentSetup setup)
   if (safety_ && safety_->params().map == SafetyMap::Sensed) {
     // Added within the gap where the layer is told of every moving body (FleetSimulation's
     // safety discs and boxes): a return nearer than this on a moving body lies on one of them.
-    const double add = robot_->body_radius + safety_->gap_reach() -
-                       robot_return_tolerance(*robot_) - kNearMemorySlack;
-    near_memory_ = std::make_unique<NearPointMemory>(
-        std::max(add, 0.0), std::max(add, 0.0) + kNearMemoryBeyond, kNearMemoryCell);
+    const double add = std::max(robot_->body_radius + safety_->gap_reach() -
+                                    robot_return_tolerance(*robot_) - kNearMemorySlack,
+                                0.0);
+    near_memory_ = std::make_unique<NearPointMemory>(add, add + kNearMemoryBeyond, kNearMemoryCell);
     safety_points_.resize(robot_->sensors.size() + 1 + NearPointMemory::kCapacity);
   }
   const std::size_t n_sensors = robot_->sensors.size();

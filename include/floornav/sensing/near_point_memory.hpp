@@ -33,8 +33,6 @@ class NearPointMemory {
                                std::span<const Circle> moving);
 
   std::span<const Vec2> points() const { return points_; }
-  double add() const { return add_; }
-  double keep() const { return keep_; }
   void clear();
 
  private:
@@ -49,10 +47,10 @@ class NearPointMemory {
   std::vector<Vec2> points_;         ///< reserved kCapacity
   std::vector<std::uint64_t> keys_;  ///< the square of each point
   /// Open addressing over the squares held: index + 1 into points_, valid when its stamp is
-  /// the current one (so that refilling needs no pass over the whole table).
+  /// the current one (so that refilling needs no pass over the whole table; 0 is never current).
   std::vector<std::uint32_t> slot_index_;
   std::vector<std::uint32_t> slot_stamp_;
-  std::uint32_t stamp_{0};
+  std::uint32_t stamp_{1};
 };
 
 }  // namespace floornav
