@@ -44,6 +44,8 @@ std::string fmt_decision_error(int mode, int guard, std::size_t modes, std::size
 constexpr double kClearanceBoundSlack = 1e-9;  // m
 // m/s: a robot slower than this is waiting (RunResult::wait_time).
 constexpr double kStillSpeed = 0.01;
+// A robot that comes this fraction of sim.stuck_radius nearer its goal has moved (liveness).
+constexpr double kCreep = 0.1;
 // The least (q - p).squaredNorm() over `points`, as the safety layer computes it (NaN when one
 // is not a number: the layer then goes over the points itself).
 double nearest_d2(std::span<const Vec2> points, const Vec2& p) {
@@ -121,6 +123,7 @@ RobotAgent::RobotAgent(AgentSetup setup)
   stuck_anchor_ = pose_.position;
   if (!goals_.empty()) goal_ = goals_.front();
   progress_best_ = (goal_ - pose_.position).norm();
+  stuck_anchor_to_goal_ = goals_.empty() ? 0.0 : progress_best_;
   if (const double rate = std::round(1.0 / sim_->dt);
       rate >= 1.0 && rate <= 1e9 && std::abs(rate * sim_->dt - 1.0) < 1e-12)
     steps_per_second_ = rate;
@@ -329,16 +332,20 @@ bool RobotAgent::check_liveness() {
   RunResult& r = result_;
   // Among moving bodies: one was near within the last stuck_window.
   const bool among = t_ - mover_time_ <= sim_->stuck_window;
-  if ((pose_.position - stuck_anchor_).norm() > stuck_radius_) {
+  const double to_goal = goals_.empty() ? 0.0 : (goal_ - pose_.position).norm();
+  // A robot that keeps closing in on its goal is not stuck however slowly it goes (go-to-goal
+  // slows down near the goal, eq. 5.19): coming nearer by a tenth of the radius counts as a move.
+  if ((pose_.position - stuck_anchor_).norm() > stuck_radius_ ||
+      to_goal < stuck_anchor_to_goal_ - kCreep * stuck_radius_) {
     stuck_anchor_ = pose_.position;
     stuck_anchor_time_ = t_;
+    stuck_anchor_to_goal_ = to_goal;
   } else if (t_ - stuck_anchor_time_ >= (among ? sim_->deadlock_window : sim_->stuck_window)) {
     r.stuck_cause = among ? "deadlock" : "no_progress";
     finish(RunStatus::Stuck);
     return true;
   }
   if (goals_.empty()) return false;
-  const double to_goal = (goal_ - pose_.position).norm();
   if (to_goal < progress_best_ - stuck_radius_) {
     progress_best_ = to_goal;
     progress_time_ = t_;
@@ -485,6 +492,7 @@ bool RobotAgent::next_goal() {
   goal_ = goals_[goal_index_];
   progress_best_ = (goal_ - pose_.position).norm();
   progress_time_ = t_;
+  stuck_anchor_to_goal_ = progress_best_;
   controller_->reset();
   mode_ = controller_->mode();
   pid_ = {};

@@ -141,6 +141,23 @@ TEST(Outcomes, StuckAndTimeoutAreReported) {
   EXPECT_NEAR(timeout.sim_time, 5.0, 1e-6);
 }
 
+// Liveness watches progress, not speed: a robot that crawls towards its goal, slower than
+// sim.stuck_radius per sim.stuck_window, is not stuck (the Pioneer's arena at 0.05 m/s slows
+// to 8 mm/s before its goal, eq. 5.19); one that sits still is.
+TEST(Outcomes, CrawlingTowardsTheGoalIsNotStuck) {
+  const RunResult crawl = run("coppeliasim_pioneer.yaml", {"controller.v0=0.05", "sim.t_max=800"});
+  EXPECT_EQ(crawl.status, RunStatus::Reached) << crawl.stuck_cause;
+  const std::string hall = "world: {bounds: [-1, -1, 3, 1]}\nrobot: {start: [0, 0, 0]}\n";
+  const RunResult slow = simulate(load_scenario_text(
+      hall + "goal: [0.8, 0]\ncontroller: {v0: 0.01}\nsim: {t_max: 400}\n", "slow.yaml"));
+  EXPECT_EQ(slow.status, RunStatus::Reached) << slow.stuck_cause;
+  // A cruise speed that rounds to nothing on the wheels: no move, no progress.
+  const RunResult still = simulate(load_scenario_text(
+      hall + "goal: [0.8, 0]\ncontroller: {v0: 1e-9}\nsim: {t_max: 400}\n", "still.yaml"));
+  EXPECT_EQ(still.status, RunStatus::Stuck);
+  EXPECT_EQ(still.stuck_cause, "no_progress");
+}
+
 // The run that once lied: a robot on a map without bounds, a wall across the map's whole height
 // between it and its goal. Off the map is solid, so it cannot drive round the wall: the run is
 // never `reached` (the grid optimum already said no path exists).

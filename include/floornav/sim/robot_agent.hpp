@@ -241,8 +241,10 @@ class RobotAgent {
   bool use_memory_{false};
   bool log_transitions_{true};
   bool disc_body_{true};  ///< no footprint polygon: the body is the disc
+  // Where the robot last moved (or came nearer its goal), when, and its goal distance then.
   Vec2 stuck_anchor_{Vec2::Zero()};
   double stuck_anchor_time_{0.0};
+  double stuck_anchor_to_goal_{0.0};
   // Liveness: the nearest goal distance so far (for this goal) and when it was reached; the
   // moving body last near, and when.
   double progress_best_{0.0};

@@ -22,11 +22,13 @@ struct RecordOptions {
 
 /// How a run is simulated.
 struct SimConfig {
-  double dt{0.01};            ///< s, fixed control and integration step
-  double t_max{120.0};        ///< s, then the run ends as `timeout`
-  std::uint64_t seed{1};      ///< the run's random seed (sensor noise)
-  double stuck_window{10.0};  ///< s: a robot that stays within stuck_radius this long is `stuck`
-  double stuck_radius{0.0};   ///< m; 0 means the robot's body radius
+  double dt{0.01};        ///< s, fixed control and integration step
+  double t_max{120.0};    ///< s, then the run ends as `timeout`
+  std::uint64_t seed{1};  ///< the run's random seed (sensor noise)
+  /// s: a robot that stays within stuck_radius this long, and comes less than a tenth of it
+  /// nearer its goal, is `stuck` (a robot crawling towards its goal is not)
+  double stuck_window{10.0};
+  double stuck_radius{0.0};  ///< m; 0 means the robot's body radius
   /// s: a robot held up among moving bodies (robots, people, forklifts) waits this long before
   /// its run ends `stuck` as a deadlock (it waits in traffic; stuck_window is for the rest)
   double deadlock_window{60.0};
@@ -55,7 +57,8 @@ struct SimConfig {
     f("t_max", &P::t_max, "simulated time limit, s");
     f("seed", &P::seed, "random seed (sensor noise)");
     f("stuck_window", &P::stuck_window,
-      "a robot that stays within stuck_radius this long is stuck, s");
+      "a robot that stays within stuck_radius this long, not a tenth of it nearer its goal, is "
+      "stuck, s");
     f("stuck_radius", &P::stuck_radius, "m; 0 means the body radius");
     f("deadlock_window", &P::deadlock_window,
       "a robot held up among moving bodies this long is stuck (deadlock), s");
