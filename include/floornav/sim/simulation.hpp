@@ -12,10 +12,10 @@
 ///   6. check: clearance and collision (the body is a disc), goal, stuck, time limit;
 ///   7. record: metrics, and the trajectory row when recording.
 /// A run ends `reached` (every goal), `collision`, `timeout` (t_max) or `stuck` (the robot stayed
-/// within stuck_radius, no nearer its goal, for stuck_window seconds). The step never throws and allocates nothing
-/// once running (trajectory recording aside; the transition log is reserved for 1024 switches and
-/// grows only beyond that; tests/allocation_test.cpp checks). Same scenario and seed: the same
-/// trajectory, bit for bit.
+/// within stuck_radius, no nearer its goal, for stuck_window seconds). The step never throws and
+/// allocates nothing once running (trajectory recording aside; the transition log is reserved for
+/// 1024 switches and grows only beyond that; tests/allocation_test.cpp checks). Same scenario and
+/// seed: the same trajectory, bit for bit.
 
 #include <string>
 #include <utility>
