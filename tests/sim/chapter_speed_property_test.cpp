@@ -6,10 +6,10 @@
 // FLOORNAV_CHAPTER_DRAWS=N draws N cases per test instead of the suite's bounded count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <map>
 #include <string>
 #include <vector>
@@ -18,6 +18,7 @@
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/scenario_file.hpp"
 #include "floornav/scenario/simulate.hpp"
+#include "support/property_count.hpp"
 
 using namespace floornav;
 
@@ -29,12 +30,7 @@ constexpr std::array<const char*, 9> kScenes{
     "practice2_pillars.yaml", "factory_delivery.yaml", "coppeliasim_pioneer.yaml"};
 
 int draws(int default_count) {
-  if (const char* n = std::getenv("FLOORNAV_CHAPTER_DRAWS")) return std::max(1, std::atoi(n));
-#ifdef NDEBUG
-  return default_count;
-#else
-  return std::max(1, default_count / 5);  // the sanitizer suite, 10-20x slower
-#endif
+  return test::property_count("FLOORNAV_CHAPTER_DRAWS", default_count);
 }
 
 std::string path(const char* scene) {
@@ -59,12 +55,21 @@ struct Case {
   }
 };
 
+// Each scene as written, loaded once.
+const Scenario& as_written(std::size_t scene) {
+  static const std::vector<Scenario> scenes = [] {
+    std::vector<Scenario> all;
+    for (const char* s : kScenes) all.push_back(load_scenario_file(path(s)));
+    return all;
+  }();
+  return scenes[scene];
+}
+
 // The scene's time limit, stretched for a drawn speed below the one it was written for: a
 // scene timed for 0.3 m/s gets six times as long at 0.05 m/s (a livelock still runs out of it).
-double slowed_time_limit(const char* scene, double v0) {
-  const Scenario s = load_scenario_file(path(scene));
-  const RobotTask& t = s.robots.front();
-  return s.sim.t_max * std::max(1.0, t.controller.params.v0 / v0);
+double slowed_time_limit(std::size_t scene, double v0) {
+  const Scenario& s = as_written(scene);
+  return s.sim.t_max * std::max(1.0, s.robots.front().controller.params.v0 / v0);
 }
 
 void expect_never_touches(const Case& c, const RunResult& r) {
@@ -84,10 +89,11 @@ TEST(ChapterSpeedProperty, ScenesAsWrittenAtDrawnSpeedsNeverTouch) {
   int reached = 0;
   std::map<std::string, int> missed;
   for (int k = 0; k < n; ++k) {
-    Case c{kScenes[static_cast<std::size_t>(k) % kScenes.size()], {}};
+    const std::size_t scene = static_cast<std::size_t>(k) % kScenes.size();
+    Case c{kScenes[scene], {}};
     const double v0 = rng.uniform(0.05, 0.3);
     c.sets.push_back("controller.v0=" + number(v0));
-    c.sets.push_back("sim.t_max=" + number(slowed_time_limit(c.scene.c_str(), v0)));
+    c.sets.push_back("sim.t_max=" + number(slowed_time_limit(scene, v0)));
     const RunResult r = simulate(load_scenario_file(path(c.scene.c_str()), c.sets));
     expect_never_touches(c, r);
     reached += r.status == RunStatus::Reached;
@@ -107,8 +113,9 @@ TEST(ChapterSpeedProperty, AnyControllerFromDrawnStartsNeverTouches) {
   const int n = draws(450);
   int reached = 0, refused = 0;
   for (int k = 0; k < n; ++k) {
-    const char* scene = kScenes[static_cast<std::size_t>(k) % kScenes.size()];
-    const Pose2 start = load_scenario_file(path(scene)).robots.front().start;
+    const std::size_t index = static_cast<std::size_t>(k) % kScenes.size();
+    const char* scene = kScenes[index];
+    const Pose2 start = as_written(index).robots.front().start;
     bool ran = false;
     for (int attempt = 0; attempt < 50 && !ran; ++attempt) {
       const Vec2 at = start.position + Vec2(rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2));

@@ -8,26 +8,19 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 
 #include "floornav/scenario/shared_floor.hpp"
 #include "floornav/scenario/simulate.hpp"
 #include "floornav/scenario/validate.hpp"
+#include "support/property_count.hpp"
 
 using namespace floornav;
 
 namespace {
 
-// The Release suite runs the full counts; a build without NDEBUG (CI's sanitizer suite, 10-20x
-// slower) a fifth of them, so that the test stays within its time limit there.
 int floors_to_run(int default_count) {
-  if (const char* n = std::getenv("FLOORNAV_SAFETY_FLOORS")) return std::max(1, std::atoi(n));
-#ifdef NDEBUG
-  return default_count;
-#else
-  return std::max(1, default_count / 5);
-#endif
+  return test::property_count("FLOORNAV_SAFETY_FLOORS", default_count);
 }
 
 struct Tally {
