@@ -1,13 +1,12 @@
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <random>
 
 #include "floornav/geometry/angle.hpp"
 #include "floornav/kinematics/differential_drive.hpp"
 #include "floornav/kinematics/unicycle.hpp"
+#include "support/bits.hpp"
 
 using namespace floornav;
 
@@ -117,11 +116,9 @@ TEST(Unicycle, AGivenHeadingGivesTheSamePoseBits) {
     for (const UnicycleCommand u : {UnicycleCommand{0.3, -0.8}, UnicycleCommand{0.2, 0.0}}) {
       const Pose2 a = integrate_unicycle(p, u, 0.05);
       const Pose2 b = integrate_unicycle(p, u, 0.05, Vec2(std::cos(theta), std::sin(theta)));
-      EXPECT_EQ(std::bit_cast<std::uint64_t>(a.position.x()),
-                std::bit_cast<std::uint64_t>(b.position.x()));
-      EXPECT_EQ(std::bit_cast<std::uint64_t>(a.position.y()),
-                std::bit_cast<std::uint64_t>(b.position.y()));
-      EXPECT_EQ(std::bit_cast<std::uint64_t>(a.theta), std::bit_cast<std::uint64_t>(b.theta));
+      EXPECT_EQ(test::bits(a.position.x()), test::bits(b.position.x()));
+      EXPECT_EQ(test::bits(a.position.y()), test::bits(b.position.y()));
+      EXPECT_EQ(test::bits(a.theta), test::bits(b.theta));
     }
   }
 }

@@ -3,22 +3,19 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <vector>
 
 #include "floornav/core/rng.hpp"
 #include "floornav/nav/behaviours.hpp"
 #include "floornav/nav/navigation_input.hpp"
+#include "support/bits.hpp"
 
 namespace floornav {
 namespace {
 
-std::uint64_t bits(double v) {
-  return std::bit_cast<std::uint64_t>(v);
-}
+using test::bits;
 
 // The steps one after the other: the points within obstacle_range + body_radius (the first 1024
 // of them), then eq. 5.20 over those, then the nearest of them from the body disc.

@@ -3,9 +3,7 @@
 // what the disc does not cover (the occupancy grid, other robots' bodies) is still seen.
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -15,13 +13,12 @@
 #include "floornav/sensing/sensor_fans.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
+#include "support/bits.hpp"
 
 namespace floornav {
 namespace {
 
-std::uint64_t bits(double v) {
-  return std::bit_cast<std::uint64_t>(v);
-}
+using test::bits;
 
 // A 12 m hall with 4 m racks in rows 3 m apart, and a few pillars.
 World rack_hall() {

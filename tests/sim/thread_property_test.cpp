@@ -10,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cstdint>
 #include <cstdio>
 
@@ -18,6 +17,7 @@
 #include "floornav/scenario/shared_floor.hpp"
 #include "floornav/scenario/simulate.hpp"
 #include "floornav/sim/fleet_simulation.hpp"
+#include "support/bits.hpp"
 #include "support/property_count.hpp"
 
 using namespace floornav;
@@ -27,7 +27,7 @@ namespace {
 // Bit for bit: every double compared as its bits, so that a NaN or a signed zero cannot hide
 // (a row's padding is not compared).
 bool same_bits(double a, double b) {
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+  return test::bits(a) == test::bits(b);
 }
 bool same_bits(const TrajectorySample& a, const TrajectorySample& b) {
   return same_bits(a.t, b.t) && same_bits(a.x, b.x) && same_bits(a.y, b.y) &&

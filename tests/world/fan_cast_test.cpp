@@ -3,9 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -17,13 +15,12 @@
 #include "floornav/sensing/sensor_fans.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
+#include "support/bits.hpp"
 
 namespace floornav {
 namespace {
 
-std::uint64_t bits(double v) {
-  return std::bit_cast<std::uint64_t>(v);
-}
+using test::bits;
 
 /// A random walled floor: star-shaped polygons (some sharing vertices' rows and columns, so that
 /// rays graze them), circles and points, optionally over an occupancy grid.

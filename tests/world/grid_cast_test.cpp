@@ -2,9 +2,7 @@
 // random grids and on the AWS warehouse map.
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <vector>
@@ -13,15 +11,14 @@
 #include "floornav/geometry/angle.hpp"
 #include "floornav/io/ros_map.hpp"
 #include "floornav/world/occupancy_grid.hpp"
+#include "support/bits.hpp"
 
 namespace floornav {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using test::bits;
 
-std::uint64_t bits(double v) {
-  return std::bit_cast<std::uint64_t>(v);
-}
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 void expect_grid_rays_match(const OccupancyGrid& g, Rng& rng, int rays, const char* what) {
   Vec2 lo, hi;

@@ -4,9 +4,7 @@
 // oracle), on the cave the peer benchmark uses (0.032 m cells, 180 beams, 8 m) and on real maps.
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <filesystem>
 #include <utility>
 #include <vector>
@@ -17,13 +15,12 @@
 #include "floornav/io/ros_map.hpp"
 #include "floornav/world/fan_index.hpp"
 #include "floornav/world/occupancy_grid.hpp"
+#include "support/bits.hpp"
 
 namespace floornav {
 namespace {
 
-std::uint64_t bits(double v) {
-  return std::bit_cast<std::uint64_t>(v);
-}
+using test::bits;
 
 // A lidar of n beams over `fov` (2 pi: a full turn, the last beam one step short of the first)
 // centred on `heading`, angles wrapped as sensors wrap them.

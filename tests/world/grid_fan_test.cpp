@@ -2,9 +2,7 @@
 // cast_ray_cell_by_cell, bit for bit, on random grids and on the AWS warehouse map.
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <utility>
@@ -18,15 +16,14 @@
 #include "floornav/world/fan_index.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
+#include "support/bits.hpp"
 
 namespace floornav {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using test::bits;
 
-std::uint64_t bits(double v) {
-  return std::bit_cast<std::uint64_t>(v);
-}
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // A lidar's beams: angle first + k * 2 pi / n, wrapped as sensors wrap them. Beams within 1e-12
 // rad of an axis or a diagonal get the exact axis or diagonal direction (angles within 1e-9 of
@@ -383,8 +380,7 @@ TEST(GridFan, CastsBeamsWithOtherDirectionsRayByRay) {
     std::vector<double> out(dirs.size(), -1.0);
     g.cast_fan(o, dirs, angles, range, out);
     for (std::size_t k = 0; k < dirs.size(); ++k)
-      EXPECT_EQ(std::bit_cast<std::uint64_t>(out[k]),
-                std::bit_cast<std::uint64_t>(g.cast_ray(o, dirs[k], range)))
+      EXPECT_EQ(bits(out[k]), bits(g.cast_ray(o, dirs[k], range)))
           << "range " << range << " beam " << k;
   }
   std::vector<double> out(dirs.size());

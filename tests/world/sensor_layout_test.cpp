@@ -4,9 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -17,13 +15,12 @@
 #include "floornav/sensing/sensor_fans.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
+#include "support/bits.hpp"
 
 namespace floornav {
 namespace {
 
-std::uint64_t bits(double v) {
-  return std::bit_cast<std::uint64_t>(v);
-}
+using test::bits;
 
 void append(std::vector<RangeSensorSpec>& to, const std::vector<RangeSensorSpec>& from) {
   to.insert(to.end(), from.begin(), from.end());

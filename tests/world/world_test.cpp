@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -13,6 +12,7 @@
 #include "floornav/geometry/polygon.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
+#include "support/bits.hpp"
 
 using namespace floornav;
 
@@ -171,7 +171,7 @@ int walk_with_hint(const World& w, Vec2 p, int steps, double stride, std::uint64
     p += w.extent().contains(p + step) ? step : -step;  // stays about the world
     const Vec2 before = hint.at;
     const double hinted = w.clearance(p, hint);
-    EXPECT_EQ(std::bit_cast<std::uint64_t>(hinted), std::bit_cast<std::uint64_t>(w.clearance(p)))
+    EXPECT_EQ(test::bits(hinted), test::bits(w.clearance(p)))
         << "step " << i << " at " << p.transpose();
     searches += i == 0 || hint.at != before;
   }
