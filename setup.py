@@ -52,6 +52,11 @@ class CMakeBuild(build_ext):
         target = Path(self.get_ext_fullpath(ext.name))
         target.parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(built[0], target)
+        # A build with OMPL: the rrt_connect planner's module (built with the extension), which
+        # the extension loads from beside itself on the first rrt_connect plan.
+        module = build / "libfloornav_rrt_connect.so"
+        if module.exists():
+            shutil.copyfile(module, target.parent / module.name)
 
     @staticmethod
     def configure(build: Path) -> None:

@@ -1,6 +1,5 @@
-# ompl::ompl for a found OMPL, in floornav's build and in its installed package config (the same
-# file is installed beside floornavConfig.cmake). Debian's OMPL config sets variables only; an
-# imported target keeps OMPL's paths out of floornav's exported link interface.
+# ompl::ompl for a found OMPL, which the rrt_connect module links. Debian's OMPL config sets
+# variables only; an imported target keeps them in one place.
 if(NOT TARGET ompl::ompl)
   add_library(ompl::ompl INTERFACE IMPORTED)
   # libompl.so alone: a shared library brings its own dependencies. (The config also lists

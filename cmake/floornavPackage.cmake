@@ -16,6 +16,7 @@ include(CMakePackageConfigHelpers)
 
 set(FLOORNAV_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/floornav)
 set(FLOORNAV_INSTALL_SCENARIODIR ${CMAKE_INSTALL_DATADIR}/floornav/scenarios)
+set(FLOORNAV_INSTALL_MODULEDIR ${CMAKE_INSTALL_LIBDIR}/floornav)
 
 # The libraries in dependency order (each after those it links): the order the config loads them.
 set(FLOORNAV_COMPONENTS core)
@@ -40,9 +41,14 @@ endforeach()
 
 # The umbrella: every library (floornav/floornav.hpp), one name to link; with floornav::ompl in a
 # build with OMPL, so that its programs have the rrt_connect planner.
+# (Named outright: $<TARGET_NAME_IF_EXISTS:floornav_ompl> would be exported as it is, and a
+# program built against the install, where the target is floornav::ompl, would not link it.)
 add_library(floornav_floornav INTERFACE)
 target_link_libraries(floornav_floornav INTERFACE
-  floornav_core floornav_io floornav_render floornav_runner $<TARGET_NAME_IF_EXISTS:floornav_ompl>)
+  floornav_core floornav_io floornav_render floornav_runner)
+if(TARGET floornav_ompl)
+  target_link_libraries(floornav_floornav INTERFACE floornav_ompl)
+endif()
 set_target_properties(floornav_floornav PROPERTIES EXPORT_NAME floornav)
 add_library(floornav::floornav ALIAS floornav_floornav)
 install(TARGETS floornav_floornav EXPORT floornav-floornav-targets)
@@ -60,20 +66,29 @@ install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} ${_floornav_n
 configure_package_config_file(cmake/floornavConfig.cmake.in
   ${PROJECT_BINARY_DIR}/floornavConfig.cmake
   INSTALL_DESTINATION ${FLOORNAV_INSTALL_CMAKEDIR}
-  PATH_VARS FLOORNAV_INSTALL_SCENARIODIR)
+  PATH_VARS FLOORNAV_INSTALL_SCENARIODIR FLOORNAV_INSTALL_MODULEDIR)
 # 0.x: the minor version may still break the API; SameMajorVersion is the promise from 1.0 on.
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/floornavConfigVersion.cmake
   COMPATIBILITY SameMajorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/floornavConfig.cmake
   ${PROJECT_BINARY_DIR}/floornavConfigVersion.cmake cmake/floornavLibdeflateTarget.cmake
   DESTINATION ${FLOORNAV_INSTALL_CMAKEDIR})
-if(TARGET floornav_ompl)
-  install(FILES cmake/floornavOmplTarget.cmake DESTINATION ${FLOORNAV_INSTALL_CMAKEDIR})
+
+# The rrt_connect module (loaded on the first search; see CMakeLists.txt) in its own directory,
+# which the config puts on the run path of programs linking floornav::ompl, and the installed
+# tool finds relative to itself: the install may be moved (cmake --install --prefix).
+if(TARGET floornav_rrt_connect)
+  install(TARGETS floornav_rrt_connect LIBRARY DESTINATION ${FLOORNAV_INSTALL_MODULEDIR})
 endif()
 
 # The command-line tool, so that an installed floornav runs scenarios too.
 if(TARGET floornav)
   install(TARGETS floornav RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  if(TARGET floornav_rrt_connect)
+    file(RELATIVE_PATH _floornav_tool_to_module ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_BINDIR}
+      ${CMAKE_INSTALL_PREFIX}/${FLOORNAV_INSTALL_MODULEDIR})
+    set_target_properties(floornav PROPERTIES INSTALL_RPATH "$ORIGIN/${_floornav_tool_to_module}")
+  endif()
 endif()
 
 # The chapter scenarios, self-contained (no map files): the examples, the README's program and

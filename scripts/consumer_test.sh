@@ -6,7 +6,8 @@
 #      README.md, so the README is what is tested), runs it on an installed chapter scenario and
 #      checks the outcome; the program must be examples/01_go_to_goal.cpp word for word;
 #   3. builds examples/ on their own (find_package) and runs their tests;
-#   4. runs the installed floornav tool on an installed scenario;
+#   4. runs the installed floornav tool on an installed scenario (and, with OMPL, plans with
+#      rrt_connect: the planner's module loaded from the prefix);
 #   5. imports the installed Python package (when the build has it) from outside the repository,
 #      with no PYTHONPATH into the build tree, and runs an installed scenario with it;
 #   6. builds the libraries again without OMPL (FLOORNAV_WITH_OMPL=OFF; no tests, tool or Python)
@@ -94,6 +95,30 @@ out=$("$prefix/bin/floornav" run "$prefix/share/floornav/scenarios/week7_pocket.
 [ -f "$work/run/summary.json" ] || fail "the installed floornav wrote no summary.json"
 grep -q '"status": *"reached"' "$work/run/summary.json" ||
   fail "the installed floornav did not reach the goal of week7_pocket.yaml"
+# The rrt_connect planner (a build with OMPL): the installed tool loads its module from the
+# prefix, relative to itself (the prefix was moved: --prefix); a program built against the
+# package has the module's directory on its run path.
+if [ -f "$build/libfloornav_rrt_connect.so" ]; then
+  [ -f "$prefix/lib/floornav/libfloornav_rrt_connect.so" ] ||
+    fail "the install lacks lib/floornav/libfloornav_rrt_connect.so (the rrt_connect planner's module)"
+  out=$(LD_DEBUG=files "$prefix/bin/floornav" run "$prefix/share/floornav/scenarios/fleet_crossing.yaml" \
+    --set controller.planner.kind=rrt_connect --out "$work/rrt" --quiet 2>&1) ||
+    fail "the installed floornav failed with rrt_connect: $(grep -v '^ *[0-9]*:' <<<"$out")"
+  grep -q "file=$prefix/bin/../lib/floornav/libfloornav_rrt_connect.so " <<<"$out" ||
+    fail "the installed floornav did not load the rrt_connect module from $prefix/lib/floornav"
+  grep -q '"status": *"reached"' "$work/rrt/summary.json" ||
+    fail "the installed floornav's fleet_crossing with rrt_connect did not reach every goal"
+  readelf -d "$app/build/app" | grep -q "RUNPATH.*$prefix/lib/floornav" ||
+    fail "the README program's run path lacks the rrt_connect module's $prefix/lib/floornav"
+  # floornav::floornav brings floornav::ompl: the README program takes a scenario with rrt_connect.
+  sed 's/^  kind: hybrid$/  kind: hybrid\n  planner: {kind: rrt_connect}/' \
+    "$prefix/share/floornav/scenarios/circle_obstacle.yaml" >"$work/rrt_connect.yaml"
+  out=$("$app/build/app" "$work/rrt_connect.yaml" 2>&1) ||
+    fail "the README program refused a scenario with rrt_connect (floornav::floornav without floornav::ompl?): $out"
+  echo "consumer test: the installed tool planned with rrt_connect, its module loaded from the prefix;" \
+    "the README program takes rrt_connect"
+fi
+
 # 5. The installed Python package (built when pybind11 and Debian's Python were found).
 pkg=$(find "$prefix/lib" -path '*-packages/floornav/__init__.py' 2>/dev/null | head -n 1)
 if [ -n "$pkg" ]; then

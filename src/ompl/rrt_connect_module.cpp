@@ -1,11 +1,13 @@
-#include "floornav/ompl/rrt_connect.hpp"
-
+// The OMPL half of the rrt_connect planner: a module (libfloornav_rrt_connect.so, the CMake
+// target floornav_rrt_connect) that links libompl and is loaded on the first plan that needs a
+// search (rrt_connect_loader.cpp), so that a program that never plans with rrt_connect never
+// loads OMPL, Boost and ODE. It exports two C functions and nothing else.
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <mutex>
-#include <stdexcept>
-#include <string>
 #include <utility>
+#include <vector>
 
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/ProblemDefinition.h>
@@ -16,8 +18,8 @@
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 
-#include "floornav/nav/planner_params.hpp"
-#include "floornav/nav/sampling_planner.hpp"
+#include "floornav/geometry/vec2.hpp"
+#include "floornav/planning/free_raster.hpp"
 #include "floornav/planning/line_of_sight.hpp"
 
 namespace floornav {
@@ -88,22 +90,12 @@ void silence_ompl() {
   static std::once_flag once;  // floornav's libraries do no I/O: OMPL's console messages go nowhere
   std::call_once(once, [] { ompl::msg::noOutputHandler(); });
 }
-}  // namespace
 
-bool rrt_connect_path(const FreeRaster& raster, GridCell start, GridCell goal, std::uint64_t seed,
-                      int max_samples, std::vector<Vec2>& out) {
-  out.clear();
-  if (max_samples > kMaxRrtConnectSamples)
-    throw std::invalid_argument("rrt_connect_path: max_samples " + std::to_string(max_samples) +
-                                " is above the limit of " + std::to_string(kMaxRrtConnectSamples) +
-                                " samples a plan");
-  if (!raster.is_free(start.x, start.y) || !raster.is_free(goal.x, goal.y) || max_samples < 1)
-    return false;
+// The search proper; rrt_connect_path (rrt_connect_loader.cpp) has checked the arguments: free
+// and distinct end cells, 1 <= max_samples <= kMaxRrtConnectSamples, `out` empty.
+bool search(const FreeRaster& raster, GridCell start, GridCell goal, std::uint64_t seed,
+            int max_samples, std::vector<Vec2>& out) {
   silence_ompl();
-  if (start == goal) {
-    out.assign({Vec2(start.x + 0.5, start.y + 0.5), Vec2(goal.x + 0.5, goal.y + 0.5)});
-    return true;
-  }
 
   auto space = std::make_shared<ob::RealVectorStateSpace>(2);
   ob::RealVectorBounds bounds(2);
@@ -147,13 +139,18 @@ bool rrt_connect_path(const FreeRaster& raster, GridCell start, GridCell goal, s
   return out.size() >= 2;
 }
 
+}  // namespace
 }  // namespace floornav
 
-// A program that links floornav::ompl has the rrt_connect planner, installed before main(). The
-// link option -u floornav_ompl_rrt_connect in floornav::ompl's interface makes the linker take
-// this file out of the static library although no code names it.
+// What the loader looks up (dlsym). The ABI tag is the version and commit both halves were
+// built from: a module of another build is refused rather than called with other layouts.
 extern "C" {
-extern const bool floornav_ompl_rrt_connect;
-const bool floornav_ompl_rrt_connect =
-    (floornav::set_rrt_connect_search(&floornav::rrt_connect_path), true);
+__attribute__((visibility("default"))) const char* floornav_rrt_connect_abi() {
+  return FLOORNAV_RRT_CONNECT_ABI;
+}
+__attribute__((visibility("default"))) bool floornav_rrt_connect_search(
+    const floornav::FreeRaster& raster, floornav::GridCell start, floornav::GridCell goal,
+    std::uint64_t seed, int max_samples, std::vector<floornav::Vec2>& out) {
+  return floornav::search(raster, start, goal, seed, max_samples, out);
+}
 }

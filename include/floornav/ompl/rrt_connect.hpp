@@ -7,8 +7,10 @@
 /// `planner.kind: rrt_connect` (nav/sampling_planner.hpp) before main() runs.
 ///
 /// Why OMPL and not a hand-written RRT: it is the reference implementation (Debian's
-/// libompl-dev), and only the validity checks are ours. OMPL stays behind this header (linked
-/// privately to floornav::ompl; the core does not link it).
+/// libompl-dev), and only the validity checks are ours. OMPL stays behind this header:
+/// floornav::ompl does not link it but loads it, from the module libfloornav_rrt_connect.so, on the
+/// first call that needs a search, so that a program that never searches never pays for loading
+/// OMPL.
 ///
 /// Determinism: OMPL's RNGs are seeded from the process-wide seed generator unless told
 /// otherwise, and `ompl::RNG::setSeed` works only once per process and before any RNG exists.
@@ -33,6 +35,8 @@ namespace floornav {
 /// SampledPathSearch. Precondition: `max_samples` <= kMaxRrtConnectSamples (planner_params.hpp),
 /// the bound on a plan's time; above it std::invalid_argument is thrown before any work
 /// (scenario validation refuses such a setting as bad input, and PlannerController too).
+/// std::runtime_error, naming every place tried, when OMPL's module of this build cannot be
+/// loaded (an incomplete install); the next call tries again.
 bool rrt_connect_path(const FreeRaster& raster, GridCell start, GridCell goal, std::uint64_t seed,
                       int max_samples, std::vector<Vec2>& out);
 
