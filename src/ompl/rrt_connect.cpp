@@ -18,8 +18,6 @@ namespace {
 // loaded on the first search, not linked.
 constexpr const char* kModule = "libfloornav_rrt_connect.so";
 
-using ModuleSearch = bool (*)(const FreeRaster&, GridCell, GridCell, std::uint64_t, int,
-                              std::vector<Vec2>&);
 using ModuleAbi = const char* (*)();
 
 // The directory of the program or shared object this code is linked into, with a trailing '/'.
@@ -34,7 +32,7 @@ std::string own_directory() {
 
 // Opens `path` and returns its search if it is the module of this very build; else nullptr,
 // with why appended to `tried`.
-ModuleSearch open_module(const std::string& path, std::string& tried) {
+SampledPathSearch open_module(const std::string& path, std::string& tried) {
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) {
     const char* why = dlerror();
@@ -42,7 +40,8 @@ ModuleSearch open_module(const std::string& path, std::string& tried) {
     return nullptr;
   }
   const auto abi = reinterpret_cast<ModuleAbi>(dlsym(handle, "floornav_rrt_connect_abi"));
-  const auto search = reinterpret_cast<ModuleSearch>(dlsym(handle, "floornav_rrt_connect_search"));
+  const auto search =
+      reinterpret_cast<SampledPathSearch>(dlsym(handle, "floornav_rrt_connect_search"));
   if (abi && search && std::string(abi()) == FLOORNAV_RRT_CONNECT_ABI) return search;
   tried += "\n  " + path + ": " +
            (abi && search
@@ -56,20 +55,20 @@ ModuleSearch open_module(const std::string& path, std::string& tried) {
 // build tree's tool), then by its name alone, on this program's run path (set by floornav's
 // CMake package and build tree, and by the installed tool's $ORIGIN) and LD_LIBRARY_PATH. The
 // first one of this very build is taken.
-ModuleSearch load_module() {
+SampledPathSearch load_module() {
   std::string tried;
   const std::string own = own_directory();
   if (!own.empty())
-    if (const ModuleSearch search = open_module(own + kModule, tried)) return search;
-  if (const ModuleSearch search = open_module(kModule, tried)) return search;
+    if (const SampledPathSearch search = open_module(own + kModule, tried)) return search;
+  if (const SampledPathSearch search = open_module(kModule, tried)) return search;
   throw std::runtime_error(std::string("rrt_connect: cannot load OMPL's planner module ") +
                            kModule + " of floornav " + FLOORNAV_RRT_CONNECT_ABI +
                            "; tried:" + tried);
 }
 
-ModuleSearch module_search() {
+SampledPathSearch module_search() {
   static std::once_flag once;
-  static ModuleSearch search = nullptr;
+  static SampledPathSearch search = nullptr;
   std::call_once(once, [] { search = load_module(); });  // a throw leaves it to the next call
   return search;
 }

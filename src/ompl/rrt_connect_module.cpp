@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -18,8 +19,7 @@
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 
-#include "floornav/geometry/vec2.hpp"
-#include "floornav/planning/free_raster.hpp"
+#include "floornav/nav/sampling_planner.hpp"
 #include "floornav/planning/line_of_sight.hpp"
 
 namespace floornav {
@@ -154,3 +154,6 @@ __attribute__((visibility("default"))) bool floornav_rrt_connect_search(
   return floornav::search(raster, start, goal, seed, max_samples, out);
 }
 }
+
+// The loader calls it as the core's hook type: the two must not drift apart.
+static_assert(std::is_same_v<decltype(&floornav_rrt_connect_search), floornav::SampledPathSearch>);
