@@ -47,6 +47,13 @@ struct SafetyShared {
   Vec2 heading;
 };
 
+// The point that set a measure's least slack. When the world set it, its nearest point is a
+// search (five clearances): left to the caller, which needs it only when the command is limited.
+struct SafetyBlocker {
+  Vec2 point{Vec2::Zero()};
+  bool world{false};
+};
+
 namespace {
 
 // The poses along a stopping path, from the pose (k = 0) to the path's end (k = count - 1).
@@ -233,10 +240,10 @@ class LazySamples {
 // The least slack found so far and, when asked for, the point that set it.
 struct LeastSlack {
   double worst{kInf};
-  Vec2* blocker{nullptr};
+  SafetyBlocker* blocker{nullptr};
 
   void take(double slack, const Vec2& at) {
-    if (blocker && slack < worst) *blocker = at;
+    if (blocker && slack < worst) *blocker = {at, false};
     worst = std::min(worst, slack);
   }
 };
@@ -254,6 +261,8 @@ struct MeasuredBody {
   LazySamples& samples;
   /// Only whether the slack is >= stop matters: below it, measuring may stop (-inf: exact).
   double stop;
+  /// A slack at or above this may be reported as any value at or above it (+inf: exact).
+  double exact_below;
 };
 
 // The body's clearance to the world at the filter's pose, measured once per filter call.
@@ -285,8 +294,19 @@ void world_slack(const MeasuredBody& body, const World& world, double world_clea
     least.worst = std::min(least.worst, bound);
     return;
   }
-  const PathSamples& s = body.samples();
   const double before = pose_clearance(world, body.robot, body.pose, shared);
+  if (body.robot.footprint.empty()) {
+    // A disc body's centre is k spacings along the path at sample k, so the clearance there is
+    // at least before - k spacing (it is 1-Lipschitz) and path_slack's bound between samples k - 1
+    // and k at least that too: none is below before - reach - margin, which, when it settles the
+    // question, stands for them all without measuring one.
+    const double settled = before - body.reach - body.margin;
+    if (settled >= body.exact_below) {
+      least.worst = std::min(least.worst, settled);
+      return;
+    }
+  }
+  const PathSamples& s = body.samples();
   const double need = std::min(body.margin, before);
   ClearanceHint& hint = shared.hint;
   const double slack = path_slack(
@@ -295,9 +315,8 @@ void world_slack(const MeasuredBody& body, const World& world, double world_clea
         return body_clearance(world, body.robot, Pose2{s.position[k], s.theta[k]}, hint);
       },
       need, before, body.stop);
-  // The nearest world point is a search: found only when the path's samples set the least slack.
-  if (least.blocker && s.count > 1 && slack < least.worst)
-    *least.blocker = nearest_world_point(world, body.pose.position, hint);
+  // The world is marked as what blocked; filter finds its nearest point when it needs it.
+  if (least.blocker && s.count > 1 && slack < least.worst) least.blocker->world = true;
   least.worst = std::min(least.worst, slack);
 }
 
@@ -465,12 +484,12 @@ double SafetyLayer::sweep_reach(const UnicycleCommand& path) const {
 double SafetyLayer::slack(const Pose2& pose, const UnicycleCommand& command,
                           const SafetyScene& scene) const {
   SafetyShared shared;
-  return measure(pose, command, scene, nullptr, shared, -kInf);
+  return measure(pose, command, scene, nullptr, shared, -kInf, kInf);
 }
 
 double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
-                            const SafetyScene& scene, Vec2* blocker, SafetyShared& shared,
-                            double decide) const {
+                            const SafetyScene& scene, SafetyBlocker* blocker, SafetyShared& shared,
+                            double decide, double exact_below) const {
   const UnicycleCommand path = stopping_path(command);
   const double reach = sweep_reach(path);
   LazySamples samples(pose, path, reach, std::abs(command.v), dt_ + params_.reaction_time,
@@ -484,7 +503,8 @@ double SafetyLayer::measure(const Pose2& pose, const UnicycleCommand& command,
                           .travel = std::abs(path.v),
                           .dt = dt_,
                           .samples = samples,
-                          .stop = decide};
+                          .stop = decide,
+                          .exact_below = exact_below};
   LeastSlack least{kInf, blocker};
   if (scene.world) world_slack(body, *scene.world, scene.world_clearance, shared, least);
   if (!(least.worst < decide)) points_slack(body, scene, shared, least);
@@ -528,7 +548,7 @@ UnicycleCommand SafetyLayer::way_out(const Pose2& pose, const SafetyScene& scene
   double best_slack = -kInf;
   for (const UnicycleCommand& o : options) {
     const UnicycleCommand c = wheels_to_unicycle(drive, saturate_wheels(drive, o));
-    const double s = measure(pose, c, scene, nullptr, shared, -kInf);
+    const double s = measure(pose, c, scene, nullptr, shared, -kInf, kInf);
     if (s > best_slack + kTolerance) {
       best_slack = s;
       best = c;
@@ -547,22 +567,25 @@ SafetyVerdict SafetyLayer::filter(const Pose2& pose, const UnicycleCommand& want
   // is coming in and the robot can no longer keep its field by standing. Then any command that
   // keeps no less than standing does is allowed (the controller's own way out among them).
   // A command that keeps its field passes whatever standing keeps (the floor is at most
-  // -kTolerance): the common case costs one measure.
-  Vec2 blocker = pose.position;
-  auto slack_of = [&](const UnicycleCommand& u) {
-    return measure(pose, u, scene, nullptr, shared, -kInf);
+  // -kTolerance): the common case costs one measure. The slacks of the wanted command, of
+  // standing and of the commands tried are compared with thresholds at or below 0 only: above 0
+  // they need not be exact.
+  SafetyBlocker blocker{pose.position};
+  auto slack_of = [&](const UnicycleCommand& u, double exact_below) {
+    return measure(pose, u, scene, nullptr, shared, -kInf, exact_below);
   };
-  const double wanted_slack = measure(pose, c, scene, &blocker, shared, -kInf);
+  const double wanted_slack = measure(pose, c, scene, &blocker, shared, -kInf, 0.0);
   if (wanted_slack >= -kTolerance) return {c, c.v != wanted.v || c.omega != wanted.omega};
-  const double floor = std::min(0.0, slack_of(UnicycleCommand{})) - kTolerance;
+  const double floor = std::min(0.0, slack_of(UnicycleCommand{}, 0.0)) - kTolerance;
   auto allowed = [&](const UnicycleCommand& u) {
-    return measure(pose, u, scene, nullptr, shared, floor) >= floor;
+    return measure(pose, u, scene, nullptr, shared, floor, 0.0) >= floor;
   };
   if (wanted_slack >= floor) return {c, c.v != wanted.v || c.omega != wanted.omega};
   SafetyVerdict verdict;
   verdict.limited = true;
-  verdict.blocker = blocker;
-  verdict.blocked = blocker != pose.position;
+  if (blocker.world) blocker.point = nearest_world_point(*scene.world, pose.position, shared.hint);
+  verdict.blocker = blocker.point;
+  verdict.blocked = blocker.point != pose.position;
 
   // The largest fraction s of `c` (scaled by `scale`) that is allowed, knowing that s = 0 is.
   auto largest = [&](auto scale) {
@@ -583,7 +606,7 @@ SafetyVerdict SafetyLayer::filter(const Pose2& pose, const UnicycleCommand& want
   // Something is coming in: a way out that keeps more than the controller's command does.
   if (floor < -kTolerance) {
     const UnicycleCommand out = way_out(pose, scene, shared);
-    if (slack_of(out) > slack_of(verdict.command) + kTolerance) verdict.command = out;
+    if (slack_of(out, kInf) > slack_of(verdict.command, kInf) + kTolerance) verdict.command = out;
   }
   return verdict;
 }

@@ -4,11 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <random>
 #include <vector>
 
 #include "floornav/geometry/angle.hpp"
 #include "floornav/nav/safety_layer.hpp"
+#include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
+#include "support/property_count.hpp"
 
 using namespace floornav;
 
@@ -183,4 +187,79 @@ TEST(SafetyLayer, TheSlowDownFieldCapsTheSpeedNearby) {
   EXPECT_EQ(layer.filter(near, {0.3, 0.0}, scene_of(w, near, r)).command.v, 0.1);
   const Pose2 centre{Vec2(0.0, 0.0), 0.0};  // 0.925 m from every wall
   EXPECT_EQ(layer.filter(centre, {0.3, 0.0}, scene_of(w, centre, r)).command.v, 0.3);
+}
+
+namespace {
+
+// A 4 x 4 m grid world of 0.05 m cells with a border and `blocks` random occupied squares.
+World random_grid_world(std::mt19937_64& rng, int blocks) {
+  constexpr int kCells = 80;
+  std::vector<std::uint8_t> occupied(kCells * kCells, 0);
+  for (int i = 0; i < kCells; ++i) {
+    occupied[i] = occupied[(kCells - 1) * kCells + i] = 1;
+    occupied[i * kCells] = occupied[i * kCells + kCells - 1] = 1;
+  }
+  std::uniform_int_distribution<int> cell(1, kCells - 8), size(1, 6);
+  for (int b = 0; b < blocks; ++b) {
+    const int x0 = cell(rng), y0 = cell(rng), w = size(rng), h = size(rng);
+    for (int y = y0; y < y0 + h; ++y)
+      for (int x = x0; x < x0 + w; ++x) occupied[y * kCells + x] = 1;
+  }
+  WorldDesc d;
+  d.grid = std::make_shared<OccupancyGrid>(kCells, kCells, 0.05, Pose2{Vec2(-2.0, -2.0), 0.0},
+                                           std::move(occupied));
+  return World(d);
+}
+
+// The same room with `n` random discs instead.
+World random_shape_world(std::mt19937_64& rng, int n) {
+  std::uniform_real_distribution<double> at(-1.8, 1.8), radius(0.02, 0.3);
+  WorldDesc d;
+  d.bounds = Box2{Vec2(-2.0, -2.0), Vec2(2.0, 2.0)};
+  for (int i = 0; i < n; ++i) d.circles.push_back({Vec2(at(rng), at(rng)), radius(rng)});
+  return World(d);
+}
+
+}  // namespace
+
+// The filter passes a command unchanged exactly when its stopping path keeps the field, as the
+// exact slack measures it: on generated grid and shape worlds, at random poses (many of them
+// within a stopping path of the field's edge, where a bound must not stand in for the path's
+// samples), random commands up to the Pioneer's top speed and braking, and a scene whose bound on
+// the world's clearance is as stale as a robot's between two exact checks. A command that is cut
+// reports what blocked it.
+TEST(SafetyLayer, TheFilterLimitsExactlyTheCommandsWhoseExactSlackMissesTheField) {
+  std::mt19937_64 rng(20261207);
+  RobotSpec r = disc_robot();
+  r.max_acceleration = 0.3;  // long stopping paths (up to ~0.4 m): many samples
+  const SafetyLayer layer(r, SafetyParams{}, kDt);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), coord(-1.9, 1.9);
+  const int worlds = test::property_count("FLOORNAV_SAFETY_FILTER_WORLDS", 40);
+  int limited = 0, passed = 0;
+  for (int k = 0; k < worlds; ++k) {
+    const World w = k % 2 == 0 ? random_grid_world(rng, 30) : random_shape_world(rng, 25);
+    for (int trial = 0; trial < 500; ++trial) {
+      const Pose2 pose{Vec2(coord(rng), coord(rng)), 2.0 * kPi * unit(rng)};
+      const double clearance = w.clearance(pose.position) - r.body_radius;
+      if (!(clearance > 0.0) || clearance > 0.6) continue;
+      const UnicycleCommand c{0.5 * (2.0 * unit(rng) - 0.3), 2.0 * (2.0 * unit(rng) - 1.0)};
+      SafetyScene s;
+      s.world = &w;
+      s.world_clearance = clearance - 0.6 * unit(rng);  // a lower bound, maybe a stale one
+      const double exact = layer.slack(pose, c, s);
+      const SafetyVerdict v = layer.filter(pose, c, s);
+      ASSERT_EQ(v.limited, exact < -1e-9)
+          << "world " << k << " trial " << trial << " slack " << exact << " at ("
+          << pose.position.transpose() << "), command (" << c.v << ", " << c.omega << ")";
+      if (!v.limited) {
+        ++passed;
+        continue;
+      }
+      ++limited;
+      ASSERT_TRUE(v.blocked) << "world " << k << " trial " << trial;
+    }
+  }
+  // Both kinds of answer were tested, many times.
+  EXPECT_GT(limited, 20 * worlds);
+  EXPECT_GT(passed, 20 * worlds);
 }

@@ -42,6 +42,7 @@ namespace floornav {
 class World;
 struct ClearanceHint;
 struct SafetyShared;
+struct SafetyBlocker;
 
 /// Which body of the floor a SafetyDisc or SafetyBox is (for reports: who held a robot up).
 struct BodyRef {
@@ -122,13 +123,15 @@ class SafetyLayer {
 
  private:
   /// slack(), and where `blocker` is given, the nearest point of what bound it (unchanged when
-  /// nothing binds).
+  /// nothing binds; when the world bound it, only marked as the world's).
   /// One filter measures many commands from one pose, along paths a few centimetres long:
   /// `shared` keeps what they have in common (bit for bit what each would compute).
   /// With a finite `decide`, only whether the slack is >= decide matters: the measure stops as
-  /// soon as it is known to be below (and then returns some value below `decide`).
+  /// soon as it is known to be below (and then returns some value below `decide`). A slack at or
+  /// above `exact_below` may be reported as any value at or above it (+infinity: exact).
   double measure(const Pose2& pose, const UnicycleCommand& command, const SafetyScene& scene,
-                 Vec2* blocker, SafetyShared& shared, double decide) const;
+                 SafetyBlocker* blocker, SafetyShared& shared, double decide,
+                 double exact_below) const;
   /// The farthest any point of the body moves along the stopping path of `command`.
   double sweep_reach(const UnicycleCommand& path) const;
   /// The forward speed cap of the slow-down field at `pose` (+infinity when it does not apply).
