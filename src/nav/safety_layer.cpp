@@ -4,8 +4,10 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "floornav/geometry/polygon.hpp"
+#include "floornav/geometry/segment.hpp"
 #include "floornav/robot/body_clearance.hpp"
 #include "floornav/world/world.hpp"
 
@@ -72,6 +74,9 @@ struct PathSamples {
   double centre_spacing{0.0};  ///< m: the most the centre moves between two samples
   /// m: how far the centre's arc strays from the chord between two samples
   double centre_sagitta{0.0};
+  /// m: how far the centre's arc strays from the chord between the first and the last sample
+  /// (+infinity: it turns by more than half a turn, and may come back beyond the chord's ends)
+  double stray{0.0};
 };
 
 // When the centre has come `s` m along a stopping path driven at `speed` for `drive` s and then
@@ -114,6 +119,10 @@ void sample_path(const Pose2& pose, const Vec2& heading, const UnicycleCommand& 
   }
   s.count = segments + 1;
   if (segments > 0) s.spacing = reach / segments;
+  if (!straight)
+    s.stray = std::abs(path.omega) <= std::numbers::pi
+                  ? std::abs(bend) * (1.0 - std::cos(0.5 * path.omega))
+                  : kInf;
 }
 
 // Fills what projections along the centre's path need of `s` sampled along `path`: the times,
@@ -343,6 +352,15 @@ void point_slack(const MeasuredBody& body, const Vec2& q, double d2, double& nea
     return;
   }
   const PathSamples& s = body.samples();
+  // No sample's gap is below the gap to the chord of the centre's path less how far the path
+  // strays from it, and path_slack's bounds between samples no more than half a spacing below
+  // theirs: when that settles the question, no sample is measured.
+  const double settled = distance(Segment{s.position[0], s.position[s.count - 1]}, q) - s.stray -
+                         body.bound - 0.5 * s.spacing - margin;
+  if (settled >= body.exact_below) {
+    least.worst = std::min(least.worst, settled);
+    return;
+  }
   // The disc round the body first: its gaps are lower bounds, and the need is at most the
   // margin, so a pass here is a pass (for a disc body it is the exact test).
   const bool disc = body.robot.footprint.empty();

@@ -10,6 +10,7 @@
 
 #include "floornav/geometry/angle.hpp"
 #include "floornav/nav/safety_layer.hpp"
+#include "floornav/robot/body_clearance.hpp"
 #include "floornav/world/occupancy_grid.hpp"
 #include "floornav/world/world.hpp"
 #include "support/property_count.hpp"
@@ -223,29 +224,43 @@ World random_shape_world(std::mt19937_64& rng, int n) {
 }  // namespace
 
 // The filter passes a command unchanged exactly when its stopping path keeps the field, as the
-// exact slack measures it: on generated grid and shape worlds, at random poses (many of them
-// within a stopping path of the field's edge, where a bound must not stand in for the path's
-// samples), random commands up to the Pioneer's top speed and braking, and a scene whose bound on
-// the world's clearance is as stale as a robot's between two exact checks. A command that is cut
-// reports what blocked it.
+// exact slack measures it: on generated grid and shape worlds with range returns scattered round
+// the robot, for a disc and a footprint, at random poses (many of them within a stopping path of
+// the field's edge, where a bound must not stand in for the path's samples), random commands up
+// to the Pioneer's top speed and braking, and a scene whose bound on the world's clearance is as
+// stale as a robot's between two exact checks. A command that is cut reports what blocked it.
 TEST(SafetyLayer, TheFilterLimitsExactlyTheCommandsWhoseExactSlackMissesTheField) {
   std::mt19937_64 rng(20261207);
-  RobotSpec r = disc_robot();
-  r.max_acceleration = 0.3;  // long stopping paths (up to ~0.4 m): many samples
-  const SafetyLayer layer(r, SafetyParams{}, kDt);
+  RobotSpec disc = disc_robot();
+  disc.max_acceleration = 0.3;  // long stopping paths (up to ~0.4 m): many samples
+  RobotSpec boxed = disc;
+  boxed.footprint = {Vec2(0.15, 0.1), Vec2(-0.15, 0.1), Vec2(-0.15, -0.1), Vec2(0.15, -0.1)};
+  boxed.body_radius = 0.19;
+  const SafetyLayer disc_layer(disc, SafetyParams{}, kDt), boxed_layer(boxed, SafetyParams{}, kDt);
   std::uniform_real_distribution<double> unit(0.0, 1.0), coord(-1.9, 1.9);
   const int worlds = test::property_count("FLOORNAV_SAFETY_FILTER_WORLDS", 40);
   int limited = 0, passed = 0;
+  std::vector<Vec2> points;
   for (int k = 0; k < worlds; ++k) {
     const World w = k % 2 == 0 ? random_grid_world(rng, 30) : random_shape_world(rng, 25);
     for (int trial = 0; trial < 500; ++trial) {
+      const bool footprint = trial % 2 == 1;
+      const RobotSpec& r = footprint ? boxed : disc;
+      const SafetyLayer& layer = footprint ? boxed_layer : disc_layer;
       const Pose2 pose{Vec2(coord(rng), coord(rng)), 2.0 * kPi * unit(rng)};
-      const double clearance = w.clearance(pose.position) - r.body_radius;
+      const double clearance = body_clearance(w, r, pose);
       if (!(clearance > 0.0) || clearance > 0.6) continue;
       const UnicycleCommand c{0.5 * (2.0 * unit(rng) - 0.3), 2.0 * (2.0 * unit(rng) - 1.0)};
+      // Every third scene has returns 0.2 to 1 m from the centre, beyond either body.
+      points.clear();
+      for (int i = 0; trial % 3 == 0 && i < 20; ++i) {
+        const double a = 2.0 * kPi * unit(rng), d = 0.2 + 0.8 * unit(rng);
+        points.push_back(pose.position + d * Vec2(std::cos(a), std::sin(a)));
+      }
       SafetyScene s;
       s.world = &w;
       s.world_clearance = clearance - 0.6 * unit(rng);  // a lower bound, maybe a stale one
+      s.points = points;
       const double exact = layer.slack(pose, c, s);
       const SafetyVerdict v = layer.filter(pose, c, s);
       ASSERT_EQ(v.limited, exact < -1e-9)
